@@ -1,0 +1,383 @@
+//! Assembly of the symmetric coupled system of SPEC §5, [P] (6.2)–(6.3):
+//!
+//! ```text
+//! B̌(x_n; x, y) = (k0 tr ε(u) I + 2 g_n ε^D(u), ε(v)) + (Eᵀ∇ϕ, ε(v)) − (β∇ϕ, ∇ξ) + (Eε(u), ∇ξ)
+//! (f̌, y)       = ∫Ω f0·v + ∫Γ2 f2·v − ∫Ω q0 ξ + ∫Γb q2 ξ
+//! ```
+//!
+//! with the secant modulus g_n = g(‖ε^D(u_n)‖²) frozen per element at the previous iterate
+//! (Section 5). With P1 elements all gradients are constant on an element, so the element
+//! matrices are exact; loads use a degree-2 rule. The sparsity pattern is built once
+//! ([`Assembler::new`]); [`Assembler::matrix`] produces values in the same order and refills.
+//!
+//! Local DOF order on an element with N = d + 1 nodes: u_i at node a is `a·d + i`, ϕ at node
+//! a is `N·d + a` (M = N(d + 1) ≤ 16 DOFs).
+
+use crate::dofs::{CONSTRAINED, DofMap};
+use crate::element::{Simplex, point_at, quadrature};
+use crate::error::{Error, Result};
+use crate::linalg::{SymmetricMatrix, SymmetricPattern};
+use crate::material::{Material, deviator_norm_squared};
+use crate::problem::Problem;
+
+/// Largest local system: a tetrahedron with 4 × 4 DOFs.
+const M_MAX: usize = 16;
+/// An element matrix (first M × M entries used).
+pub type ElementMatrix = [[f64; M_MAX]; M_MAX];
+
+/// The element matrix of B̌ on a simplex with secant modulus `g` [stress].
+///
+/// ```text
+/// uu: |K| [k0 ∂_iN_a ∂_jN_b + 2g (½(δ_ij ∇N_a·∇N_b + ∂_jN_a ∂_iN_b) − ∂_iN_a ∂_jN_b / d)]
+/// uϕ: |K| e_kil ∂_kN_b ∂_lN_a            from (Eᵀ∇ϕ, ε(v))
+/// ϕu: |K| e_ijl ∂_lN_b ∂_iN_a            from (Eε(u), ∇ξ)
+/// ϕϕ: −|K| ∂_iN_a β_ij ∂_jN_b
+/// ```
+pub fn element_matrix<const D: usize, const N: usize>(
+    material: &Material,
+    s: &Simplex<D, N>,
+    g: f64,
+) -> ElementMatrix {
+    let mut k = [[0.0; M_MAX]; M_MAX];
+    let (vol, grad, k0) = (s.measure(), &s.grad, material.elasticity.k0);
+    let (e, beta) = (&material.e, &material.beta);
+    let dot = |a: usize, b: usize| (0..D).map(|i| grad[a][i] * grad[b][i]).sum::<f64>();
+    for a in 0..N {
+        for b in 0..N {
+            let ab = dot(a, b);
+            for i in 0..D {
+                for j in 0..D {
+                    let delta = if i == j { ab } else { 0.0 };
+                    let (gi, gj) = (grad[a][i] * grad[b][j], grad[a][j] * grad[b][i]);
+                    k[a * D + i][b * D + j] =
+                        vol * (k0 * gi + 2.0 * g * (0.5 * (delta + gj) - gi / D as f64));
+                }
+                let mut coupling = 0.0;
+                for p in 0..D {
+                    for l in 0..D {
+                        coupling += e[p][i][l] * grad[b][p] * grad[a][l];
+                    }
+                }
+                k[a * D + i][N * D + b] = vol * coupling;
+            }
+            for j in 0..D {
+                let mut coupling = 0.0;
+                for i in 0..D {
+                    for l in 0..D {
+                        coupling += e[i][j][l] * grad[b][l] * grad[a][i];
+                    }
+                }
+                k[N * D + a][b * D + j] = vol * coupling;
+            }
+            let mut perm = 0.0;
+            for i in 0..D {
+                for j in 0..D {
+                    perm += grad[a][i] * beta[i][j] * grad[b][j];
+                }
+            }
+            k[N * D + a][N * D + b] = -vol * perm;
+        }
+    }
+    k
+}
+
+/// Global DOF indices of the element's local DOFs.
+fn local_dofs<const D: usize, const N: usize>(dofs: &DofMap, cell: &[usize]) -> [usize; M_MAX] {
+    let mut g = [0; M_MAX];
+    for (a, &node) in cell.iter().enumerate() {
+        for i in 0..D {
+            g[a * D + i] = dofs.u(node, i);
+        }
+        g[N * D + a] = dofs.phi(node);
+    }
+    g
+}
+
+/// The geometry of cell `c`, or an error naming it (the mesh check makes this unreachable).
+fn simplex<const D: usize, const N: usize>(problem: &Problem, c: usize) -> Result<Simplex<D, N>> {
+    Simplex::new(&problem.mesh.cell_coords::<D, N>(c)).ok_or_else(|| Error::DegenerateElement {
+        element: c,
+        nodes: problem.mesh.cell(c).to_vec(),
+        measure: 0.0,
+        edge: 0.0,
+    })
+}
+
+/// Assembles B̌ and f̌ on the free DOFs of a problem, reusing one sparsity pattern.
+#[derive(Debug)]
+pub struct Assembler {
+    dofs: DofMap,
+    pattern: SymmetricPattern,
+}
+
+impl Assembler {
+    /// Numbers the DOFs and builds the sparsity pattern (once per run).
+    pub fn new(problem: &Problem) -> Result<Self> {
+        let dofs = DofMap::new(problem)?;
+        let mut positions = Vec::new();
+        match problem.mesh.dim() {
+            2 => visit_free_pairs::<2, 3>(problem, &dofs, |r, c| positions.push((r, c)))?,
+            _ => visit_free_pairs::<3, 4>(problem, &dofs, |r, c| positions.push((r, c)))?,
+        }
+        let pattern = SymmetricPattern::new(dofs.n_free(), &positions)?;
+        Ok(Self { dofs, pattern })
+    }
+
+    /// The DOF map.
+    pub fn dofs(&self) -> &DofMap {
+        &self.dofs
+    }
+
+    /// The sparsity pattern.
+    pub fn pattern(&self) -> &SymmetricPattern {
+        &self.pattern
+    }
+
+    /// The matrix of B̌(x_n) for per-element secant moduli `g` [stress], and the Dirichlet
+    /// lifting −K_fc x_c (free DOFs) to add to the right-hand side.
+    pub fn matrix(&self, problem: &Problem, g: &[f64]) -> Result<(SymmetricMatrix, Vec<f64>)> {
+        if g.len() != problem.mesh.n_cells() {
+            return Err(Error::Length {
+                what: "secant moduli".into(),
+                expected: problem.mesh.n_cells(),
+                got: g.len(),
+            });
+        }
+        let mut values = Vec::with_capacity(self.pattern.nnz());
+        let mut lifting = vec![0.0; self.dofs.n_free()];
+        let dofs = &self.dofs;
+        let mut visit = |k_pq: f64, r: usize, c: usize, prescribed: f64| {
+            if c == CONSTRAINED {
+                lifting[r] -= k_pq * prescribed;
+            } else {
+                values.push(k_pq);
+            }
+        };
+        match problem.mesh.dim() {
+            2 => assemble_elements::<2, 3>(problem, dofs, g, &mut visit)?,
+            _ => assemble_elements::<3, 4>(problem, dofs, g, &mut visit)?,
+        }
+        Ok((self.pattern.matrix(&values)?, lifting))
+    }
+
+    /// f̌ of (6.3) on the global DOFs.
+    pub fn load_vector(&self, problem: &Problem) -> Vec<f64> {
+        match problem.mesh.dim() {
+            2 => load_vector::<2, 3>(problem, &self.dofs),
+            _ => load_vector::<3, 4>(problem, &self.dofs),
+        }
+    }
+
+    /// The entries of a global vector at the free DOFs.
+    pub fn restrict(&self, global: &[f64]) -> Vec<f64> {
+        let mut free = vec![0.0; self.dofs.n_free()];
+        for (g, v) in global.iter().enumerate() {
+            let k = self.dofs.free_index(g);
+            if k != CONSTRAINED {
+                free[k] = *v;
+            }
+        }
+        free
+    }
+}
+
+/// Calls `visit(K_pq, free row, free column or CONSTRAINED, prescribed value of the column)`
+/// for every local pair whose row is free, in a fixed order; pairs between free DOFs only for
+/// the lower triangle (row ≥ column), constrained columns always (for the lifting).
+fn assemble_elements<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    g: &[f64],
+    visit: &mut impl FnMut(f64, usize, usize, f64),
+) -> Result<()> {
+    let m = N * (D + 1);
+    for c in 0..problem.mesh.n_cells() {
+        let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, g[c]);
+        let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
+        for p in 0..m {
+            let r = dofs.free_index(global[p]);
+            if r == CONSTRAINED {
+                continue;
+            }
+            for q in 0..m {
+                let col = dofs.free_index(global[q]);
+                if col == CONSTRAINED {
+                    visit(k[p][q], r, CONSTRAINED, dofs.prescribed(global[q]));
+                } else if r >= col {
+                    visit(k[p][q], r, col, 0.0);
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The positions visited by [`assemble_elements`] between free DOFs, without computing
+/// element matrices.
+fn visit_free_pairs<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    mut visit: impl FnMut(usize, usize),
+) -> Result<()> {
+    let m = N * (D + 1);
+    for c in 0..problem.mesh.n_cells() {
+        let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
+        for p in 0..m {
+            let r = dofs.free_index(global[p]);
+            if r == CONSTRAINED {
+                continue;
+            }
+            for q in 0..m {
+                let col = dofs.free_index(global[q]);
+                if col != CONSTRAINED && r >= col {
+                    visit(r, col);
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn load_vector<const D: usize, const N: usize>(problem: &Problem, dofs: &DofMap) -> Vec<f64> {
+    let mesh = &problem.mesh;
+    let mut f = vec![0.0; dofs.n_total()];
+    let (f0, q0) = (&problem.loads.f0, &problem.loads.q0);
+    if f0.is_some() || q0.is_some() {
+        for c in 0..mesh.n_cells() {
+            let x = mesh.cell_coords::<D, N>(c);
+            let vol = Simplex::<D, N>::new(&x).map_or(0.0, |s| s.measure());
+            for (lambda, w) in quadrature(D) {
+                let p = point_at(&x, lambda);
+                let body_force = f0.as_ref().map(|f| f(&p));
+                let charge = q0.as_ref().map_or(0.0, |q| q(&p));
+                for (a, &node) in mesh.cell(c).iter().enumerate() {
+                    let weight = vol * w * lambda[a];
+                    if let Some(v) = &body_force {
+                        (0..D).for_each(|i| f[dofs.u(node, i)] += weight * v[i]);
+                    }
+                    f[dofs.phi(node)] -= weight * charge;
+                }
+            }
+        }
+    }
+    for (part, traction) in &problem.boundary.traction {
+        integrate_facets::<D>(problem, *part, |node, weight, p| {
+            let v = traction(p);
+            (0..D).for_each(|i| f[dofs.u(node, i)] += weight * v[i]);
+        });
+    }
+    for (part, charge) in &problem.boundary.charge {
+        integrate_facets::<D>(problem, *part, |node, weight, p| {
+            f[dofs.phi(node)] += weight * charge(p)
+        });
+    }
+    f
+}
+
+/// Calls `f(node, weight, point)` for each quadrature point and node of the part's facets,
+/// with weight = |e| w_q N_a(x_q).
+fn integrate_facets<const D: usize>(
+    problem: &Problem,
+    part: usize,
+    mut f: impl FnMut(usize, f64, &[f64]),
+) {
+    let mesh = &problem.mesh;
+    for facet in mesh.part_facets(part) {
+        let (measure, _) = mesh.facet_geometry::<D>(facet);
+        let x: Vec<[f64; D]> = facet
+            .iter()
+            .map(|&n| {
+                let mut p = [0.0; D];
+                p.copy_from_slice(mesh.node(n));
+                p
+            })
+            .collect();
+        for (lambda, w) in quadrature(D - 1) {
+            let p = point_at(&x, lambda);
+            for (a, &node) in facet.iter().enumerate() {
+                f(node, measure * w * lambda[a], &p);
+            }
+        }
+    }
+}
+
+/// Strain ε(u) and ∇ϕ on cell `c` from a global vector x = (u, ϕ).
+pub fn cell_gradients<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    c: usize,
+) -> Result<([[f64; D]; D], [f64; D])> {
+    let s = simplex::<D, N>(problem, c)?;
+    let mut eps = [[0.0; D]; D];
+    let mut grad_phi = [0.0; D];
+    for (a, &node) in problem.mesh.cell(c).iter().enumerate() {
+        for i in 0..D {
+            grad_phi[i] += x[dofs.phi(node)] * s.grad[a][i];
+            for j in 0..D {
+                eps[i][j] +=
+                    0.5 * (x[dofs.u(node, i)] * s.grad[a][j] + x[dofs.u(node, j)] * s.grad[a][i]);
+            }
+        }
+    }
+    Ok((eps, grad_phi))
+}
+
+/// Per-element secant moduli g(‖ε^D(u_n)‖²) [stress] at the iterate x_n (global vector).
+pub fn secant_moduli(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Vec<f64>> {
+    (0..problem.mesh.n_cells())
+        .map(|c| {
+            let t = match problem.mesh.dim() {
+                2 => deviator_norm_squared(&cell_gradients::<2, 3>(problem, dofs, x, c)?.0),
+                _ => deviator_norm_squared(&cell_gradients::<3, 4>(problem, dofs, x, c)?.0),
+            };
+            Ok(problem.material.elasticity.g(t))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::{ElasticLaw, Elasticity, PermittivityConstants, PiezoConstants};
+
+    fn pzt(dim: usize) -> Material {
+        let el = Elasticity::from_young_poisson(58.7102, 0.3912, ElasticLaw::Linear).unwrap();
+        Material::new(
+            dim,
+            el,
+            PiezoConstants { e31: -5.4, e33: 15.8, e15: 12.3 },
+            PermittivityConstants { beta11: 8.14, beta33: 7.37 },
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn element_matrices_are_symmetric_with_definite_diagonal_blocks() {
+        let tri = Simplex::<2, 3>::new(&[[0.1, 0.2], [1.3, 0.1], [0.4, 0.9]]).unwrap();
+        let tet = Simplex::<3, 4>::new(&[
+            [0.0, 0.1, 0.0],
+            [1.2, 0.0, 0.1],
+            [0.2, 1.0, 0.0],
+            [0.1, 0.3, 0.8],
+        ])
+        .unwrap();
+        let k2 = element_matrix(&pzt(2), &tri, 17.0);
+        let k3 = element_matrix(&pzt(3), &tet, 17.0);
+        for (k, m) in [(k2, 9), (k3, 16)] {
+            let scale = (0..m).map(|p| k[p][p].abs()).fold(0.0, f64::max);
+            for p in 0..m {
+                for q in 0..m {
+                    assert!((k[p][q] - k[q][p]).abs() < 1e-13 * scale, "({p},{q})");
+                }
+            }
+        }
+        // Rigid motions give zero elastic energy; a pure potential shift gives zero field.
+        let rigid = [1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0];
+        let y: Vec<f64> = (0..9).map(|p| (0..9).map(|q| k2[p][q] * rigid[q]).sum()).collect();
+        assert!(y.iter().all(|v| v.abs() < 1e-12));
+        let shift = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+        let y: Vec<f64> = (0..9).map(|p| (0..9).map(|q| k2[p][q] * shift[q]).sum()).collect();
+        assert!(y.iter().all(|v| v.abs() < 1e-12));
+    }
+}

@@ -1,0 +1,110 @@
+//! Degrees of freedom: numbering, Dirichlet constraints and the block order [u; ϕ].
+//!
+//! Global numbering (before elimination): u_i at node a is `a·d + i`, ϕ at node a is
+//! `n_nodes·d + a`. Dirichlet rows (u on Γ1, ϕ on Γa) are eliminated: the free unknowns are
+//! renumbered with every free u before every free ϕ, so the matrix is `[K_uu G; Gᵀ −K_ϕϕ]`
+//! and the LDLᵀ pivot signs are +1 then −1.
+
+use crate::error::Result;
+use crate::problem::Problem;
+
+/// Marks a constrained global DOF in [`DofMap::free_index`].
+pub const CONSTRAINED: usize = usize::MAX;
+
+/// Free numbering and prescribed values of all DOFs.
+#[derive(Clone, Debug)]
+pub struct DofMap {
+    dim: usize,
+    n_nodes: usize,
+    free: Vec<usize>,
+    n_free_u: usize,
+    n_free: usize,
+    /// Prescribed values of constrained DOFs (0 on free ones), global numbering.
+    prescribed: Vec<f64>,
+}
+
+impl DofMap {
+    /// Numbers the DOFs of `problem`: u fixed on Γ1, ϕ fixed on Γa.
+    pub fn new(problem: &Problem) -> Result<Self> {
+        let mesh = &problem.mesh;
+        let (dim, n_nodes) = (mesh.dim(), mesh.n_nodes());
+        let total = n_nodes * (dim + 1);
+        let mut prescribed = vec![0.0; total];
+        let mut constrained = vec![false; total];
+        for node in problem.part_nodes(&problem.boundary.clamped) {
+            let value = problem.boundary.clamped_value.as_ref().map(|f| f(mesh.node(node)));
+            for i in 0..dim {
+                constrained[node * dim + i] = true;
+                prescribed[node * dim + i] = value.as_ref().map_or(0.0, |v| v[i]);
+            }
+        }
+        for node in problem.part_nodes(&problem.boundary.grounded) {
+            constrained[n_nodes * dim + node] = true;
+            prescribed[n_nodes * dim + node] =
+                problem.boundary.grounded_value.as_ref().map_or(0.0, |f| f(mesh.node(node)));
+        }
+        let mut free = vec![CONSTRAINED; total];
+        let mut next = 0;
+        let mut n_free_u = 0;
+        for (g, c) in constrained.iter().enumerate() {
+            if !c {
+                free[g] = next;
+                next += 1;
+            }
+            if g + 1 == n_nodes * dim {
+                n_free_u = next;
+            }
+        }
+        Ok(Self { dim, n_nodes, free, n_free_u, n_free: next, prescribed })
+    }
+
+    /// Global index of u_i at `node`.
+    pub fn u(&self, node: usize, i: usize) -> usize {
+        node * self.dim + i
+    }
+
+    /// Global index of ϕ at `node`.
+    pub fn phi(&self, node: usize) -> usize {
+        self.n_nodes * self.dim + node
+    }
+
+    /// Total number of DOFs, n_nodes·(d + 1).
+    pub fn n_total(&self) -> usize {
+        self.free.len()
+    }
+
+    /// Number of free DOFs (the order of the linear system).
+    pub fn n_free(&self) -> usize {
+        self.n_free
+    }
+
+    /// Number of free u DOFs; free ϕ DOFs follow them.
+    pub fn n_free_u(&self) -> usize {
+        self.n_free_u
+    }
+
+    /// Free index of global DOF `g`, or [`CONSTRAINED`].
+    pub fn free_index(&self, g: usize) -> usize {
+        self.free[g]
+    }
+
+    /// Prescribed value of global DOF `g` (0 for a free DOF).
+    pub fn prescribed(&self, g: usize) -> f64 {
+        self.prescribed[g]
+    }
+
+    /// Pivot signs of the free DOFs: +1 for u, −1 for ϕ.
+    pub fn signs(&self) -> Vec<i8> {
+        (0..self.n_free).map(|k| if k < self.n_free_u { 1 } else { -1 }).collect()
+    }
+
+    /// The full global vector from free values and prescribed values.
+    pub fn expand(&self, free_values: &[f64]) -> Vec<f64> {
+        (0..self.n_total())
+            .map(|g| match self.free[g] {
+                CONSTRAINED => self.prescribed[g],
+                k => free_values[k],
+            })
+            .collect()
+    }
+}

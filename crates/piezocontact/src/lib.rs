@@ -1,0 +1,11 @@
+pub mod assembly;
+pub mod dofs;
+pub mod element;
+pub mod error;
+pub mod linalg;
+pub mod material;
+pub mod mesh;
+pub mod output;
+pub mod problem;
+pub mod solver;
+pub use error::{Error, Result};

@@ -1,0 +1,288 @@
+//! Constitutive law of the piezoelectric body, [P] (2.2)–(2.3):
+//!
+//! ```text
+//! σ = F ε(u) + Eᵀ∇ϕ,        D = E ε(u) − β∇ϕ,
+//! F ε = k0 tr(ε) I + 2 g(‖ε^D‖²) ε^D,        ε^D = ε − (tr ε / d) I,
+//! (Eε)_i = e_ijk ε_jk,        (Eᵀ∇ϕ)_jk = e_ijk ∂_iϕ.
+//! ```
+//!
+//! The poling direction is the last coordinate axis (y in 2D, z in 3D). The piezoelectric and
+//! permittivity tensors of a transversely isotropic ceramic (PZT) are built from engineering
+//! constants: e31 (= e32), e33, e15 (= e24), β11 (= β22), β33. In 2D the plane holds material
+//! axes 2 (x) and 3 (y), so e_{y,xx} = e32, e_{y,yy} = e33, e_{x,xy} = e24, β = diag(β22, β33)
+//! (SPEC §2).
+
+use crate::error::{Error, Result};
+
+/// The function g of Hencky's law (2.3): the secant shear modulus as a function of
+/// t = ‖ε^D‖² [stress].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ElasticLaw {
+    /// Linear elasticity, g ≡ µ1.
+    Linear,
+    /// The paper's Hencky law (Section 7): g(t) = µ1 for t ≤ t0,
+    /// g(t) = µ1 (t0/t)(1 + ln(t/t0)) for t > t0.
+    Hencky {
+        /// t0: elasticity limit on ‖ε^D‖² [dimensionless].
+        t0: f64,
+    },
+}
+
+/// The elasticity operator F of (2.3).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Elasticity {
+    /// k0 = E/(3 − 6ν): bulk coefficient [stress].
+    pub k0: f64,
+    /// µ1 = E/(2 + 2ν): shear modulus at small strain [stress].
+    pub mu1: f64,
+    /// The law g.
+    pub law: ElasticLaw,
+}
+
+impl Elasticity {
+    /// From Young's modulus E [stress] and Poisson's ratio ν, as in [P] Section 7:
+    /// µ1 = E/(2 + 2ν), k0 = E/(3 − 6ν).
+    pub fn from_young_poisson(young: f64, poisson: f64, law: ElasticLaw) -> Result<Self> {
+        if !(young.is_finite() && young > 0.0) {
+            return Err(invalid("material.young", young, "Young's modulus E must be > 0"));
+        }
+        if !(poisson > -1.0 && poisson < 0.5) {
+            return Err(invalid(
+                "material.poisson",
+                poisson,
+                "Poisson's ratio must satisfy −1 < ν < 0.5 so that k0 = E/(3 − 6ν) is finite",
+            ));
+        }
+        if let ElasticLaw::Hencky { t0 } = law
+            && !(t0.is_finite() && t0 > 0.0)
+        {
+            return Err(invalid("material.t0", t0, "the elasticity limit t0 must be > 0"));
+        }
+        Ok(Self { k0: young / (3.0 - 6.0 * poisson), mu1: young / (2.0 + 2.0 * poisson), law })
+    }
+
+    /// g(t) [stress], t = ‖ε^D‖².
+    pub fn g(&self, t: f64) -> f64 {
+        match self.law {
+            ElasticLaw::Hencky { t0 } if t > t0 => self.mu1 * (t0 / t) * (1.0 + (t / t0).ln()),
+            _ => self.mu1,
+        }
+    }
+
+    /// g'(t) [stress], for a Newton method: −µ1 t0 ln(t/t0)/t² above t0, 0 below.
+    pub fn dg(&self, t: f64) -> f64 {
+        match self.law {
+            ElasticLaw::Hencky { t0 } if t > t0 => -self.mu1 * t0 * (t / t0).ln() / (t * t),
+            _ => 0.0,
+        }
+    }
+}
+
+/// Engineering piezoelectric constants of a poled ceramic [charge/length²].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PiezoConstants {
+    /// e31 = e32: transverse coefficient.
+    pub e31: f64,
+    /// e33: longitudinal coefficient.
+    pub e33: f64,
+    /// e15 = e24: shear coefficient.
+    pub e15: f64,
+}
+
+/// Permittivity along and across the poling axis [charge/(potential·length)].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PermittivityConstants {
+    /// β11 = β22: across the poling axis.
+    pub beta11: f64,
+    /// β33: along the poling axis.
+    pub beta33: f64,
+}
+
+/// The complete material of the body in dimension `dim`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Space dimension d.
+    pub dim: usize,
+    /// F of (2.3).
+    pub elasticity: Elasticity,
+    /// e_ijk [charge/length²], only the first d indices used.
+    pub e: [[[f64; 3]; 3]; 3],
+    /// β_ij [charge/(potential·length)], symmetric positive definite.
+    pub beta: [[f64; 3]; 3],
+}
+
+impl Material {
+    /// Builds the tensors of a transversely isotropic ceramic poled along the last axis.
+    pub fn new(
+        dim: usize,
+        elasticity: Elasticity,
+        piezo: PiezoConstants,
+        permittivity: PermittivityConstants,
+    ) -> Result<Self> {
+        for (name, value) in
+            [("material.e31", piezo.e31), ("material.e33", piezo.e33), ("material.e15", piezo.e15)]
+        {
+            if !value.is_finite() {
+                return Err(invalid(name, value, "a finite number"));
+            }
+        }
+        for (name, value) in
+            [("material.beta11", permittivity.beta11), ("material.beta33", permittivity.beta33)]
+        {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(invalid(name, value, "permittivity must be > 0 (β positive definite)"));
+            }
+        }
+        let p = dim - 1; // poling axis
+        let mut e = [[[0.0; 3]; 3]; 3];
+        let mut beta = [[0.0; 3]; 3];
+        for t in 0..p {
+            e[p][t][t] = piezo.e31;
+            e[t][t][p] = piezo.e15;
+            e[t][p][t] = piezo.e15;
+            beta[t][t] = permittivity.beta11;
+        }
+        e[p][p][p] = piezo.e33;
+        beta[p][p] = permittivity.beta33;
+        Ok(Self { dim, elasticity, e, beta })
+    }
+
+    /// σ = k0 tr(ε) I + 2 g ε^D + Eᵀ∇ϕ with a given secant modulus g [stress], (2.2).
+    pub fn stress<const D: usize>(
+        &self,
+        eps: &[[f64; D]; D],
+        grad_phi: &[f64; D],
+        g: f64,
+    ) -> [[f64; D]; D] {
+        let tr: f64 = (0..D).map(|i| eps[i][i]).sum();
+        let mut sigma = [[0.0; D]; D];
+        for j in 0..D {
+            for k in 0..D {
+                let dev = eps[j][k] - if j == k { tr / D as f64 } else { 0.0 };
+                sigma[j][k] = 2.0 * g * dev
+                    + if j == k { self.elasticity.k0 * tr } else { 0.0 }
+                    + (0..D).map(|i| self.e[i][j][k] * grad_phi[i]).sum::<f64>();
+            }
+        }
+        sigma
+    }
+
+    /// D = Eε − β∇ϕ [charge/length²], (2.2).
+    pub fn displacement_field<const D: usize>(
+        &self,
+        eps: &[[f64; D]; D],
+        grad_phi: &[f64; D],
+    ) -> [f64; D] {
+        let mut d = [0.0; D];
+        for i in 0..D {
+            for j in 0..D {
+                d[i] -= self.beta[i][j] * grad_phi[j];
+                for k in 0..D {
+                    d[i] += self.e[i][j][k] * eps[j][k];
+                }
+            }
+        }
+        d
+    }
+
+    /// σ with the true law g(‖ε^D‖²).
+    pub fn true_stress<const D: usize>(
+        &self,
+        eps: &[[f64; D]; D],
+        grad_phi: &[f64; D],
+    ) -> [[f64; D]; D] {
+        self.stress(eps, grad_phi, self.elasticity.g(deviator_norm_squared(eps)))
+    }
+}
+
+/// ‖ε^D‖² with the deviator of the body's own dimension (SPEC §1).
+pub fn deviator_norm_squared<const D: usize>(eps: &[[f64; D]; D]) -> f64 {
+    let tr: f64 = (0..D).map(|i| eps[i][i]).sum();
+    let mut s = 0.0;
+    for i in 0..D {
+        for j in 0..D {
+            let dev = eps[i][j] - if i == j { tr / D as f64 } else { 0.0 };
+            s += dev * dev;
+        }
+    }
+    s
+}
+
+fn invalid(name: &str, value: f64, requirement: &str) -> Error {
+    Error::InvalidParameter {
+        name: name.into(),
+        value: value.to_string(),
+        requirement: requirement.into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pzt(dim: usize) -> Material {
+        let el = Elasticity::from_young_poisson(58.7102, 0.3912, ElasticLaw::Hencky { t0: 1.8 })
+            .unwrap();
+        let eps0 = 8.885e-3;
+        Material::new(
+            dim,
+            el,
+            PiezoConstants { e31: -5.4, e33: 15.8, e15: 12.3 },
+            PermittivityConstants { beta11: 916.0 * eps0, beta33: 830.0 * eps0 },
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn hencky_g_is_continuous_and_satisfies_h1() {
+        let el = pzt(2).elasticity;
+        let t0 = 1.8;
+        assert_eq!(el.g(t0), el.mu1);
+        assert!((el.g(t0 * (1.0 + 1e-12)) - el.mu1).abs() < 1e-9);
+        // g' against central differences; g + 2 g' t = µ1 (t0/t)(1 − ln(t/t0)), so the paper's
+        // g satisfies (h1)(b) (g + 2g't ≥ α1 > 0) only for t < e·t0.
+        for t in [2.0, 4.0, 5.0, 50.0, 1e3] {
+            let h = 1e-6 * t;
+            let fd = (el.g(t + h) - el.g(t - h)) / (2.0 * h);
+            assert!((fd - el.dg(t)).abs() < 1e-6 * el.mu1, "t = {t}");
+            let a = el.g(t) + 2.0 * el.dg(t) * t;
+            let expected = el.mu1 * (t0 / t) * (1.0 - (t / t0).ln());
+            assert!((a - expected).abs() < 1e-12 * el.mu1, "t = {t}");
+            assert_eq!(a > 0.0, t < std::f64::consts::E * t0, "t = {t}");
+        }
+    }
+
+    #[test]
+    fn plane_mapping_of_the_paper() {
+        let m = pzt(2);
+        // (Eε)_x = 2 e24 ε_xy, (Eε)_y = e32 ε_xx + e33 ε_yy (SPEC §2), with ∇ϕ = 0.
+        let eps = [[0.1, 0.2], [0.2, 0.3]];
+        let d = m.displacement_field(&eps, &[0.0, 0.0]);
+        assert!((d[0] - 2.0 * 12.3 * 0.2).abs() < 1e-12);
+        assert!((d[1] - (-5.4 * 0.1 + 15.8 * 0.3)).abs() < 1e-12);
+        let m3 = pzt(3);
+        assert_eq!(m3.e[2][0][0], -5.4);
+        assert_eq!(m3.e[1][1][2], 12.3);
+        assert_eq!(m3.beta[1][1], m3.beta[0][0]);
+    }
+
+    #[test]
+    fn parameter_errors() {
+        let e = Elasticity::from_young_poisson(1.0, 0.5, ElasticLaw::Linear).unwrap_err();
+        assert!(e.to_string().contains("material.poisson = 0.5"), "{e}");
+        let e = Elasticity::from_young_poisson(-1.0, 0.3, ElasticLaw::Linear).unwrap_err();
+        assert!(e.to_string().contains("material.young = -1"), "{e}");
+        let e =
+            Elasticity::from_young_poisson(1.0, 0.3, ElasticLaw::Hencky { t0: 0.0 }).unwrap_err();
+        assert!(e.to_string().contains("material.t0 = 0"), "{e}");
+        let el = Elasticity::from_young_poisson(1.0, 0.3, ElasticLaw::Linear).unwrap();
+        let e = Material::new(
+            2,
+            el,
+            PiezoConstants { e31: 0.0, e33: 0.0, e15: 0.0 },
+            PermittivityConstants { beta11: 0.0, beta33: 1.0 },
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("material.beta11"), "{e}");
+    }
+}

@@ -1,0 +1,404 @@
+//! Meshes of P1 simplices with named boundary parts.
+//!
+//! A [`Mesh`] holds node coordinates, cells (triangles in 2D, tetrahedra in 3D) and boundary
+//! parts: named sets of boundary facets (segments in 2D, triangles in 3D). Parts come from the
+//! segments of a [`rectangle`] or from the physical groups of a [`gmsh`] file; a case maps part
+//! names to the roles Γ1, Γ2, Γ3, Γa, Γb of the model ([P] (2.4)).
+//!
+//! [`Mesh::new`] checks the mesh once: node indices in range, finite coordinates, consistent
+//! orientation (a mesh whose cells are all clockwise is reoriented; mixed orientation means
+//! inverted elements and is an error), no degenerate or duplicate cells, no unused node, and
+//! every part facet a facet of exactly one cell.
+
+pub mod gmsh;
+pub mod rectangle;
+
+use crate::element::{Simplex, facet_measure_normal};
+use crate::error::{Error, Result};
+use std::collections::HashMap;
+
+/// A named set of boundary facets.
+#[derive(Clone, Debug)]
+pub struct BoundaryPart {
+    /// Name of the part (a Gmsh physical name or a case's segment group).
+    pub name: String,
+    /// Facet nodes, `dim` per facet, in the order that gives the outward normal.
+    facets: Vec<usize>,
+    /// The cell each facet belongs to.
+    cells: Vec<usize>,
+}
+
+impl BoundaryPart {
+    /// Creates a part from flat facet node lists (`dim` nodes per facet).
+    pub fn new(name: impl Into<String>, facets: Vec<usize>) -> Self {
+        Self { name: name.into(), facets, cells: Vec::new() }
+    }
+
+    /// Number of facets (of a part that belongs to a mesh).
+    pub fn n_facets(&self) -> usize {
+        self.cells.len()
+    }
+}
+
+/// A validated simplicial mesh.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    dim: usize,
+    coords: Vec<f64>,
+    cells: Vec<usize>,
+    parts: Vec<BoundaryPart>,
+}
+
+/// Sorted facet key (unused slots are `usize::MAX`).
+type FacetKey = [usize; 3];
+
+fn facet_key(nodes: &[usize]) -> FacetKey {
+    let mut key = [usize::MAX; 3];
+    key[..nodes.len()].copy_from_slice(nodes);
+    key[..nodes.len()].sort_unstable();
+    key
+}
+
+impl Mesh {
+    /// Builds and checks a mesh. `coords` holds `dim` numbers per node, `cells` `dim + 1` node
+    /// indices per cell, and each part's facets `dim` node indices per facet.
+    pub fn new(
+        dim: usize,
+        coords: Vec<f64>,
+        cells: Vec<usize>,
+        parts: Vec<BoundaryPart>,
+    ) -> Result<Self> {
+        if dim != 2 && dim != 3 {
+            return Err(Error::InvalidParameter {
+                name: "mesh dimension".into(),
+                value: dim.to_string(),
+                requirement: "must be 2 (triangles) or 3 (tetrahedra)".into(),
+            });
+        }
+        let mut mesh = Self { dim, coords, cells, parts };
+        if mesh.n_cells() == 0 {
+            return Err(Error::NoCells { dim, what: "the mesh is empty".into() });
+        }
+        mesh.check_nodes()?;
+        match dim {
+            2 => mesh.check_and_orient_cells::<2, 3>()?,
+            _ => mesh.check_and_orient_cells::<3, 4>()?,
+        }
+        mesh.check_duplicates_and_unused()?;
+        mesh.attach_parts()?;
+        Ok(mesh)
+    }
+
+    /// Space dimension d.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Number of nodes.
+    pub fn n_nodes(&self) -> usize {
+        self.coords.len() / self.dim
+    }
+
+    /// Number of cells.
+    pub fn n_cells(&self) -> usize {
+        self.cells.len() / (self.dim + 1)
+    }
+
+    /// Coordinates of node `i`.
+    pub fn node(&self, i: usize) -> &[f64] {
+        &self.coords[i * self.dim..(i + 1) * self.dim]
+    }
+
+    /// Node indices of cell `c`.
+    pub fn cell(&self, c: usize) -> &[usize] {
+        let n = self.dim + 1;
+        &self.cells[c * n..(c + 1) * n]
+    }
+
+    /// Vertex coordinates of cell `c` as fixed-size arrays.
+    pub fn cell_coords<const D: usize, const N: usize>(&self, c: usize) -> [[f64; D]; N] {
+        let mut x = [[0.0; D]; N];
+        for (a, &node) in self.cell(c).iter().enumerate() {
+            x[a].copy_from_slice(self.node(node));
+        }
+        x
+    }
+
+    /// The boundary parts.
+    pub fn parts(&self) -> &[BoundaryPart] {
+        &self.parts
+    }
+
+    /// Index of the part called `name`, or an error listing the parts the mesh has.
+    pub fn part_index(&self, name: &str) -> Result<usize> {
+        self.parts.iter().position(|p| p.name == name).ok_or_else(|| Error::UnknownBoundaryPart {
+            name: name.into(),
+            available: self.part_names(),
+        })
+    }
+
+    /// Comma-separated part names, for messages.
+    pub fn part_names(&self) -> String {
+        if self.parts.is_empty() {
+            return "(no boundary parts)".into();
+        }
+        let names: Vec<&str> = self.parts.iter().map(|p| p.name.as_str()).collect();
+        names.join(", ")
+    }
+
+    /// The facets of part `p`: node slices in outward order.
+    pub fn part_facets(&self, p: usize) -> impl Iterator<Item = &[usize]> + '_ {
+        self.parts[p].facets.chunks_exact(self.dim)
+    }
+
+    /// Measure (length or area) and outward unit normal of a facet given by its nodes.
+    pub fn facet_geometry<const D: usize>(&self, facet: &[usize]) -> (f64, [f64; D]) {
+        let x: Vec<[f64; D]> = facet
+            .iter()
+            .map(|&n| {
+                let mut p = [0.0; D];
+                p.copy_from_slice(self.node(n));
+                p
+            })
+            .collect();
+        facet_measure_normal::<D>(&x)
+    }
+
+    /// Total measure of part `p`.
+    pub fn part_measure(&self, p: usize) -> f64 {
+        self.part_facets(p)
+            .map(|f| match self.dim {
+                2 => self.facet_geometry::<2>(f).0,
+                _ => self.facet_geometry::<3>(f).0,
+            })
+            .sum()
+    }
+
+    /// Bounding box (min, max) of the nodes.
+    pub fn bounding_box(&self) -> (Vec<f64>, Vec<f64>) {
+        let mut lo = vec![f64::INFINITY; self.dim];
+        let mut hi = vec![f64::NEG_INFINITY; self.dim];
+        for x in self.coords.chunks_exact(self.dim) {
+            for i in 0..self.dim {
+                lo[i] = lo[i].min(x[i]);
+                hi[i] = hi[i].max(x[i]);
+            }
+        }
+        (lo, hi)
+    }
+
+    fn check_nodes(&self) -> Result<()> {
+        let n_nodes = self.n_nodes();
+        for (element, cell) in self.cells.chunks_exact(self.dim + 1).enumerate() {
+            if let Some(&node) = cell.iter().find(|&&n| n >= n_nodes) {
+                return Err(Error::NodeOutOfRange { element, node, n_nodes });
+            }
+        }
+        for part in &self.parts {
+            if let Some(&node) = part.facets.iter().find(|&&n| n >= n_nodes) {
+                return Err(Error::FacetNotOnBoundary {
+                    part: part.name.clone(),
+                    nodes: vec![node],
+                });
+            }
+        }
+        if let Some(node) = (0..n_nodes).find(|&i| self.node(i).iter().any(|x| !x.is_finite())) {
+            return Err(Error::NonFiniteCoordinate { node, coords: self.node(node).to_vec() });
+        }
+        Ok(())
+    }
+
+    /// Checks measures; reorients a mesh whose cells are all negatively oriented.
+    fn check_and_orient_cells<const D: usize, const N: usize>(&mut self) -> Result<()> {
+        let mut signs = Vec::with_capacity(self.n_cells());
+        for c in 0..self.n_cells() {
+            let x = self.cell_coords::<D, N>(c);
+            let edge = longest_edge(&x);
+            let measure = Simplex::<D, N>::new(&x).map_or(0.0, |s| s.signed_measure);
+            if measure.abs() <= 1e-12 * edge.powi(D as i32) {
+                return Err(Error::DegenerateElement {
+                    element: c,
+                    nodes: self.cell(c).to_vec(),
+                    measure,
+                    edge,
+                });
+            }
+            signs.push(measure > 0.0);
+        }
+        let positive = signs.iter().filter(|&&s| s).count();
+        let majority = 2 * positive >= signs.len();
+        if let Some(c) = signs.iter().position(|&s| s != majority) {
+            let x = self.cell_coords::<D, N>(c);
+            let measure = Simplex::<D, N>::new(&x).map_or(0.0, |s| s.signed_measure);
+            return Err(Error::InvertedElement {
+                element: c,
+                nodes: self.cell(c).to_vec(),
+                measure,
+            });
+        }
+        if !majority {
+            log::info!("all cells are negatively oriented: reordering their nodes");
+            for cell in self.cells.chunks_exact_mut(N) {
+                cell.swap(1, 2);
+            }
+        }
+        Ok(())
+    }
+
+    fn check_duplicates_and_unused(&self) -> Result<()> {
+        let mut seen: HashMap<[usize; 4], usize> = HashMap::with_capacity(self.n_cells());
+        let mut used = vec![false; self.n_nodes()];
+        for c in 0..self.n_cells() {
+            let mut key = [usize::MAX; 4];
+            key[..=self.dim].copy_from_slice(self.cell(c));
+            key[..=self.dim].sort_unstable();
+            if let Some(&first) = seen.get(&key) {
+                return Err(Error::DuplicateElement {
+                    element: c,
+                    first,
+                    nodes: self.cell(c).to_vec(),
+                });
+            }
+            seen.insert(key, c);
+            self.cell(c).iter().for_each(|&n| used[n] = true);
+        }
+        let count = used.iter().filter(|&&u| !u).count();
+        if let Some(node) = used.iter().position(|&u| !u) {
+            return Err(Error::UnusedNode { node, coords: self.node(node).to_vec(), count });
+        }
+        Ok(())
+    }
+
+    /// Matches part facets with the boundary facets of the cells and orders their nodes so
+    /// that [`Mesh::facet_geometry`] gives the outward normal.
+    fn attach_parts(&mut self) -> Result<()> {
+        let boundary = self.boundary_facets();
+        let dim = self.dim;
+        let mut parts = std::mem::take(&mut self.parts);
+        for part in &mut parts {
+            part.cells.clear();
+            let mut oriented = Vec::with_capacity(part.facets.len());
+            for facet in part.facets.chunks_exact(dim) {
+                let Some(&(cell, ref nodes)) = boundary.get(&facet_key(facet)) else {
+                    return Err(Error::FacetNotOnBoundary {
+                        part: part.name.clone(),
+                        nodes: facet.to_vec(),
+                    });
+                };
+                part.cells.push(cell);
+                oriented.extend_from_slice(nodes);
+            }
+            part.facets = oriented;
+        }
+        self.parts = parts;
+        Ok(())
+    }
+
+    /// All boundary facets (faces of exactly one cell), each with its cell and its nodes in
+    /// the order whose normal points outward.
+    pub fn boundary_facets(&self) -> HashMap<FacetKey, (usize, Vec<usize>)> {
+        let n = self.dim + 1;
+        let mut count: HashMap<FacetKey, (usize, usize, usize)> = HashMap::new();
+        for c in 0..self.n_cells() {
+            for opposite in 0..n {
+                let facet: Vec<usize> =
+                    (0..n).filter(|&a| a != opposite).map(|a| self.cell(c)[a]).collect();
+                count.entry(facet_key(&facet)).or_insert((0, c, opposite)).0 += 1;
+            }
+        }
+        count
+            .into_iter()
+            .filter(|(_, (k, _, _))| *k == 1)
+            .map(|(key, (_, c, opposite))| (key, (c, self.outward_facet(c, opposite))))
+            .collect()
+    }
+
+    /// Nodes of the facet of cell `c` opposite local vertex `opposite`, ordered so that the
+    /// normal of [`facet_measure_normal`] points away from that vertex.
+    fn outward_facet(&self, c: usize, opposite: usize) -> Vec<usize> {
+        let n = self.dim + 1;
+        let cell = self.cell(c);
+        let mut facet: Vec<usize> = (0..n).filter(|&a| a != opposite).map(|a| cell[a]).collect();
+        let outward = |facet: &[usize]| -> bool {
+            let (normal, first): (Vec<f64>, &[f64]) = match self.dim {
+                2 => (self.facet_geometry::<2>(facet).1.to_vec(), self.node(facet[0])),
+                _ => (self.facet_geometry::<3>(facet).1.to_vec(), self.node(facet[0])),
+            };
+            let apex = self.node(cell[opposite]);
+            let dot: f64 = (0..self.dim).map(|i| normal[i] * (first[i] - apex[i])).sum();
+            dot > 0.0
+        };
+        if !outward(&facet) {
+            facet.swap(0, 1);
+        }
+        facet
+    }
+}
+
+fn longest_edge<const D: usize, const N: usize>(x: &[[f64; D]; N]) -> f64 {
+    let mut longest: f64 = 0.0;
+    for a in 0..N {
+        for b in a + 1..N {
+            let l2: f64 = (0..D).map(|i| (x[a][i] - x[b][i]).powi(2)).sum();
+            longest = longest.max(l2.sqrt());
+        }
+    }
+    longest
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> (Vec<f64>, Vec<usize>) {
+        (vec![0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0], vec![0, 1, 2, 0, 2, 3])
+    }
+
+    #[test]
+    fn outward_normals_of_parts() {
+        let (x, c) = square();
+        let parts =
+            vec![BoundaryPart::new("bottom", vec![1, 0]), BoundaryPart::new("top", vec![2, 3])];
+        let mesh = Mesh::new(2, x, c, parts).unwrap();
+        let f: Vec<_> = mesh.part_facets(0).collect();
+        assert_eq!(mesh.facet_geometry::<2>(f[0]).1, [0.0, -1.0]);
+        let f: Vec<_> = mesh.part_facets(1).collect();
+        assert_eq!(mesh.facet_geometry::<2>(f[0]).1, [0.0, 1.0]);
+        assert!((mesh.part_measure(1) - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn mesh_errors() {
+        let (x, _) = square();
+        let err = |cells: Vec<usize>, parts| Mesh::new(2, x.clone(), cells, parts).unwrap_err();
+        let e = err(vec![0, 1, 2, 0, 3, 2], vec![]);
+        assert!(e.to_string().contains("element 1") && e.to_string().contains("inverted"), "{e}");
+        let e = err(vec![0, 1, 2, 0, 1, 2, 0, 2, 3], vec![]);
+        assert!(e.to_string().contains("duplicates element 0"), "{e}");
+        let e = err(vec![0, 1, 2], vec![]);
+        assert!(
+            e.to_string().contains("node 3") && e.to_string().contains("belongs to no element")
+        );
+        let e = err(vec![0, 1, 9, 0, 2, 3], vec![]);
+        assert!(e.to_string().contains("refers to node 9"), "{e}");
+        let e = err(vec![0, 1, 2, 0, 2, 3], vec![BoundaryPart::new("diag", vec![0, 2])]);
+        assert!(e.to_string().contains("'diag'") && e.to_string().contains("not on the boundary"));
+        let degenerate = vec![0.0, 0.0, 1.0, 0.0, 2.0, 0.0];
+        let e = Mesh::new(2, degenerate, vec![0, 1, 2], vec![]).unwrap_err();
+        assert!(e.to_string().contains("degenerate"), "{e}");
+        let e = Mesh::new(2, x.clone(), vec![], vec![]).unwrap_err();
+        assert!(e.to_string().contains("no 2D cells"), "{e}");
+        let mut nan = x.clone();
+        nan[3] = f64::NAN;
+        let e = Mesh::new(2, nan, vec![0, 1, 2, 0, 2, 3], vec![]).unwrap_err();
+        assert!(e.to_string().contains("node 1 has a non-finite"), "{e}");
+    }
+
+    #[test]
+    fn clockwise_mesh_is_reoriented() {
+        let (x, _) = square();
+        let mesh = Mesh::new(2, x, vec![0, 2, 1, 0, 3, 2], vec![]).unwrap();
+        let s = Simplex::<2, 3>::new(&mesh.cell_coords::<2, 3>(0)).unwrap();
+        assert!(s.signed_measure > 0.0);
+    }
+}

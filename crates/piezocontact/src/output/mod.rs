@@ -1,0 +1,3 @@
+//! Result files: ParaView `.vtu` ([`vtu`]).
+
+pub mod vtu;

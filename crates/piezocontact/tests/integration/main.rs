@@ -1,0 +1,12 @@
+//! Integration tests of the piezocontact library, one binary (fast linking on 2 cores).
+
+/// Shared builders: the PZT-5A material, meshes, exact fields.
+mod common;
+/// Manufactured solutions: convergence rates of the coupled system.
+mod convergence;
+/// Gmsh import: round trip of physical names, errors.
+mod gmsh_io;
+/// Patch tests: linear fields reproduced to round-off, 2D and 3D.
+mod patch;
+/// The assembled system: symmetry, definiteness of the blocks, factorisation reuse.
+mod system;
