@@ -1,1 +1,261 @@
-fn main() {}
+//! The `piezocontact` command: parses arguments, reads cases, reports, writes files. All
+//! numerics live in the `piezocontact` library.
+
+mod bench;
+mod case;
+mod output;
+
+use anyhow::{Context, Result};
+use case::Case;
+use clap::{Parser, Subcommand};
+use piezocontact::mesh::gmsh;
+use piezocontact::solver::solve_without_contact;
+use serde_json::json;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Static contact of a piezoelectric body with a foundation: P1 finite elements.
+#[derive(Parser)]
+#[command(name = "piezocontact", version, about)]
+struct Cli {
+    /// More log output (-v info, -vv debug); RUST_LOG overrides.
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    verbose: u8,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a case and write DIR/summary.json and DIR/solution.vtu.
+    Run {
+        /// The case file (TOML).
+        case: PathBuf,
+        /// Output directory (created if needed).
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Override a case key, e.g. --set mesh.nx=192 (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Validate a case and print its mesh and DOF summary.
+    Check {
+        /// The case file (TOML).
+        case: PathBuf,
+        /// Override a case key (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Print what a Gmsh MSH 4.1 file holds, or why it cannot be read.
+    MeshInfo {
+        /// The .msh file.
+        file: PathBuf,
+    },
+    /// Time assembly, symbolic analysis, numeric factorisation and solve on the paper's
+    /// rectangle at several mesh sizes.
+    Bench {
+        /// Mesh sizes NXxNY, comma separated.
+        #[arg(long, default_value = "96x16,384x64,1536x256", value_delimiter = ',')]
+        sizes: Vec<String>,
+        /// Also time faer's sparse LU on the same matrices, for comparison.
+        #[arg(long)]
+        lu: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let level = ["warn", "info", "debug"][usize::from(cli.verbose.min(2))];
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
+    match run(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn run(command: Command) -> Result<()> {
+    match command {
+        Command::Run { case, out, set } => run_case(&case, &out, &set),
+        Command::Check { case, set } => check(&case, &set),
+        Command::MeshInfo { file } => mesh_info(&file),
+        Command::Bench { sizes, lu } => bench::run(&sizes, lu),
+    }
+}
+
+fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<()> {
+    let start = Instant::now();
+    let case = Case::load(path, set)?;
+    let problem = case.problem()?;
+    if !problem.boundary.contact.is_empty() {
+        log::warn!(
+            "contact on Γ3 is not solved yet: Γ3 is treated as free (traction and charge free)"
+        );
+    }
+    let solution =
+        solve_without_contact(&problem).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let dofs = piezocontact::dofs::DofMap::new(&problem)?;
+    std::fs::create_dir_all(out)
+        .with_context(|| format!("cannot create the output directory {}", out.display()))?;
+    let units = &case.file.units;
+    let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
+    let max_u = (0..n)
+        .map(|a| (0..dim).map(|i| solution.x[dofs.u(a, i)].powi(2)).sum::<f64>().sqrt())
+        .fold(0.0, f64::max);
+    let phi: Vec<f64> = (0..n).map(|a| solution.x[dofs.phi(a)]).collect();
+    let (phi_min, phi_max) =
+        phi.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+    let t = solution.timings;
+    let total = start.elapsed().as_secs_f64();
+    let summary = json!({
+        "case": path.display().to_string(),
+        "title": case.file.title,
+        "problem": "coupled electro-elastic, no contact",
+        "converged": true,
+        "units": { "length": units.length, "stress": units.stress, "charge": units.charge, "potential": units.potential },
+        "dim": dim,
+        "nodes": n,
+        "elements": problem.mesh.n_cells(),
+        "dofs": { "total": dofs.n_total(), "free": dofs.n_free(), "free_u": dofs.n_free_u(), "free_phi": dofs.n_free() - dofs.n_free_u() },
+        "norms": {
+            "max_abs_u": max_u,
+            "min_phi": phi_min,
+            "max_phi": phi_max,
+            "relative_residual": solution.relative_residual,
+        },
+        "timings_seconds": {
+            "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
+            "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count, "total": total,
+        },
+    });
+    output::write_atomic(
+        &out.join("summary.json"),
+        serde_json::to_string_pretty(&summary)?.as_bytes(),
+    )?;
+    output::write_atomic(
+        &out.join("solution.vtu"),
+        output::solution_vtu(&problem, &dofs, &solution.x)?.as_bytes(),
+    )?;
+    println!(
+        "{}: {} nodes, {} elements, {} free DOFs",
+        path.display(),
+        n,
+        problem.mesh.n_cells(),
+        dofs.n_free()
+    );
+    println!("  max |u|            = {max_u:.6e} {}", units.length);
+    println!("  phi range          = [{phi_min:.6e}, {phi_max:.6e}] {}", units.potential);
+    println!("  relative residual  = {:.3e}", solution.relative_residual);
+    println!(
+        "  time: assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, total {total:.3} s",
+        t.assembly, t.symbolic, t.numeric, t.solve
+    );
+    println!(
+        "  wrote {} and {}",
+        out.join("summary.json").display(),
+        out.join("solution.vtu").display()
+    );
+    Ok(())
+}
+
+fn check(path: &Path, set: &[String]) -> Result<()> {
+    let case = Case::load(path, set)?;
+    let problem = case.problem()?;
+    let dofs = piezocontact::dofs::DofMap::new(&problem)?;
+    let (mesh, units) = (&problem.mesh, &case.file.units);
+    let (lo, hi) = mesh.bounding_box();
+    println!("{}: valid", path.display());
+    println!(
+        "mesh: {}D, {} nodes, {} elements, bounding box {lo:?}–{hi:?} {}",
+        mesh.dim(),
+        mesh.n_nodes(),
+        mesh.n_cells(),
+        units.length
+    );
+    let unit = if mesh.dim() == 2 { units.length.clone() } else { format!("{}^2", units.length) };
+    let b = &problem.boundary;
+    for (p, part) in mesh.parts().iter().enumerate() {
+        let mut roles = Vec::new();
+        for (role, list) in
+            [("Γ1 clamped", &b.clamped), ("Γa grounded", &b.grounded), ("Γ3 contact", &b.contact)]
+        {
+            if list.contains(&p) {
+                roles.push(role);
+            }
+        }
+        if b.traction.iter().any(|(q, _)| *q == p) {
+            roles.push("Γ2 traction");
+        }
+        if b.charge.iter().any(|(q, _)| *q == p) {
+            roles.push("Γb charge");
+        }
+        let roles = if roles.is_empty() {
+            "no role: traction and charge free".to_string()
+        } else {
+            roles.join(", ")
+        };
+        println!(
+            "  part {:<12} {:>6} facets, measure {:.6} {unit}  ({roles})",
+            part.name,
+            part.n_facets(),
+            mesh.part_measure(p)
+        );
+    }
+    let el = problem.material.elasticity;
+    println!(
+        "material: mu1 = {:.6} {s}, k0 = {:.6} {s}, law {:?}",
+        el.mu1,
+        el.k0,
+        el.law,
+        s = units.stress
+    );
+    println!(
+        "dofs: {} in all, {} free ({} u, {} phi)",
+        dofs.n_total(),
+        dofs.n_free(),
+        dofs.n_free_u(),
+        dofs.n_free() - dofs.n_free_u()
+    );
+    println!("contact and solver settings (in the case's units):");
+    for (key, value) in case.contact_settings()? {
+        println!("  {key:<22} = {value}");
+    }
+    Ok(())
+}
+
+fn mesh_info(path: &Path) -> Result<()> {
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let info = gmsh::inspect(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    println!("{}: MSH 4.1 {}", path.display(), if info.binary { "binary" } else { "ASCII" });
+    println!("nodes: {}", info.nodes);
+    println!("elements:");
+    for (name, dim, count) in &info.elements {
+        println!("  dim {dim}  {name:<6} {count:>8}");
+    }
+    println!("physical groups:");
+    if info.groups.is_empty() {
+        println!("  (none: piezocontact needs named boundary parts)");
+    }
+    for g in &info.groups {
+        println!(
+            "  dim {}  tag {:<4} {:<20} {:>8} elements",
+            g.dim,
+            g.tag,
+            format!("\"{}\"", g.name),
+            g.elements
+        );
+    }
+    match gmsh::read(&bytes) {
+        Ok(mesh) => println!(
+            "usable: yes ({}D, {} nodes, {} cells)",
+            mesh.dim(),
+            mesh.n_nodes(),
+            mesh.n_cells()
+        ),
+        Err(e) => println!("usable: no: {e}"),
+    }
+    Ok(())
+}

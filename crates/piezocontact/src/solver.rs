@@ -103,6 +103,11 @@ impl CoupledSystem {
         &self.rhs
     }
 
+    /// Number of stored values of the LDLᵀ factor.
+    pub fn factor_len(&self) -> usize {
+        self.solver.factor_len()
+    }
+
     /// Timings so far.
     pub fn timings(&self) -> Timings {
         self.timings

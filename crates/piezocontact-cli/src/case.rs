@@ -1,0 +1,588 @@
+//! Case files: TOML, every key documented, unknown keys rejected with their name and line.
+//!
+//! [`CaseFile`] is the raw serde view of the file (ripgrep's "low args"); [`Case::problem`]
+//! turns it into a checked [`Problem`]. `--set dotted.key=value` edits the document before it
+//! is read, so an override is checked exactly like the file.
+
+use anyhow::{Context, Result, anyhow, bail};
+use piezocontact::material::{
+    ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants,
+};
+use piezocontact::mesh::rectangle::{Diagonal, Rectangle, Segment};
+use piezocontact::mesh::{Mesh, gmsh};
+use piezocontact::problem::{BodyLoads, Boundary, Problem, constant_scalar, constant_vector};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// The case's consistent unit system, used for labels only (SPEC §9): the numbers in the file
+/// are in these units and no conversion happens.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Units {
+    /// Unit of length (coordinates, displacements), e.g. "m".
+    #[serde(default = "default_length")]
+    pub length: String,
+    /// Unit of stress (E, σ, tractions), e.g. "GPa".
+    #[serde(default = "default_stress")]
+    pub stress: String,
+    /// Unit of electric charge, e.g. "C".
+    #[serde(default = "default_charge")]
+    pub charge: String,
+    /// Unit of electric potential (ϕ, ϕ0), e.g. "GV".
+    #[serde(default = "default_potential")]
+    pub potential: String,
+}
+
+fn default_length() -> String {
+    "m".into()
+}
+fn default_stress() -> String {
+    "Pa".into()
+}
+fn default_charge() -> String {
+    "C".into()
+}
+fn default_potential() -> String {
+    "V".into()
+}
+
+impl Default for Units {
+    fn default() -> Self {
+        Self {
+            length: default_length(),
+            stress: default_stress(),
+            charge: default_charge(),
+            potential: default_potential(),
+        }
+    }
+}
+
+/// `[mesh]`: a structured rectangle (x, y, nx, ny, diagonal, segments) or a Gmsh file.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSection {
+    /// Gmsh MSH 4.1 file, relative to the case file; replaces the rectangle.
+    pub file: Option<PathBuf>,
+    /// Rectangle: [x0, x1] [length].
+    pub x: Option<[f64; 2]>,
+    /// Rectangle: [y0, y1] [length].
+    pub y: Option<[f64; 2]>,
+    /// Rectangle: cells along x.
+    pub nx: Option<usize>,
+    /// Rectangle: cells along y.
+    pub ny: Option<usize>,
+    /// Rectangle: "right" (lower-left–upper-right diagonal, default) or "left".
+    pub diagonal: Option<DiagonalKey>,
+    /// Rectangle: boundary part name → segments such as "[0,2]x{0}".
+    #[serde(default)]
+    pub segments: BTreeMap<String, Vec<String>>,
+}
+
+/// Diagonal direction in the case file.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DiagonalKey {
+    Right,
+    Left,
+}
+
+/// Elastic law in the case file.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LawKey {
+    Hencky,
+    Linear,
+}
+
+/// `[material]`: Hencky elasticity and the piezoelectric ceramic, poled along the last axis.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSection {
+    /// "hencky" (the paper's g, default) or "linear" (g ≡ µ1).
+    #[serde(default = "default_law")]
+    pub law: LawKey,
+    /// E: Young's modulus [stress].
+    pub young: f64,
+    /// ν: Poisson's ratio [-].
+    pub poisson: f64,
+    /// t0: Hencky elasticity limit on ‖ε^D‖² [-] (paper: 1.8).
+    #[serde(default = "default_t0")]
+    pub t0: f64,
+    /// e31 = e32 [charge/length²].
+    #[serde(alias = "e32")]
+    pub e31: f64,
+    /// e33 [charge/length²].
+    pub e33: f64,
+    /// e15 = e24 [charge/length²].
+    #[serde(alias = "e24")]
+    pub e15: f64,
+    /// ε0: vacuum permittivity [charge/(potential·length)].
+    pub eps0: f64,
+    /// β11/ε0 = β22/ε0: relative permittivity across the poling axis [-].
+    #[serde(alias = "beta22_rel")]
+    pub beta11_rel: f64,
+    /// β33/ε0: relative permittivity along the poling axis [-].
+    pub beta33_rel: f64,
+}
+
+fn default_law() -> LawKey {
+    LawKey::Hencky
+}
+fn default_t0() -> f64 {
+    1.8
+}
+
+/// A traction load on Γ2 parts.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionLoad {
+    /// Boundary parts carrying it.
+    pub parts: Vec<String>,
+    /// f2: traction density, d components [stress].
+    pub f2: Vec<f64>,
+}
+
+/// A surface charge on Γb parts.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChargeLoad {
+    /// Boundary parts carrying it.
+    pub parts: Vec<String>,
+    /// q2: surface charge density [charge/length^(d−1)].
+    pub q2: f64,
+}
+
+/// `[boundary]`: boundary part names by role ([P] (2.4)).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundarySection {
+    /// Γ1: u = 0.
+    #[serde(default)]
+    pub clamped: Vec<String>,
+    /// Γa: ϕ = 0.
+    #[serde(default)]
+    pub grounded: Vec<String>,
+    /// Γ3: contact surface.
+    #[serde(default)]
+    pub contact: Vec<String>,
+    /// Γ2: tractions.
+    #[serde(default)]
+    pub traction: Vec<TractionLoad>,
+    /// Γb: surface charges.
+    #[serde(default)]
+    pub charge: Vec<ChargeLoad>,
+}
+
+/// `[loads]`: body loads of (2.1).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadsSection {
+    /// f0: body force density, d components [stress/length].
+    pub f0: Option<Vec<f64>>,
+    /// q0: volume charge density [charge/length^d].
+    pub q0: Option<f64>,
+}
+
+/// `[contact]`: normal compliance with finite penetration, (2.5) and SPEC §9.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSection {
+    /// g_a: gap, where compliance and conduction start (the paper's ρ) [length].
+    #[serde(default)]
+    pub gap: f64,
+    /// g_p ≥ 0: penetration before the rigid stop at u_ν = g_a + g_p [length].
+    #[serde(default)]
+    pub penetration: f64,
+    /// c_ν > 0 of h_ν [stress/length].
+    #[serde(default = "one")]
+    pub c_nu: f64,
+    /// α_ν > 1 of h_ν [-].
+    #[serde(default = "two")]
+    pub alpha_nu: f64,
+    /// n_ν > 0: saturation of p_ν [length].
+    #[serde(default = "one")]
+    pub n_nu: f64,
+    /// The potential difference at which h_ν saturates (the paper's 128) [potential].
+    #[serde(default = "h_nu_range")]
+    pub h_nu_range: f64,
+}
+
+/// `[friction]`: regularised Coulomb friction of (2.7); µ = 0 switches it off (PV1).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSection {
+    /// µ ≥ 0: friction coefficient [-].
+    #[serde(default)]
+    pub mu: f64,
+    /// R: "identity" (local Coulomb, default) or "mollifier" (nonlocal).
+    #[serde(default)]
+    pub regularization: Option<String>,
+    /// Radius of the mollifier [length].
+    #[serde(default)]
+    pub radius: f64,
+}
+
+/// `[conductivity]`: conductive foundation of (2.7)–(2.8); k_e = 0 switches it off (PV1).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConductivitySection {
+    /// k_e ≥ 0: conductivity coefficient [charge/(potential·length^d)].
+    #[serde(default)]
+    pub ke: f64,
+    /// ϕ0: potential of the foundation [potential].
+    #[serde(default)]
+    pub phi0: f64,
+    /// δ > 0 of ψ0 [1/length].
+    #[serde(default = "one")]
+    pub delta: f64,
+    /// L > 0: truncation of φ_L [potential].
+    #[serde(default = "truncation", rename = "L")]
+    pub truncation: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn two() -> f64 {
+    2.0
+}
+fn h_nu_range() -> f64 {
+    128.0
+}
+fn truncation() -> f64 {
+    1e3
+}
+
+/// `[solver]`: the algorithms' parameters (SPEC §7).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSection {
+    /// r > 0: augmented Lagrangian parameter [stress/length]; default 0.25 E.
+    pub r: Option<f64>,
+    /// ε of the Uzawa stopping rule (6.12) [-]; default 1e−4.
+    pub eps: Option<f64>,
+    /// ε_fp of the fixed-point stopping rules (6.13), (6.15) [-]; default 1e−4.
+    pub eps_fp: Option<f64>,
+    /// Cap on Uzawa iterations per outer step; default 10000.
+    pub max_inner: Option<usize>,
+    /// Cap on fixed-point iterations; default 100.
+    pub max_outer: Option<usize>,
+}
+
+/// A whole case file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    /// Free-text title.
+    #[serde(default)]
+    pub title: String,
+    #[serde(default)]
+    pub units: Units,
+    pub mesh: MeshSection,
+    pub material: MaterialSection,
+    pub boundary: BoundarySection,
+    #[serde(default)]
+    pub loads: LoadsSection,
+    pub contact: Option<ContactSection>,
+    pub friction: Option<FrictionSection>,
+    pub conductivity: Option<ConductivitySection>,
+    #[serde(default)]
+    pub solver: SolverSection,
+}
+
+/// A case read from a file, with the source text kept for error locations.
+pub struct Case {
+    /// The file it came from.
+    pub path: PathBuf,
+    /// The document after overrides.
+    pub source: String,
+    /// The parsed case.
+    pub file: CaseFile,
+}
+
+impl Case {
+    /// Reads `path`, applies `--set` overrides, and parses.
+    pub fn load(path: &Path, overrides: &[String]) -> Result<Self> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read the case file {}", path.display()))?;
+        Self::from_text(path, &text, overrides)
+    }
+
+    /// Parses a case from text (`path` names it in messages and anchors relative mesh files).
+    pub fn from_text(path: &Path, text: &str, overrides: &[String]) -> Result<Self> {
+        let mut doc: toml_edit::DocumentMut =
+            text.parse().map_err(|e| anyhow!("{}: {e}", path.display()))?;
+        for o in overrides {
+            apply_override(&mut doc, o)?;
+        }
+        let source = doc.to_string();
+        let file: CaseFile = toml::from_str(&source).map_err(|e| {
+            let note = if overrides.is_empty() {
+                String::new()
+            } else {
+                format!(" (after --set {})", overrides.join(", --set "))
+            };
+            anyhow!("{}{note}: {e}", path.display())
+        })?;
+        Ok(Self { path: path.to_path_buf(), source, file })
+    }
+
+    /// "file:line" of a dotted key, for messages.
+    pub fn locate(&self, dotted: &str) -> String {
+        match key_line(&self.source, dotted) {
+            Some(line) => format!("{}:{line}", self.path.display()),
+            None => self.path.display().to_string(),
+        }
+    }
+
+    /// Wraps a library error with the location of the key it names.
+    fn context(&self, e: piezocontact::Error) -> anyhow::Error {
+        match &e {
+            piezocontact::Error::InvalidParameter { name, .. } => {
+                anyhow!("{}: {e}", self.locate(name))
+            }
+            _ => anyhow!("{}: {e}", self.path.display()),
+        }
+    }
+
+    /// Builds the mesh: the rectangle or the Gmsh file.
+    pub fn mesh(&self) -> Result<Mesh> {
+        let m = &self.file.mesh;
+        if let Some(file) = &m.file {
+            for (key, set) in [
+                ("mesh.x", m.x.is_some()),
+                ("mesh.y", m.y.is_some()),
+                ("mesh.nx", m.nx.is_some()),
+                ("mesh.ny", m.ny.is_some()),
+                ("mesh.segments", !m.segments.is_empty()),
+            ] {
+                if set {
+                    bail!(
+                        "{}: {key} describes the built-in rectangle; remove it when mesh.file is given",
+                        self.locate(key)
+                    );
+                }
+            }
+            let full = self.path.parent().unwrap_or(Path::new(".")).join(file);
+            let bytes = std::fs::read(&full).with_context(|| {
+                format!("{}: cannot read mesh.file {}", self.locate("mesh.file"), full.display())
+            })?;
+            return gmsh::read(&bytes).map_err(|e| anyhow!("{}: {e}", full.display()));
+        }
+        let need = |key: &str| {
+            anyhow!(
+                "{}: {key} is missing: give the rectangle (mesh.x, mesh.y, mesh.nx, mesh.ny) or mesh.file",
+                self.path.display()
+            )
+        };
+        let rectangle = Rectangle {
+            x: m.x.ok_or_else(|| need("mesh.x"))?,
+            y: m.y.ok_or_else(|| need("mesh.y"))?,
+            nx: m.nx.ok_or_else(|| need("mesh.nx"))?,
+            ny: m.ny.ok_or_else(|| need("mesh.ny"))?,
+            diagonal: match m.diagonal {
+                Some(DiagonalKey::Left) => Diagonal::Left,
+                _ => Diagonal::Right,
+            },
+        };
+        let mut parts = Vec::new();
+        for (name, specs) in &m.segments {
+            let segments: Result<Vec<Segment>, _> = specs.iter().map(|s| s.parse()).collect();
+            parts.push((
+                name.clone(),
+                segments.map_err(|e| {
+                    anyhow!("{}: {e}", self.locate(&format!("mesh.segments.{name}")))
+                })?,
+            ));
+        }
+        rectangle.mesh(&parts).map_err(|e| self.context(e))
+    }
+
+    /// The material in dimension `dim`.
+    pub fn material(&self, dim: usize) -> Result<Material> {
+        let m = &self.file.material;
+        let law = match m.law {
+            LawKey::Hencky => ElasticLaw::Hencky { t0: m.t0 },
+            LawKey::Linear => ElasticLaw::Linear,
+        };
+        let elasticity =
+            Elasticity::from_young_poisson(m.young, m.poisson, law).map_err(|e| self.context(e))?;
+        if !(m.eps0.is_finite() && m.eps0 > 0.0) {
+            bail!("{}: material.eps0 = {} must be > 0", self.locate("material.eps0"), m.eps0);
+        }
+        Material::new(
+            dim,
+            elasticity,
+            PiezoConstants { e31: m.e31, e33: m.e33, e15: m.e15 },
+            PermittivityConstants { beta11: m.beta11_rel * m.eps0, beta33: m.beta33_rel * m.eps0 },
+        )
+        .map_err(|e| self.context(e))
+    }
+
+    /// Checks the ranges of the contact, friction, conductivity and solver keys, and returns
+    /// them as `(key, value)` lines for reports. The contact algorithms use them.
+    pub fn contact_settings(&self) -> Result<Vec<(String, f64)>> {
+        let f = &self.file;
+        let mut rules: Vec<Rule> = Vec::new();
+        if let Some(c) = &f.contact {
+            rules.extend([
+                Rule("contact.gap", c.gap, f64::is_finite, "a finite length"),
+                Rule("contact.penetration", c.penetration, nonnegative, "g_p ≥ 0"),
+                Rule("contact.c_nu", c.c_nu, positive, "c_ν > 0"),
+                Rule("contact.alpha_nu", c.alpha_nu, |v| v.is_finite() && v > 1.0, "α_ν > 1"),
+                Rule("contact.n_nu", c.n_nu, positive, "n_ν > 0"),
+                Rule("contact.h_nu_range", c.h_nu_range, positive, "a positive potential"),
+            ]);
+        }
+        if let Some(fr) = &f.friction {
+            rules.push(Rule("friction.mu", fr.mu, nonnegative, "µ ≥ 0"));
+            rules.push(Rule("friction.radius", fr.radius, nonnegative, "a radius ≥ 0"));
+            if let Some(r) = &fr.regularization
+                && r != "identity"
+                && r != "mollifier"
+            {
+                bail!(
+                    "{}: friction.regularization = \"{r}\": use \"identity\" or \"mollifier\"",
+                    self.locate("friction.regularization")
+                );
+            }
+        }
+        if let Some(c) = &f.conductivity {
+            rules.extend([
+                Rule("conductivity.ke", c.ke, nonnegative, "k_e ≥ 0"),
+                Rule("conductivity.phi0", c.phi0, f64::is_finite, "a finite potential"),
+                Rule("conductivity.delta", c.delta, positive, "δ > 0"),
+                Rule("conductivity.L", c.truncation, positive, "L > 0"),
+            ]);
+        }
+        let s = &f.solver;
+        rules.extend([
+            Rule("solver.r", s.r.unwrap_or(0.25 * f.material.young), positive, "r > 0"),
+            Rule("solver.eps", s.eps.unwrap_or(1e-4), positive, "ε > 0"),
+            Rule("solver.eps_fp", s.eps_fp.unwrap_or(1e-4), positive, "ε_fp > 0"),
+            Rule(
+                "solver.max_inner",
+                s.max_inner.unwrap_or(10_000) as f64,
+                |v| v >= 1.0,
+                "at least 1",
+            ),
+            Rule("solver.max_outer", s.max_outer.unwrap_or(100) as f64, |v| v >= 1.0, "at least 1"),
+        ]);
+        let mut lines = Vec::new();
+        for Rule(key, value, ok, requirement) in rules {
+            if !ok(value) {
+                bail!("{}: {key} = {value} is not allowed: {requirement}", self.locate(key));
+            }
+            lines.push((key.to_string(), value));
+        }
+        Ok(lines)
+    }
+
+    /// The checked problem.
+    pub fn problem(&self) -> Result<Problem> {
+        self.contact_settings()?;
+        let mesh = self.mesh()?;
+        let dim = mesh.dim();
+        let material = self.material(dim)?;
+        let b = &self.file.boundary;
+        let parts = |key: &str, names: &[String]| -> Result<Vec<usize>> {
+            names
+                .iter()
+                .map(|n| {
+                    mesh.part_index(n).map_err(|e| anyhow!("{}: {key}: {e}", self.locate(key)))
+                })
+                .collect()
+        };
+        let vector = |key: &str, v: &[f64]| -> Result<Vec<f64>> {
+            if v.len() != dim || v.iter().any(|x| !x.is_finite()) {
+                bail!(
+                    "{}: {key} = {v:?} must have {dim} finite components (the mesh is {dim}D)",
+                    self.locate(key)
+                );
+            }
+            Ok(v.to_vec())
+        };
+        let mut traction = Vec::new();
+        for t in &b.traction {
+            let f2 = vector("boundary.traction.f2", &t.f2)?;
+            for p in parts("boundary.traction.parts", &t.parts)? {
+                traction.push((p, constant_vector(f2.clone())));
+            }
+        }
+        let mut charge = Vec::new();
+        for c in &b.charge {
+            for p in parts("boundary.charge.parts", &c.parts)? {
+                charge.push((p, constant_scalar(c.q2)));
+            }
+        }
+        let boundary = Boundary {
+            clamped: parts("boundary.clamped", &b.clamped)?,
+            grounded: parts("boundary.grounded", &b.grounded)?,
+            contact: parts("boundary.contact", &b.contact)?,
+            traction,
+            charge,
+            ..Boundary::default()
+        };
+        let loads = BodyLoads {
+            f0: self
+                .file
+                .loads
+                .f0
+                .as_ref()
+                .map(|f| vector("loads.f0", f))
+                .transpose()?
+                .map(constant_vector),
+            q0: self.file.loads.q0.map(constant_scalar),
+        };
+        Problem::new(mesh, material, boundary, loads).map_err(|e| self.context(e))
+    }
+}
+
+/// A range rule: key, value, test, and the requirement stated in the error.
+struct Rule(&'static str, f64, fn(f64) -> bool, &'static str);
+
+fn positive(v: f64) -> bool {
+    v.is_finite() && v > 0.0
+}
+
+fn nonnegative(v: f64) -> bool {
+    v.is_finite() && v >= 0.0
+}
+
+/// Applies one `dotted.key=value` override to the document; the value is read as TOML
+/// (numbers, booleans, quoted strings, arrays) or else taken as a bare string.
+fn apply_override(doc: &mut toml_edit::DocumentMut, setting: &str) -> Result<()> {
+    let (key, value) = setting.split_once('=').ok_or_else(|| {
+        anyhow!("--set {setting}: expected dotted.key=value, e.g. --set mesh.nx=192")
+    })?;
+    let path: Vec<&str> = key.trim().split('.').collect();
+    if path.iter().any(|k| k.is_empty()) {
+        bail!("--set {setting}: '{key}' is not a dotted key such as solver.r");
+    }
+    let value: toml_edit::Value =
+        value.trim().parse().unwrap_or_else(|_| toml_edit::Value::from(value.trim()));
+    let mut table = doc.as_table_mut();
+    for (depth, k) in path[..path.len() - 1].iter().enumerate() {
+        let entry = table.entry(k).or_insert_with(toml_edit::table);
+        table = entry.as_table_mut().ok_or_else(|| {
+            anyhow!("--set {setting}: '{}' is not a table", path[..=depth].join("."))
+        })?;
+    }
+    table[path[path.len() - 1]] = toml_edit::value(value);
+    Ok(())
+}
+
+/// Line (1-based) of a dotted key in a TOML text.
+pub fn key_line(source: &str, dotted: &str) -> Option<usize> {
+    let doc = toml_edit::Document::parse(source).ok()?;
+    let mut item = doc.as_item();
+    let mut span = None;
+    for k in dotted.split('.') {
+        let table = item.as_table_like()?;
+        let (key, next) = table.get_key_value(k)?;
+        span = key.span().or(span);
+        item = next;
+    }
+    span.map(|s| source[..s.start].matches('\n').count() + 1)
+}

@@ -1,0 +1,229 @@
+//! The `piezocontact` command end to end: runs, outputs (read back with an independent VTU
+//! reader), and one test per error message.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn piezocontact(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_piezocontact"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .unwrap()
+}
+
+fn text(o: &Output) -> String {
+    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("piezocontact-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Writes a variant of the paper case with `from` replaced by `to`.
+fn variant(dir: &Path, from: &str, to: &str) -> PathBuf {
+    let case = std::fs::read_to_string(root().join("cases/paper-7.1.toml")).unwrap();
+    assert!(case.contains(from), "the paper case has no '{from}'");
+    let path = dir.join("case.toml");
+    std::fs::write(&path, case.replacen(from, to, 1)).unwrap();
+    path
+}
+
+#[test]
+fn run_writes_a_summary_and_a_vtu_that_a_reader_accepts() {
+    let out = temp_dir("run");
+    let o = piezocontact(&[
+        "run",
+        "cases/paper-7.1.toml",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "mesh.nx=24",
+        "--set",
+        "mesh.ny=4",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("max |u|") && text(&o).contains(" m\n"), "{}", text(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["nodes"], 25 * 5);
+    assert_eq!(summary["elements"], 2 * 24 * 4);
+    assert_eq!(summary["dofs"]["total"], 3 * 125);
+    assert_eq!(summary["units"]["potential"], "GV");
+    assert!(summary["norms"]["relative_residual"].as_f64().unwrap() < 1e-10);
+    for key in ["assembly", "symbolic", "numeric", "solve", "total"] {
+        assert!(summary["timings_seconds"][key].as_f64().unwrap() >= 0.0, "{key}");
+    }
+    let vtk = vtkio::Vtk::import(out.join("solution.vtu")).unwrap();
+    let vtkio::model::DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
+        panic!("not an unstructured grid")
+    };
+    let vtkio::model::Piece::Inline(piece) = &pieces[0] else { panic!("piece not inline") };
+    assert_eq!(piece.num_points(), 125);
+    let vtkio::model::VertexNumbers::XML { offsets, .. } = &piece.cells.cell_verts else {
+        panic!("legacy cells")
+    };
+    assert_eq!(offsets.len(), 192);
+    let names = |attrs: &[vtkio::model::Attribute]| -> Vec<String> {
+        attrs
+            .iter()
+            .map(|a| match a {
+                vtkio::model::Attribute::DataArray(d) => d.name.clone(),
+                vtkio::model::Attribute::Field { name, .. } => name.clone(),
+            })
+            .collect()
+    };
+    assert_eq!(names(&piece.data.point), ["u", "phi"]);
+    assert_eq!(names(&piece.data.cell), ["sigma", "D"]);
+    let vtkio::model::Attribute::DataArray(phi) = &piece.data.point[1] else { panic!() };
+    let phi: Vec<f64> = phi.data.clone().cast_into().unwrap();
+    let max = phi.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    assert!((max - summary["norms"]["max_phi"].as_f64().unwrap()).abs() <= 1e-12 * max.abs());
+    // No temporary file is left behind.
+    let leftovers: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty());
+}
+
+#[test]
+fn a_gmsh_case_runs_and_mesh_info_describes_the_file() {
+    let dir = temp_dir("gmsh");
+    let case = format!(
+        "[units]\nstress = \"GPa\"\npotential = \"GV\"\n[mesh]\nfile = \"{}\"\n[material]\nyoung = 58.7\npoisson = 0.39\ne31 = -5.4\ne33 = 15.8\ne15 = 12.3\neps0 = 8.885e-3\nbeta11_rel = 916\nbeta33_rel = 830\n[boundary]\nclamped = [\"clamp\"]\ngrounded = [\"top\"]\ncontact = [\"contact\"]\n[[boundary.traction]]\nparts = [\"top\"]\nf2 = [0.0, -1.0]\n",
+        root().join("meshes/arch.msh").display()
+    );
+    std::fs::write(dir.join("arch.toml"), case).unwrap();
+    let o = piezocontact(&[
+        "run",
+        dir.join("arch.toml").to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let o = piezocontact(&["mesh-info", "meshes/arch.msh"]);
+    let t = text(&o);
+    assert!(
+        o.status.success()
+            && t.contains("binary")
+            && t.contains("\"contact\"")
+            && t.contains("Tri3")
+            && t.contains("usable: yes"),
+        "{t}"
+    );
+}
+
+#[test]
+fn check_prints_the_mesh_and_dof_summary() {
+    let o = piezocontact(&[
+        "check",
+        "cases/paper-7.1.toml",
+        "--set",
+        "mesh.nx=12",
+        "--set",
+        "mesh.ny=2",
+    ]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(
+        t.contains("39 nodes, 48 elements") && t.contains("measure 8.000000 m  (Γ3 contact)"),
+        "{t}"
+    );
+    assert!(t.contains("dofs: 117 in all"), "{t}");
+}
+
+/// Each error: the command fails with exit code 1 and a message with the given pieces.
+fn assert_error(args: &[&str], pieces: &[&str]) {
+    let o = piezocontact(args);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{args:?}: {t}");
+    for p in pieces {
+        assert!(t.contains(p), "{args:?}: expected '{p}' in:\n{t}");
+    }
+    assert!(!t.contains("panicked"), "{t}");
+}
+
+#[test]
+fn error_messages() {
+    let dir = temp_dir("errors");
+    let unknown = variant(&dir, "nx = 96", "nx = 96\nnz = 3");
+    assert_error(
+        &["check", unknown.to_str().unwrap()],
+        &["case.toml", "line 23", "unknown field `nz`"],
+    );
+    assert_error(
+        &["check", "cases/paper-7.1.toml", "--set", "solver.rr=1"],
+        &["unknown field `rr`", "--set solver.rr=1"],
+    );
+    assert_error(
+        &["check", "cases/paper-7.1.toml", "--set", "nonsense"],
+        &["expected dotted.key=value"],
+    );
+    assert_error(
+        &["check", "cases/paper-7.1.toml", "--set", "mesh.nx=0"],
+        &["mesh.nx = 0", "at least 1 cell"],
+    );
+    assert_error(
+        &["check", "cases/paper-7.1.toml", "--set", "material.young=-1"],
+        &["paper-7.1.toml:33", "material.young = -1", "Young's modulus"],
+    );
+    assert_error(
+        &["check", "cases/paper-7.1.toml", "--set", "friction.mu=-0.5"],
+        &["paper-7.1.toml:69", "friction.mu = -0.5", "µ ≥ 0"],
+    );
+    assert_error(
+        &["check", "cases/paper-7.1.toml", "--set", "mesh.diagonal=up"],
+        &["unknown variant `up`"],
+    );
+    let missing = variant(&dir, "clamped = [\"ends\"]", "clamped = [\"end\"]");
+    assert_error(
+        &["check", missing.to_str().unwrap()],
+        &["boundary.clamped", "'end' is not in the mesh", "contact, ends, load"],
+    );
+    let empty = variant(&dir, "clamped = [\"ends\"]", "clamped = []");
+    assert_error(&["check", empty.to_str().unwrap()], &["Γ1 (clamped) is empty"]);
+    let grounded = variant(&dir, "grounded = [\"load\"]", "grounded = []");
+    assert_error(&["check", grounded.to_str().unwrap()], &["Γa (grounded) is empty"]);
+    let overlap = variant(&dir, "contact = [\"contact\"]       # Γ3", "contact = [\"ends\"]");
+    assert_error(
+        &["check", overlap.to_str().unwrap()],
+        &["'ends' (Γ3 (contact)) and 'ends' (Γ1 (clamped))", "must be disjoint"],
+    );
+    let syntax = variant(&dir, "nx = 96", "nx = = 96");
+    assert_error(&["check", syntax.to_str().unwrap()], &["case.toml", "line 22"]);
+    let segment = variant(&dir, "[2,10]x{0}", "[2,10]x{7}");
+    assert_error(&["check", segment.to_str().unwrap()], &["[2,10]x{7}", "holds no boundary facet"]);
+    assert_error(
+        &["check", "cases/paper-7.1.toml", "--set", "mesh.file=missing.msh"],
+        &["mesh.x describes the built-in rectangle"],
+    );
+    assert_error(
+        &["check", "does-not-exist.toml"],
+        &["cannot read the case file does-not-exist.toml"],
+    );
+    std::fs::write(dir.join("bad.msh"), b"\x00\x01garbage").unwrap();
+    assert_error(
+        &["mesh-info", dir.join("bad.msh").to_str().unwrap()],
+        &["bad.msh", "no $MeshFormat section"],
+    );
+    assert_error(&["bench", "--sizes", "12by3"], &["'12by3' is not NXxNY"]);
+}
+
+#[test]
+fn bench_prints_the_phases() {
+    let o = piezocontact(&["bench", "--sizes", "12x2,24x4", "--lu"]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    for column in ["assembly_s", "symbolic_s", "numeric_s", "solve_s", "faer sparse LU"] {
+        assert!(t.contains(column), "{column}: {t}");
+    }
+}
