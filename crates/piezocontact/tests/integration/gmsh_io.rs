@@ -69,6 +69,19 @@ fn malformed_and_unsupported_files_are_errors() {
         let e = error_of(text.as_bytes());
         assert!(e.contains(needle), "expected '{needle}' in: {e}");
     }
+    // An element naming a node that does not exist; a 2D mesh off the plane z = 0.
+    let missing_node =
+        good.replace("306 98 139 154 \n$EndElements", "306 98 139 99999 \n$EndElements");
+    let e = error_of(missing_node.as_bytes());
+    assert!(e.contains("node tag 99999"), "{e}");
+    let lines: Vec<&str> = good.lines().collect();
+    let nodes_start = lines.iter().position(|l| *l == "$Nodes").unwrap();
+    let first_coordinates =
+        (nodes_start..lines.len()).find(|&i| lines[i].trim() == "0 0 0").unwrap();
+    let mut lifted = lines.clone();
+    lifted[first_coordinates] = "0 0 0.5";
+    let e = error_of(lifted.join("\n").as_bytes());
+    assert!(e.contains("must lie in the plane z = 0"), "{e}");
     let e = error_of(&[0xff, 0x00, 0x13]);
     assert!(e.contains("no $MeshFormat"), "{e}");
     // Only curves (no surface): no cells.
