@@ -114,11 +114,10 @@ impl Assembler {
     /// Numbers the DOFs and builds the sparsity pattern (once per run).
     pub fn new(problem: &Problem) -> Result<Self> {
         let dofs = DofMap::new(problem)?;
-        let mut positions = Vec::new();
-        match problem.mesh.dim() {
-            2 => visit_free_pairs::<2, 3>(problem, &dofs, |r, c| positions.push((r, c)))?,
-            _ => visit_free_pairs::<3, 4>(problem, &dofs, |r, c| positions.push((r, c)))?,
-        }
+        let positions = match problem.mesh.dim() {
+            2 => free_positions::<2, 3>(problem, &dofs),
+            _ => free_positions::<3, 4>(problem, &dofs),
+        };
         let pattern = SymmetricPattern::new(dofs.n_free(), &positions)?;
         Ok(Self { dofs, pattern })
     }
@@ -181,9 +180,25 @@ impl Assembler {
     }
 }
 
+/// The local pairs (p, q) of an element whose row is free, with their free row r and free
+/// column (or [`CONSTRAINED`]): pairs of free DOFs only in the lower triangle (r ≥ column),
+/// constrained columns always (they feed the Dirichlet lifting). The order is fixed, so the
+/// pattern and every refill agree.
+fn local_pairs<'a>(
+    dofs: &'a DofMap,
+    global: &'a [usize],
+) -> impl Iterator<Item = (usize, usize, usize, usize)> + 'a {
+    global.iter().enumerate().flat_map(move |(p, &gp)| {
+        let r = dofs.free_index(gp);
+        global.iter().enumerate().filter_map(move |(q, &gq)| {
+            let col = dofs.free_index(gq);
+            (r != CONSTRAINED && (col == CONSTRAINED || r >= col)).then_some((p, q, r, col))
+        })
+    })
+}
+
 /// Calls `visit(K_pq, free row, free column or CONSTRAINED, prescribed value of the column)`
-/// for every local pair whose row is free, in a fixed order; pairs between free DOFs only for
-/// the lower triangle (row ≥ column), constrained columns always (for the lifting).
+/// for the [`local_pairs`] of every element.
 fn assemble_elements<const D: usize, const N: usize>(
     problem: &Problem,
     dofs: &DofMap,
@@ -194,48 +209,30 @@ fn assemble_elements<const D: usize, const N: usize>(
     for c in 0..problem.mesh.n_cells() {
         let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, g[c]);
         let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
-        for p in 0..m {
-            let r = dofs.free_index(global[p]);
-            if r == CONSTRAINED {
-                continue;
-            }
-            for q in 0..m {
-                let col = dofs.free_index(global[q]);
-                if col == CONSTRAINED {
-                    visit(k[p][q], r, CONSTRAINED, dofs.prescribed(global[q]));
-                } else if r >= col {
-                    visit(k[p][q], r, col, 0.0);
-                }
-            }
+        for (p, q, r, col) in local_pairs(dofs, &global[..m]) {
+            visit(k[p][q], r, col, dofs.prescribed(global[q]));
         }
     }
     Ok(())
 }
 
-/// The positions visited by [`assemble_elements`] between free DOFs, without computing
+/// The (row, column) positions of free pairs in [`assemble_elements`] order, without
 /// element matrices.
-fn visit_free_pairs<const D: usize, const N: usize>(
+fn free_positions<const D: usize, const N: usize>(
     problem: &Problem,
     dofs: &DofMap,
-    mut visit: impl FnMut(usize, usize),
-) -> Result<()> {
+) -> Vec<(usize, usize)> {
     let m = N * (D + 1);
+    let mut positions = Vec::new();
     for c in 0..problem.mesh.n_cells() {
         let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
-        for p in 0..m {
-            let r = dofs.free_index(global[p]);
-            if r == CONSTRAINED {
-                continue;
-            }
-            for q in 0..m {
-                let col = dofs.free_index(global[q]);
-                if col != CONSTRAINED && r >= col {
-                    visit(r, col);
-                }
-            }
-        }
+        positions.extend(
+            local_pairs(dofs, &global[..m])
+                .filter(|&(.., col)| col != CONSTRAINED)
+                .map(|(_, _, r, col)| (r, col)),
+        );
     }
-    Ok(())
+    positions
 }
 
 fn load_vector<const D: usize, const N: usize>(problem: &Problem, dofs: &DofMap) -> Vec<f64> {
@@ -284,14 +281,7 @@ fn integrate_facets<const D: usize>(
     let mesh = &problem.mesh;
     for facet in mesh.part_facets(part) {
         let (measure, _) = mesh.facet_geometry::<D>(facet);
-        let x: Vec<[f64; D]> = facet
-            .iter()
-            .map(|&n| {
-                let mut p = [0.0; D];
-                p.copy_from_slice(mesh.node(n));
-                p
-            })
-            .collect();
+        let x = mesh.points::<D>(facet);
         for (lambda, w) in quadrature(D - 1) {
             let p = point_at(&x, lambda);
             for (a, &node) in facet.iter().enumerate() {

@@ -151,17 +151,21 @@ impl Mesh {
         self.parts[p].facets.chunks_exact(self.dim)
     }
 
-    /// Measure (length or area) and outward unit normal of a facet given by its nodes.
-    pub fn facet_geometry<const D: usize>(&self, facet: &[usize]) -> (f64, [f64; D]) {
-        let x: Vec<[f64; D]> = facet
+    /// Coordinates of the given nodes as fixed-size arrays.
+    pub fn points<const D: usize>(&self, nodes: &[usize]) -> Vec<[f64; D]> {
+        nodes
             .iter()
             .map(|&n| {
                 let mut p = [0.0; D];
                 p.copy_from_slice(self.node(n));
                 p
             })
-            .collect();
-        facet_measure_normal::<D>(&x)
+            .collect()
+    }
+
+    /// Measure (length or area) and outward unit normal of a facet given by its nodes.
+    pub fn facet_geometry<const D: usize>(&self, facet: &[usize]) -> (f64, [f64; D]) {
+        facet_measure_normal::<D>(&self.points::<D>(facet))
     }
 
     /// Total measure of part `p`.
