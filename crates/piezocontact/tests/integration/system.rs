@@ -61,3 +61,61 @@ fn one_numeric_factorisation_serves_many_solves() {
     let t = system.timings();
     assert_eq!((t.numeric_count, t.solve_count), (1, 5));
 }
+
+/// The paper's bar (no contact) in a unit system whose stress unit is `stress` Pa and whose
+/// potential unit is `potential` V: E and f2 are divided by `stress`, ε0 [C/(V·m)] is
+/// multiplied by `potential`; lengths stay in m and charges in C.
+fn paper_bar(stress: f64, potential: f64) -> Problem {
+    use piezocontact::material::{Elasticity, Material, PermittivityConstants, PiezoConstants};
+    use piezocontact::mesh::rectangle::{Diagonal, Rectangle, Segment};
+    let seg = |s: &str| s.parse::<Segment>().unwrap();
+    let parts = vec![
+        ("ends".to_string(), vec![seg("{0}x[0,2]"), seg("{12}x[0,2]")]),
+        ("load".to_string(), vec![seg("[0,12]x{2}"), seg("[0,2]x{0}"), seg("[10,12]x{0}")]),
+    ];
+    let mesh =
+        Rectangle { x: [0.0, 12.0], y: [0.0, 2.0], nx: 48, ny: 8, diagonal: Diagonal::Right }
+            .mesh(&parts)
+            .unwrap();
+    let elasticity =
+        Elasticity::from_young_poisson(58.7102e9 / stress, 0.3912, ElasticLaw::Linear).unwrap();
+    let eps0 = 8.885e-12 * potential;
+    let material = Material::new(
+        2,
+        elasticity,
+        PiezoConstants { e31: -5.4, e33: 15.8, e15: 12.3 },
+        PermittivityConstants { beta11: 916.0 * eps0, beta33: 830.0 * eps0 },
+    )
+    .unwrap();
+    let load = mesh.part_index("load").unwrap();
+    let boundary = Boundary {
+        clamped: vec![mesh.part_index("ends").unwrap()],
+        grounded: vec![load],
+        traction: vec![(load, constant_vector(vec![0.0, -5e9 / stress]))],
+        ..Boundary::default()
+    };
+    Problem::new(mesh, material, boundary, BodyLoads::default()).unwrap()
+}
+
+#[test]
+fn the_solution_does_not_depend_on_the_unit_system() {
+    use piezocontact::dofs::DofMap;
+    use piezocontact::solver::solve_without_contact;
+    // (m, GPa, C, GV) as the paper cases, and SI (m, Pa, C, V).
+    let (paper, si) = (paper_bar(1e9, 1e9), paper_bar(1.0, 1.0));
+    let (x_paper, x_si) =
+        (solve_without_contact(&paper).unwrap().x, solve_without_contact(&si).unwrap().x);
+    let dofs = DofMap::new(&paper).unwrap();
+    let n = paper.mesh.n_nodes();
+    let max_u = (0..2 * n).map(|k| x_paper[k].abs()).fold(0.0, f64::max);
+    let max_phi = (0..n).map(|a| x_paper[dofs.phi(a)].abs()).fold(0.0, f64::max);
+    assert!(max_u > 0.1 && max_phi > 0.1, "the load must deform and polarise the bar");
+    for a in 0..n {
+        for i in 0..2 {
+            let k = dofs.u(a, i);
+            assert!((x_paper[k] - x_si[k]).abs() < 1e-10 * max_u, "u at node {a}");
+        }
+        let k = dofs.phi(a);
+        assert!((x_paper[k] * 1e9 - x_si[k]).abs() < 1e-10 * max_phi * 1e9, "phi at node {a}");
+    }
+}
