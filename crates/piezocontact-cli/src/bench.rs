@@ -29,10 +29,10 @@ pub fn run(sizes: &[String], lu: bool) -> Result<()> {
             &[format!("mesh.nx={nx}"), format!("mesh.ny={ny}")],
         )?;
         let problem = case.problem()?;
-        let mut system = CoupledSystem::new(&problem)?;
+        let mut system = CoupledSystem::new(&problem, &[])?;
         let zero = vec![0.0; system.dofs().n_total()];
         let g = secant_moduli(&problem, system.dofs(), &zero)?;
-        system.factorize(&problem, &g)?;
+        system.factorize(&problem, &g, &[])?;
         system.solve(None)?;
         let timings = system.timings();
         let matrix = system.matrix().ok_or_else(|| anyhow!("no matrix"))?;

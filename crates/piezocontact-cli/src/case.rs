@@ -5,6 +5,8 @@
 //! is read, so an override is checked exactly like the file.
 
 use anyhow::{Context, Result, anyhow, bail};
+use piezocontact::algorithm::{ContactModel, Settings};
+use piezocontact::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
 use piezocontact::material::{
     ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants,
 };
@@ -184,10 +186,21 @@ pub struct LoadsSection {
     pub q0: Option<f64>,
 }
 
+/// Which problem of the paper a case solves.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+pub enum ProblemKey {
+    /// Frictionless contact, nonconductive foundation (Algorithms 3–4).
+    PV1,
+    /// Regularised Coulomb friction, conductive foundation (Algorithms 1–2).
+    PV2,
+}
+
 /// `[contact]`: normal compliance with finite penetration, (2.5) and SPEC §9.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSection {
+    /// "PV1" or "PV2"; default PV2 when `[friction]` or `[conductivity]` is present, else PV1.
+    pub problem: Option<ProblemKey>,
     /// g_a: gap, where compliance and conduction start (the paper's ρ) [length].
     #[serde(default)]
     pub gap: f64,
@@ -215,12 +228,26 @@ pub struct FrictionSection {
     /// µ ≥ 0: friction coefficient [-].
     #[serde(default)]
     pub mu: f64,
-    /// R: "identity" (local Coulomb, default) or "mollifier" (nonlocal).
+    /// µ on particular Γ3 parts: part name → µ (a node on several parts takes their mean).
     #[serde(default)]
-    pub regularization: Option<String>,
-    /// Radius of the mollifier [length].
+    pub mu_parts: BTreeMap<String, f64>,
+    /// R: "identity" (local Coulomb, default) or "mollifier" (nonlocal, radius `radius`).
+    #[serde(default)]
+    pub regularization: RegularizationKey,
+    /// Radius a of the mollifier [length].
     #[serde(default)]
     pub radius: f64,
+}
+
+/// The regularisation operator R in the case file.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum RegularizationKey {
+    /// Local Coulomb friction.
+    #[default]
+    Identity,
+    /// Nonlocal: a mollifier average over `friction.radius`.
+    Mollifier,
 }
 
 /// `[conductivity]`: conductive foundation of (2.7)–(2.8); k_e = 0 switches it off (PV1).
@@ -437,15 +464,21 @@ impl Case {
         }
         if let Some(fr) = &f.friction {
             rules.push(Rule("friction.mu", fr.mu, nonnegative, "µ ≥ 0"));
-            rules.push(Rule("friction.radius", fr.radius, nonnegative, "a radius ≥ 0"));
-            if let Some(r) = &fr.regularization
-                && r != "identity"
-                && r != "mollifier"
-            {
-                bail!(
-                    "{}: friction.regularization = \"{r}\": use \"identity\" or \"mollifier\"",
-                    self.locate("friction.regularization")
-                );
+            if fr.regularization == RegularizationKey::Mollifier {
+                rules.push(Rule(
+                    "friction.radius",
+                    fr.radius,
+                    positive,
+                    "a mollifier radius a > 0",
+                ));
+            }
+            for (name, &mu) in &fr.mu_parts {
+                if !nonnegative(mu) {
+                    bail!(
+                        "{}: friction.mu_parts.{name} = {mu} is not allowed: µ ≥ 0",
+                        self.locate(&format!("friction.mu_parts.{name}"))
+                    );
+                }
             }
         }
         if let Some(c) = &f.conductivity {
@@ -477,6 +510,84 @@ impl Case {
             lines.push((key.to_string(), value));
         }
         Ok(lines)
+    }
+
+    /// PV1 or PV2, as the case says or as its sections imply.
+    pub fn problem_kind(&self) -> ProblemKey {
+        let f = &self.file;
+        let implied = if f.friction.is_some() || f.conductivity.is_some() {
+            ProblemKey::PV2
+        } else {
+            ProblemKey::PV1
+        };
+        f.contact.as_ref().and_then(|c| c.problem).unwrap_or(implied)
+    }
+
+    /// The contact model of [P] on `problem`'s Γ3, or `None` without a `[contact]` table.
+    pub fn contact_model(&self, problem: &Problem) -> Result<Option<ContactModel>> {
+        self.contact_settings()?;
+        let f = &self.file;
+        let Some(c) = &f.contact else { return Ok(None) };
+        let conduction = f.conductivity.as_ref();
+        let phi0 = conduction.map_or(0.0, |k| k.phi0);
+        let compliance = NormalCompliance {
+            gap: c.gap,
+            penetration: c.penetration,
+            c_nu: c.c_nu,
+            alpha_nu: c.alpha_nu,
+            n_nu: c.n_nu,
+            h_nu_range: c.h_nu_range,
+            phi0,
+        };
+        let pv2 = match self.problem_kind() {
+            ProblemKey::PV1 => None,
+            ProblemKey::PV2 => {
+                let fr = f.friction.clone().unwrap_or_default();
+                let mut mu_parts = Vec::new();
+                for (name, &mu) in &fr.mu_parts {
+                    let part = problem.mesh.part_index(name).map_err(|e| {
+                        anyhow!(
+                            "{}: friction.mu_parts: {e}",
+                            self.locate(&format!("friction.mu_parts.{name}"))
+                        )
+                    })?;
+                    if !problem.boundary.contact.contains(&part) {
+                        bail!(
+                            "{}: friction.mu_parts.{name}: part '{name}' is not a contact part (boundary.contact)",
+                            self.locate(&format!("friction.mu_parts.{name}"))
+                        );
+                    }
+                    mu_parts.push((part, mu));
+                }
+                let regularization = match fr.regularization {
+                    RegularizationKey::Identity => Regularization::Identity,
+                    RegularizationKey::Mollifier => Regularization::Mollifier { radius: fr.radius },
+                };
+                let k = conduction.cloned().unwrap_or(ConductivitySection {
+                    ke: 0.0,
+                    phi0,
+                    delta: 1.0,
+                    truncation: truncation(),
+                });
+                Some((
+                    Friction { mu: fr.mu, mu_parts, regularization },
+                    Conduction { ke: k.ke, phi0: k.phi0, delta: k.delta, truncation: k.truncation },
+                ))
+            }
+        };
+        Ok(Some(ContactModel { compliance, pv2 }))
+    }
+
+    /// The algorithms' parameters, with the paper's defaults (r = 0.25 E, ε = ε_fp = 1e−4).
+    pub fn settings(&self) -> Settings {
+        let s = &self.file.solver;
+        Settings {
+            r: s.r.unwrap_or(0.25 * self.file.material.young),
+            eps: s.eps.unwrap_or(1e-4),
+            eps_fp: s.eps_fp.unwrap_or(1e-4),
+            max_inner: s.max_inner.unwrap_or(10_000),
+            max_outer: s.max_outer.unwrap_or(100),
+        }
     }
 
     /// The checked problem.

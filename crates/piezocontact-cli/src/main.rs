@@ -4,11 +4,16 @@
 mod bench;
 mod case;
 mod output;
+mod report;
 
 use anyhow::{Context, Result};
 use case::Case;
 use clap::{Parser, Subcommand};
+use piezocontact::algorithm::{ContactModel, NodeStatus, residual, solve_contact};
+use piezocontact::dofs::DofMap;
 use piezocontact::mesh::gmsh;
+use piezocontact::output::vtu::Field;
+use piezocontact::problem::Problem;
 use piezocontact::solver::solve_without_contact;
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -69,7 +74,8 @@ fn main() -> ExitCode {
     let level = ["warn", "info", "debug"][usize::from(cli.verbose.min(2))];
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
     match run(cli.command) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(Outcome::Done) => ExitCode::SUCCESS,
+        Ok(Outcome::NotConverged) => ExitCode::from(3),
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::from(1)
@@ -77,29 +83,171 @@ fn main() -> ExitCode {
     }
 }
 
-fn run(command: Command) -> Result<()> {
+fn run(command: Command) -> Result<Outcome> {
     match command {
         Command::Run { case, out, set } => run_case(&case, &out, &set),
-        Command::Check { case, set } => check(&case, &set),
-        Command::MeshInfo { file } => mesh_info(&file),
-        Command::Bench { sizes, lu } => bench::run(&sizes, lu),
+        Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
+        Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
+        Command::Bench { sizes, lu } => bench::run(&sizes, lu).map(|_| Outcome::Done),
     }
 }
 
-fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<()> {
+/// How a command ended, when it did not fail outright.
+enum Outcome {
+    /// Everything converged.
+    Done,
+    /// A loop hit its cap: results were written, marked unconverged.
+    NotConverged,
+}
+
+fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<Outcome> {
     let start = Instant::now();
     let case = Case::load(path, set)?;
     let problem = case.problem()?;
-    if !problem.boundary.contact.is_empty() {
-        log::warn!(
-            "contact on Γ3 is not solved yet: Γ3 is treated as free (traction and charge free)"
-        );
-    }
-    let solution =
-        solve_without_contact(&problem).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    let dofs = piezocontact::dofs::DofMap::new(&problem)?;
+    let model = case.contact_model(&problem)?;
     std::fs::create_dir_all(out)
         .with_context(|| format!("cannot create the output directory {}", out.display()))?;
+    match model {
+        Some(model) if !problem.boundary.contact.is_empty() => {
+            run_contact(&case, &problem, &model, out, start)
+        }
+        Some(_) => anyhow::bail!(
+            "{}: [contact] is given but boundary.contact names no boundary part",
+            case.locate("boundary")
+        ),
+        None => {
+            if !problem.boundary.contact.is_empty() {
+                log::warn!(
+                    "the case has no [contact] table: Γ3 is treated as free (traction and charge free)"
+                );
+            }
+            run_without_contact(&case, &problem, out, start)
+        }
+    }
+}
+
+/// Fields common to every summary.json.
+fn common_summary(case: &Case, problem: &Problem, dofs: &DofMap) -> serde_json::Value {
+    let units = &case.file.units;
+    json!({
+        "case": case.path.display().to_string(),
+        "title": case.file.title,
+        "units": { "length": units.length, "stress": units.stress, "charge": units.charge, "potential": units.potential },
+        "dim": problem.mesh.dim(),
+        "nodes": problem.mesh.n_nodes(),
+        "elements": problem.mesh.n_cells(),
+        "dofs": { "total": dofs.n_total(), "free": dofs.n_free(), "free_u": dofs.n_free_u(), "free_phi": dofs.n_free() - dofs.n_free_u() },
+    })
+}
+
+fn merge(mut a: serde_json::Value, b: serde_json::Value) -> serde_json::Value {
+    if let (Some(a), serde_json::Value::Object(b)) = (a.as_object_mut(), b) {
+        a.extend(b);
+    }
+    a
+}
+
+fn run_contact(
+    case: &Case,
+    problem: &Problem,
+    model: &ContactModel,
+    out: &Path,
+    start: Instant,
+) -> Result<Outcome> {
+    let settings = case.settings();
+    let solution = solve_contact(problem, model, &settings)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", case.path.display()))?;
+    let (kkt, balance) = residual::assess(problem, model, &settings, &solution)?;
+    let rows = report::rows(problem, model, &solution)?;
+    let dofs = DofMap::new(problem)?;
+    let total = start.elapsed().as_secs_f64();
+    let mut summary = merge(
+        common_summary(case, problem, &dofs),
+        report::contact_summary(model, &solution, &kkt, &balance, &rows),
+    );
+    summary["timings_seconds"]["total"] = json!(total);
+    let mut status = vec![0.0; problem.mesh.n_nodes()];
+    let mut pressure = vec![0.0; problem.mesh.n_nodes()];
+    for (i, row) in rows.iter().enumerate() {
+        let node = solution.surface.nodes[i];
+        status[node] = match row.status {
+            NodeStatus::Separated => 1.0,
+            NodeStatus::Contact | NodeStatus::Stick => 2.0,
+            NodeStatus::Slip => 3.0,
+        };
+        pressure[node] = -row.sigma_nu;
+    }
+    let extra = [
+        Field { name: "contact_status", components: 1, values: &status },
+        Field { name: "contact_pressure", components: 1, values: &pressure },
+    ];
+    output::write_atomic(&out.join("contact.csv"), report::contact_csv(&rows).as_bytes())?;
+    output::write_atomic(
+        &out.join("summary.json"),
+        serde_json::to_string_pretty(&summary)?.as_bytes(),
+    )?;
+    output::write_atomic(
+        &out.join("solution.vtu"),
+        output::solution_vtu(problem, &dofs, &solution.x, &extra)?.as_bytes(),
+    )?;
+    let (units, g3) = (&case.file.units, &summary["gamma3"]);
+    println!(
+        "{}: {}, {} nodes, {} elements, {} free DOFs",
+        case.path.display(),
+        model.name(),
+        problem.mesh.n_nodes(),
+        problem.mesh.n_cells(),
+        dofs.n_free()
+    );
+    println!(
+        "  outer iterations   = {} ({})",
+        solution.outer_iterations,
+        if solution.converged { "converged" } else { "NOT converged" }
+    );
+    println!("  inner iterations   = {:?}", solution.inner_iterations);
+    println!(
+        "  max |sigma_nu|     = {:.6e} {}",
+        g3["max_abs_sigma_nu"].as_f64().unwrap_or(f64::NAN),
+        units.stress
+    );
+    println!(
+        "  max |sigma_tau|    = {:.6e} {}",
+        g3["max_abs_sigma_tau"].as_f64().unwrap_or(f64::NAN),
+        units.stress
+    );
+    let (c, st, sl) = report::zone_measures(&solution, &rows);
+    println!("  contact / stick / slip measure = {c:.4} / {st:.4} / {sl:.4} {}", units.length);
+    println!(
+        "  KKT residual       = {:.3e} (equilibrium u {:.1e}, phi {:.1e}; contact {:.1e}; friction {:.1e})",
+        kkt.max, kkt.equilibrium_u, kkt.equilibrium_phi, kkt.contact, kkt.friction
+    );
+    println!("  force balance      = relative imbalance {:.1e}", balance.imbalance);
+    let t = solution.timings;
+    println!(
+        "  time: assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}), total {total:.3} s",
+        t.assembly, t.symbolic, t.numeric, t.numeric_count, t.solve, t.solve_count
+    );
+    println!("  wrote contact.csv, summary.json, solution.vtu in {}", out.display());
+    if let Some(failure) = &solution.failure {
+        eprintln!(
+            "error: {}: {failure}; the partial result is in {} (marked \"converged\": false)",
+            case.path.display(),
+            out.display()
+        );
+        return Ok(Outcome::NotConverged);
+    }
+    Ok(Outcome::Done)
+}
+
+fn run_without_contact(
+    case: &Case,
+    problem: &Problem,
+    out: &Path,
+    start: Instant,
+) -> Result<Outcome> {
+    let solution = solve_without_contact(problem)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", case.path.display()))?;
+    let dofs = DofMap::new(problem)?;
     let units = &case.file.units;
     let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
     let max_u = (0..n)
@@ -110,38 +258,29 @@ fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<()> {
         phi.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
     let t = solution.timings;
     let total = start.elapsed().as_secs_f64();
-    let summary = json!({
-        "case": path.display().to_string(),
-        "title": case.file.title,
-        "problem": "coupled electro-elastic, no contact",
-        "converged": true,
-        "units": { "length": units.length, "stress": units.stress, "charge": units.charge, "potential": units.potential },
-        "dim": dim,
-        "nodes": n,
-        "elements": problem.mesh.n_cells(),
-        "dofs": { "total": dofs.n_total(), "free": dofs.n_free(), "free_u": dofs.n_free_u(), "free_phi": dofs.n_free() - dofs.n_free_u() },
-        "norms": {
-            "max_abs_u": max_u,
-            "min_phi": phi_min,
-            "max_phi": phi_max,
-            "relative_residual": solution.relative_residual,
-        },
-        "timings_seconds": {
-            "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
-            "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count, "total": total,
-        },
-    });
+    let summary = merge(
+        common_summary(case, problem, &dofs),
+        json!({
+            "problem": "coupled electro-elastic, no contact",
+            "converged": true,
+            "norms": { "max_abs_u": max_u, "min_phi": phi_min, "max_phi": phi_max, "relative_residual": solution.relative_residual },
+            "timings_seconds": {
+                "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
+                "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count, "total": total,
+            },
+        }),
+    );
     output::write_atomic(
         &out.join("summary.json"),
         serde_json::to_string_pretty(&summary)?.as_bytes(),
     )?;
     output::write_atomic(
         &out.join("solution.vtu"),
-        output::solution_vtu(&problem, &dofs, &solution.x)?.as_bytes(),
+        output::solution_vtu(problem, &dofs, &solution.x, &[])?.as_bytes(),
     )?;
     println!(
-        "{}: {} nodes, {} elements, {} free DOFs",
-        path.display(),
+        "{}: {} nodes, {} elements, {} free DOFs (no contact)",
+        case.path.display(),
         n,
         problem.mesh.n_cells(),
         dofs.n_free()
@@ -153,12 +292,8 @@ fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<()> {
         "  time: assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, total {total:.3} s",
         t.assembly, t.symbolic, t.numeric, t.solve
     );
-    println!(
-        "  wrote {} and {}",
-        out.join("summary.json").display(),
-        out.join("solution.vtu").display()
-    );
-    Ok(())
+    println!("  wrote summary.json and solution.vtu in {}", out.display());
+    Ok(Outcome::Done)
 }
 
 fn check(path: &Path, set: &[String]) -> Result<()> {

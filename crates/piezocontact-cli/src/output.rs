@@ -26,9 +26,14 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     result.with_context(|| format!("cannot write {}", path.display()))
 }
 
-/// The solution as a ParaView file: point data u (3 components), phi; cell data sigma
-/// (3 × 3), D (3 components).
-pub fn solution_vtu(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<String> {
+/// The solution as a ParaView file: point data u (3 components), phi and `extra`; cell data
+/// sigma (3 × 3), D (3 components).
+pub fn solution_vtu(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    extra: &[Field],
+) -> Result<String> {
     let mesh = &problem.mesh;
     let dim = mesh.dim();
     let mut u = Vec::with_capacity(3 * mesh.n_nodes());
@@ -41,12 +46,18 @@ pub fn solution_vtu(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Strin
     let fields = element_fields(problem, dofs, x)?;
     let sigma: Vec<f64> = fields.sigma.iter().flatten().copied().collect();
     let d: Vec<f64> = fields.electric_displacement.iter().flatten().copied().collect();
+    let mut points = vec![
+        Field { name: "u", components: 3, values: &u },
+        Field { name: "phi", components: 1, values: &phi },
+    ];
+    points.extend(extra.iter().map(|f| Field {
+        name: f.name,
+        components: f.components,
+        values: f.values,
+    }));
     Ok(to_vtu(
         mesh,
-        &[
-            Field { name: "u", components: 3, values: &u },
-            Field { name: "phi", components: 1, values: &phi },
-        ],
+        &points,
         &[
             Field { name: "sigma", components: 9, values: &sigma },
             Field { name: "D", components: 3, values: &d },

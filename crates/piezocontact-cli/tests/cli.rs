@@ -36,8 +36,46 @@ fn variant(dir: &Path, from: &str, to: &str) -> PathBuf {
     path
 }
 
+/// What the tests read from a .vtu file.
+struct Vtu {
+    points: usize,
+    cells: usize,
+    /// Point-data arrays (name, values).
+    point_data: Vec<(String, Vec<f64>)>,
+    /// Cell-data array names.
+    cell_names: Vec<String>,
+}
+
+/// Reads a .vtu file with vtkio.
+fn read_vtu(path: &Path) -> Vtu {
+    use vtkio::model::{Attribute, DataSet, Piece, VertexNumbers};
+    let vtk = vtkio::Vtk::import(path).unwrap();
+    let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
+        panic!("not an unstructured grid")
+    };
+    let Piece::Inline(piece) = &pieces[0] else { panic!("piece not inline") };
+    let VertexNumbers::XML { offsets, .. } = &piece.cells.cell_verts else {
+        panic!("legacy cells")
+    };
+    let arrays = |attrs: &[Attribute]| -> Vec<(String, Vec<f64>)> {
+        attrs
+            .iter()
+            .map(|a| match a {
+                Attribute::DataArray(d) => (d.name.clone(), d.data.clone().cast_into().unwrap()),
+                Attribute::Field { name, .. } => (name.clone(), Vec::new()),
+            })
+            .collect()
+    };
+    Vtu {
+        points: piece.num_points(),
+        cells: offsets.len(),
+        point_data: arrays(&piece.data.point),
+        cell_names: arrays(&piece.data.cell).into_iter().map(|(n, _)| n).collect(),
+    }
+}
+
 #[test]
-fn run_writes_a_summary_and_a_vtu_that_a_reader_accepts() {
+fn run_writes_a_summary_a_contact_table_and_a_vtu_that_a_reader_accepts() {
     let out = temp_dir("run");
     let o = piezocontact(&[
         "run",
@@ -50,49 +88,99 @@ fn run_writes_a_summary_and_a_vtu_that_a_reader_accepts() {
         "mesh.ny=4",
     ]);
     assert!(o.status.success(), "{}", text(&o));
-    assert!(text(&o).contains("max |u|") && text(&o).contains(" m\n"), "{}", text(&o));
+    assert!(text(&o).contains("max |sigma_nu|") && text(&o).contains(" GPa\n"), "{}", text(&o));
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["problem"], "PV1");
+    assert_eq!(summary["converged"], true);
     assert_eq!(summary["nodes"], 25 * 5);
     assert_eq!(summary["elements"], 2 * 24 * 4);
     assert_eq!(summary["dofs"]["total"], 3 * 125);
-    assert_eq!(summary["units"]["potential"], "GV");
-    assert!(summary["norms"]["relative_residual"].as_f64().unwrap() < 1e-10);
+    assert_eq!(summary["units"]["stress"], "GPa");
+    let outer = summary["outer_iterations"].as_u64().unwrap() as usize;
+    assert_eq!(summary["inner_iterations"].as_array().unwrap().len(), outer);
+    assert_eq!(summary["outer_criterion_history"].as_array().unwrap().len(), outer);
+    assert!(summary["kkt_residual"]["max"].as_f64().unwrap() < 0.1);
+    assert!(summary["balance"]["relative_imbalance"].as_f64().unwrap() < 1e-4);
     for key in ["assembly", "symbolic", "numeric", "solve", "total"] {
         assert!(summary["timings_seconds"][key].as_f64().unwrap() >= 0.0, "{key}");
     }
-    let vtk = vtkio::Vtk::import(out.join("solution.vtu")).unwrap();
-    let vtkio::model::DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
-        panic!("not an unstructured grid")
-    };
-    let vtkio::model::Piece::Inline(piece) = &pieces[0] else { panic!("piece not inline") };
-    assert_eq!(piece.num_points(), 125);
-    let vtkio::model::VertexNumbers::XML { offsets, .. } = &piece.cells.cell_verts else {
-        panic!("legacy cells")
-    };
-    assert_eq!(offsets.len(), 192);
-    let names = |attrs: &[vtkio::model::Attribute]| -> Vec<String> {
-        attrs
-            .iter()
-            .map(|a| match a {
-                vtkio::model::Attribute::DataArray(d) => d.name.clone(),
-                vtkio::model::Attribute::Field { name, .. } => name.clone(),
-            })
-            .collect()
-    };
-    assert_eq!(names(&piece.data.point), ["u", "phi"]);
-    assert_eq!(names(&piece.data.cell), ["sigma", "D"]);
-    let vtkio::model::Attribute::DataArray(phi) = &piece.data.point[1] else { panic!() };
-    let phi: Vec<f64> = phi.data.clone().cast_into().unwrap();
-    let max = phi.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    assert!((max - summary["norms"]["max_phi"].as_f64().unwrap()).abs() <= 1e-12 * max.abs());
-    // No temporary file is left behind.
+    // contact.csv: the fixed header, one row per free Γ3 node (x = 2.5 … 9.5), ordered in x.
+    let csv = std::fs::read_to_string(out.join("contact.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status"));
+    let rows: Vec<Vec<String>> =
+        lines.map(|l| l.split(',').map(str::to_string).collect()).collect();
+    assert_eq!(rows.len(), 17);
+    let x: Vec<f64> = rows.iter().map(|r| r[0].parse().unwrap()).collect();
+    assert!(x.windows(2).all(|w| w[0] < w[1]) && (x[0] - 2.0).abs() < 1e-12);
+    assert!(rows.iter().all(|r| r[8] == "contact" || r[8] == "separated"));
+    let max_sigma = rows.iter().map(|r| r[4].parse::<f64>().unwrap().abs()).fold(0.0, f64::max);
+    assert!(
+        (max_sigma - summary["gamma3"]["max_abs_sigma_nu"].as_f64().unwrap()).abs()
+            <= 1e-9 * max_sigma
+    );
+    // solution.vtu, read back by an independent reader.
+    let vtu = read_vtu(&out.join("solution.vtu"));
+    assert_eq!((vtu.points, vtu.cells), (125, 192));
+    let names: Vec<&str> = vtu.point_data.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["u", "phi", "contact_status", "contact_pressure"]);
+    assert_eq!(vtu.cell_names, ["sigma", "D"]);
+    let pressure = vtu.point_data[3].1.iter().copied().fold(0.0, f64::max);
+    assert!((pressure - max_sigma).abs() <= 1e-9 * max_sigma);
     let leftovers: Vec<_> = std::fs::read_dir(&out)
         .unwrap()
         .filter_map(|e| e.ok())
         .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
         .collect();
-    assert!(leftovers.is_empty());
+    assert!(leftovers.is_empty(), "temporary files left behind");
+}
+
+#[test]
+fn an_iteration_cap_is_an_error_with_the_partial_result_written() {
+    let out = temp_dir("cap");
+    let o = piezocontact(&[
+        "run",
+        "cases/paper-7.2.toml",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "mesh.nx=24",
+        "--set",
+        "mesh.ny=4",
+        "--set",
+        "solver.max_inner=3",
+    ]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(3), "{t}");
+    assert!(
+        t.contains("the Uzawa loop (Algorithm 2) of outer step 1 did not converge in 3 iterations"),
+        "{t}"
+    );
+    assert!(t.contains("last criterion") && t.contains("marked \"converged\": false"), "{t}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["converged"], false);
+    assert!(summary["failure"].as_str().unwrap().contains("Uzawa loop"));
+    assert!(out.join("contact.csv").exists() && out.join("solution.vtu").exists());
+    let o = piezocontact(&[
+        "run",
+        "cases/paper-7.2.toml",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "mesh.nx=24",
+        "--set",
+        "mesh.ny=4",
+        "--set",
+        "solver.max_outer=2",
+    ]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(3), "{t}");
+    assert!(
+        t.contains("the fixed-point loop (Algorithm 1) did not converge in 2 iterations"),
+        "{t}"
+    );
 }
 
 #[test]
@@ -141,6 +229,12 @@ fn check_prints_the_mesh_and_dof_summary() {
     assert!(t.contains("dofs: 117 in all"), "{t}");
 }
 
+/// 1-based line of the first line of the paper case that starts with `prefix`.
+fn line_of(prefix: &str) -> usize {
+    let case = std::fs::read_to_string(root().join("cases/paper-7.1.toml")).unwrap();
+    case.lines().position(|l| l.starts_with(prefix)).unwrap() + 1
+}
+
 /// Each error: the command fails with exit code 1 and a message with the given pieces.
 fn assert_error(args: &[&str], pieces: &[&str]) {
     let o = piezocontact(args);
@@ -158,7 +252,7 @@ fn error_messages() {
     let unknown = variant(&dir, "nx = 96", "nx = 96\nnz = 3");
     assert_error(
         &["check", unknown.to_str().unwrap()],
-        &["case.toml", "line 23", "unknown field `nz`"],
+        &["case.toml", &format!("line {}", line_of("nx = ") + 1), "unknown field `nz`"],
     );
     assert_error(
         &["check", "cases/paper-7.1.toml", "--set", "solver.rr=1"],
@@ -174,11 +268,15 @@ fn error_messages() {
     );
     assert_error(
         &["check", "cases/paper-7.1.toml", "--set", "material.young=-1"],
-        &["paper-7.1.toml:33", "material.young = -1", "Young's modulus"],
+        &[
+            &format!("paper-7.1.toml:{}", line_of("young = ")),
+            "material.young = -1",
+            "Young's modulus",
+        ],
     );
     assert_error(
         &["check", "cases/paper-7.1.toml", "--set", "friction.mu=-0.5"],
-        &["paper-7.1.toml:69", "friction.mu = -0.5", "µ ≥ 0"],
+        &[&format!("paper-7.1.toml:{}", line_of("mu = ")), "friction.mu = -0.5", "µ ≥ 0"],
     );
     assert_error(
         &["check", "cases/paper-7.1.toml", "--set", "mesh.diagonal=up"],
@@ -199,7 +297,10 @@ fn error_messages() {
         &["'ends' (Γ3 (contact)) and 'ends' (Γ1 (clamped))", "must be disjoint"],
     );
     let syntax = variant(&dir, "nx = 96", "nx = = 96");
-    assert_error(&["check", syntax.to_str().unwrap()], &["case.toml", "line 22"]);
+    assert_error(
+        &["check", syntax.to_str().unwrap()],
+        &["case.toml", &format!("line {}", line_of("nx = "))],
+    );
     let segment = variant(&dir, "[2,10]x{0}", "[2,10]x{7}");
     assert_error(&["check", segment.to_str().unwrap()], &["[2,10]x{7}", "holds no boundary facet"]);
     assert_error(

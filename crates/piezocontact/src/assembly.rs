@@ -104,22 +104,35 @@ fn simplex<const D: usize, const N: usize>(problem: &Problem, c: usize) -> Resul
 }
 
 /// Assembles B̌ and f̌ on the free DOFs of a problem, reusing one sparsity pattern.
+///
+/// Besides the element matrices, the matrix may carry a d × d block on the u DOFs of given
+/// nodes: the r M term of Algorithms 2 and 4 on the Γ3 nodes (SPEC §7).
 #[derive(Debug)]
 pub struct Assembler {
     dofs: DofMap,
     pattern: SymmetricPattern,
+    /// Nodes that carry a nodal block.
+    block_nodes: Vec<usize>,
 }
 
+/// A symmetric d × d nodal block, row-major in a 3 × 3 array.
+pub type NodalBlock = [[f64; 3]; 3];
+
 impl Assembler {
-    /// Numbers the DOFs and builds the sparsity pattern (once per run).
-    pub fn new(problem: &Problem) -> Result<Self> {
+    /// Numbers the DOFs and builds the sparsity pattern (once per run), with room for nodal
+    /// blocks on `block_nodes`.
+    pub fn new(problem: &Problem, block_nodes: &[usize]) -> Result<Self> {
         let dofs = DofMap::new(problem)?;
-        let positions = match problem.mesh.dim() {
+        let mut positions = match problem.mesh.dim() {
             2 => free_positions::<2, 3>(problem, &dofs),
             _ => free_positions::<3, 4>(problem, &dofs),
         };
+        let dim = problem.mesh.dim();
+        for &node in block_nodes {
+            positions.extend(nodal_pairs(&dofs, dim, node).map(|(_, _, r, c)| (r, c)));
+        }
         let pattern = SymmetricPattern::new(dofs.n_free(), &positions)?;
-        Ok(Self { dofs, pattern })
+        Ok(Self { dofs, pattern, block_nodes: block_nodes.to_vec() })
     }
 
     /// The DOF map.
@@ -132,9 +145,22 @@ impl Assembler {
         &self.pattern
     }
 
-    /// The matrix of B̌(x_n) for per-element secant moduli `g` [stress], and the Dirichlet
-    /// lifting −K_fc x_c (free DOFs) to add to the right-hand side.
-    pub fn matrix(&self, problem: &Problem, g: &[f64]) -> Result<(SymmetricMatrix, Vec<f64>)> {
+    /// The matrix of B̌(x_n) for per-element secant moduli `g` [stress], plus the nodal
+    /// `blocks` (one per block node, or none at all), and the Dirichlet lifting −K_fc x_c
+    /// (free DOFs) to add to the right-hand side.
+    pub fn matrix(
+        &self,
+        problem: &Problem,
+        g: &[f64],
+        blocks: &[NodalBlock],
+    ) -> Result<(SymmetricMatrix, Vec<f64>)> {
+        if !blocks.is_empty() && blocks.len() != self.block_nodes.len() {
+            return Err(Error::Length {
+                what: "nodal blocks".into(),
+                expected: self.block_nodes.len(),
+                got: blocks.len(),
+            });
+        }
         if g.len() != problem.mesh.n_cells() {
             return Err(Error::Length {
                 what: "secant moduli".into(),
@@ -156,14 +182,26 @@ impl Assembler {
             2 => assemble_elements::<2, 3>(problem, dofs, g, &mut visit)?,
             _ => assemble_elements::<3, 4>(problem, dofs, g, &mut visit)?,
         }
+        let dim = problem.mesh.dim();
+        for (b, &node) in self.block_nodes.iter().enumerate() {
+            values.extend(
+                nodal_pairs(dofs, dim, node)
+                    .map(|(i, j, _, _)| blocks.get(b).map_or(0.0, |k| k[i][j])),
+            );
+        }
         Ok((self.pattern.matrix(&values)?, lifting))
     }
 
     /// f̌ of (6.3) on the global DOFs.
     pub fn load_vector(&self, problem: &Problem) -> Vec<f64> {
+        Self::load_vector_of(problem, &self.dofs)
+    }
+
+    /// f̌ of (6.3) on the global DOFs of `dofs`.
+    pub fn load_vector_of(problem: &Problem, dofs: &DofMap) -> Vec<f64> {
         match problem.mesh.dim() {
-            2 => load_vector::<2, 3>(problem, &self.dofs),
-            _ => load_vector::<3, 4>(problem, &self.dofs),
+            2 => load_vector::<2, 3>(problem, dofs),
+            _ => load_vector::<3, 4>(problem, dofs),
         }
     }
 
@@ -193,6 +231,21 @@ fn local_pairs<'a>(
         global.iter().enumerate().filter_map(move |(q, &gq)| {
             let col = dofs.free_index(gq);
             (r != CONSTRAINED && (col == CONSTRAINED || r >= col)).then_some((p, q, r, col))
+        })
+    })
+}
+
+/// The (i, j, free row, free column) pairs of the u block of `node` with both DOFs free, in
+/// the lower triangle.
+fn nodal_pairs(
+    dofs: &DofMap,
+    dim: usize,
+    node: usize,
+) -> impl Iterator<Item = (usize, usize, usize, usize)> + '_ {
+    (0..dim).flat_map(move |i| {
+        (0..dim).filter_map(move |j| {
+            let (r, c) = (dofs.free_index(dofs.u(node, i)), dofs.free_index(dofs.u(node, j)));
+            (r != CONSTRAINED && c != CONSTRAINED && r >= c).then_some((i, j, r, c))
         })
     })
 }
@@ -311,6 +364,69 @@ pub fn cell_gradients<const D: usize, const N: usize>(
         }
     }
     Ok((eps, grad_phi))
+}
+
+/// The internal force F_int = Σ_e K_e(g_e) x_e on the global DOFs, and the row scale
+/// Σ_e |K_e x_e| (to make residuals relative). With g_e = g(‖ε^D(u)‖²) of x itself this is
+/// the exact nonlinear internal force of (6.2): Fε is linear in ε at a fixed g.
+pub fn internal_force(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    g: &[f64],
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    match problem.mesh.dim() {
+        2 => internal_force_on::<2, 3>(problem, dofs, x, g),
+        _ => internal_force_on::<3, 4>(problem, dofs, x, g),
+    }
+}
+
+fn internal_force_on<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    g: &[f64],
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let m = N * (D + 1);
+    let mut force = vec![0.0; dofs.n_total()];
+    let mut scale = vec![0.0; dofs.n_total()];
+    for c in 0..problem.mesh.n_cells() {
+        let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, g[c]);
+        let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
+        for p in 0..m {
+            for q in 0..m {
+                let v = k[p][q] * x[global[q]];
+                force[global[p]] += v;
+                scale[global[p]] += v.abs();
+            }
+        }
+    }
+    Ok((force, scale))
+}
+
+/// ‖x‖²_{L2(Ω)} of a global vector x = (u, ϕ) with the consistent P1 mass matrix, summed
+/// over the components of u and ϕ: the norm of the stopping rules (6.12), (6.15).
+pub fn mass_norm_squared(problem: &Problem, dofs: &DofMap, x: &[f64]) -> f64 {
+    let mesh = &problem.mesh;
+    let (dim, n) = (mesh.dim(), mesh.dim() + 1);
+    let factor = 1.0 / ((n * (n + 1)) as f64);
+    let mut sum = 0.0;
+    for c in 0..mesh.n_cells() {
+        let vol = match dim {
+            2 => Simplex::<2, 3>::new(&mesh.cell_coords::<2, 3>(c)).map_or(0.0, |s| s.measure()),
+            _ => Simplex::<3, 4>::new(&mesh.cell_coords::<3, 4>(c)).map_or(0.0, |s| s.measure()),
+        };
+        let cell = mesh.cell(c);
+        for comp in 0..=dim {
+            let value =
+                |a: usize| if comp < dim { x[dofs.u(cell[a], comp)] } else { x[dofs.phi(cell[a])] };
+            // M_ab = |K| (1 + δ_ab) / ((d+1)(d+2)): Σ_ab M_ab v_a v_b = |K| f ((Σ v)² + Σ v²).
+            let (total, squares) =
+                (0..n).fold((0.0, 0.0), |(t, q), a| (t + value(a), q + value(a) * value(a)));
+            sum += vol * factor * (total * total + squares);
+        }
+    }
+    sum
 }
 
 /// Per-element secant moduli g(‖ε^D(u_n)‖²) [stress] at the iterate x_n (global vector).

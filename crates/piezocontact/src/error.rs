@@ -5,7 +5,7 @@
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// Everything that can go wrong in piezocontact's numerics and input handling.
-#[derive(Debug, thiserror::Error)]
+#[derive(Clone, Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
     /// An element refers to a node that does not exist.
@@ -106,6 +106,19 @@ pub enum Error {
     /// The linear algebra back-end failed for another reason (out of memory, ...).
     #[error("linear algebra failure: {0}")]
     LinearAlgebra(String),
+
+    /// An iteration cap was hit before the stopping rule held.
+    #[error(
+        "{what} did not converge in {iterations} iterations: last criterion {criterion:.3e}, \
+         tolerance {tolerance:e}; {hint}"
+    )]
+    NotConverged {
+        what: String,
+        iterations: usize,
+        criterion: f64,
+        tolerance: f64,
+        hint: &'static str,
+    },
 
     /// A vector or field of the wrong length.
     #[error("{what}: expected length {expected}, got {got}")]

@@ -38,6 +38,8 @@
 //! - [`assembly`]: B̌ and f̌, pattern once, values refilled.
 //! - [`linalg`]: sparse LDLᵀ (the only module naming faer).
 //! - [`solver`]: the coupled solve without contact; element fields σ, D.
+//! - [`contact`]: Γ3 kinematics (w_i, ν_i, u_ν, u_τ) and the contact laws.
+//! - [`algorithm`]: Algorithms 1–4 (fixed point around Uzawa), residuals and balances.
 //! - [`output`]: ParaView `.vtu`.
 //!
 //! ## Reference
@@ -45,7 +47,9 @@
 //! [P] The paper in `shared/paper/`, restated in `SPEC.md`: equation numbers (2.x), (6.x)
 //! and the Algorithms 1–4 are the paper's.
 
+pub mod algorithm;
 pub mod assembly;
+pub mod contact;
 pub mod dofs;
 pub mod element;
 pub mod error;

@@ -2,7 +2,7 @@
 //! factor once, solve. [`CoupledSystem`] keeps the pattern, the symbolic analysis and the
 //! current factorisation so that the contact algorithms reuse them (SPEC §7).
 
-use crate::assembly::{Assembler, secant_moduli};
+use crate::assembly::{Assembler, NodalBlock, secant_moduli};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::{LdltSolver, SymmetricMatrix};
@@ -39,10 +39,11 @@ pub struct CoupledSystem {
 }
 
 impl CoupledSystem {
-    /// Numbers DOFs, builds the pattern and runs the symbolic analysis.
-    pub fn new(problem: &Problem) -> Result<Self> {
+    /// Numbers DOFs, builds the pattern (with room for nodal blocks on `block_nodes`) and
+    /// runs the symbolic analysis.
+    pub fn new(problem: &Problem, block_nodes: &[usize]) -> Result<Self> {
         let t = Instant::now();
-        let assembler = Assembler::new(problem)?;
+        let assembler = Assembler::new(problem, block_nodes)?;
         let assembly = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let solver = LdltSolver::analyze(assembler.pattern(), assembler.dofs().signs())?;
@@ -51,10 +52,11 @@ impl CoupledSystem {
         Ok(Self { assembler, solver, matrix: None, rhs: Vec::new(), timings })
     }
 
-    /// Assembles B̌ with the secant moduli `g` (one per element) and f̌, and factorises.
-    pub fn factorize(&mut self, problem: &Problem, g: &[f64]) -> Result<()> {
+    /// Assembles B̌ with the secant moduli `g` (one per element) plus the nodal `blocks`, and
+    /// f̌, and factorises.
+    pub fn factorize(&mut self, problem: &Problem, g: &[f64], blocks: &[NodalBlock]) -> Result<()> {
         let t = Instant::now();
-        let (matrix, lifting) = self.assembler.matrix(problem, g)?;
+        let (matrix, lifting) = self.assembler.matrix(problem, g, blocks)?;
         let load = self.assembler.restrict(&self.assembler.load_vector(problem));
         self.rhs = load.iter().zip(&lifting).map(|(f, l)| f + l).collect();
         self.timings.assembly += t.elapsed().as_secs_f64();
@@ -130,10 +132,10 @@ pub struct StaticSolution {
 /// Solves the coupled problem without contact, with B̌(x_0) at x_0 = 0 (g = g(0) = µ1: the
 /// linear problem; the Hencky secant update comes with the contact algorithms).
 pub fn solve_without_contact(problem: &Problem) -> Result<StaticSolution> {
-    let mut system = CoupledSystem::new(problem)?;
+    let mut system = CoupledSystem::new(problem, &[])?;
     let zero = vec![0.0; system.dofs().n_total()];
     let g = secant_moduli(problem, system.dofs(), &zero)?;
-    system.factorize(problem, &g)?;
+    system.factorize(problem, &g, &[])?;
     let x = system.solve(None)?;
     let free = system.assembler().restrict(&x);
     let matrix = system.matrix().ok_or_else(|| Error::LinearAlgebra("no matrix".into()))?;

@@ -26,9 +26,9 @@ fn matrix_is_symmetric_and_its_blocks_are_definite() {
         clamped_problem(perturbed_square(5, 0.3), "left", "bottom"),
         clamped_problem(read_mesh("cube.msh"), "bottom", "top"),
     ] {
-        let assembler = Assembler::new(&problem).unwrap();
+        let assembler = Assembler::new(&problem, &[]).unwrap();
         let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
-        let (matrix, _) = assembler.matrix(&problem, &g).unwrap();
+        let (matrix, _) = assembler.matrix(&problem, &g, &[]).unwrap();
         // Symmetry of the assembled operator: xᵀ(Ay) = yᵀ(Ax) for the lower-stored matrix is
         // automatic, so compare with the element-by-element product of full element matrices.
         let n = matrix.n();
@@ -48,9 +48,9 @@ fn matrix_is_symmetric_and_its_blocks_are_definite() {
 #[test]
 fn one_numeric_factorisation_serves_many_solves() {
     let problem = clamped_problem(read_mesh("paper-rectangle.msh"), "clamp", "load");
-    let mut system = CoupledSystem::new(&problem).unwrap();
+    let mut system = CoupledSystem::new(&problem, &[]).unwrap();
     let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
-    system.factorize(&problem, &g).unwrap();
+    system.factorize(&problem, &g, &[]).unwrap();
     let first = system.solve(None).unwrap();
     let n = system.dofs().n_free();
     for k in 1..=4 {

@@ -1,0 +1,134 @@
+//! How accurate a contact solution is (SPEC §10): the true residual of the discrete problem
+//! with the true Hencky law, the natural residuals of the contact and friction conditions,
+//! and the global force balance.
+//!
+//! At a solution of the discrete problem,
+//!
+//! ```text
+//! R = F_int(x) − f̌ − F_c − Q = 0 on the free DOFs,
+//! F_c,i = w_i (σ_ν,i ν_i + σ_τ,i),  σ_ν = −(λ_c + h_ν p_ν),  σ_τ = −λ_f       (u rows of Γ3)
+//! Q_i   = w_i ψ(u_ν − g_a) φ_L(ϕ − ϕ0)                                      (ϕ rows, PV2)
+//! λ_c = max(0, λ_c + r(u_ν − ρ)),   λ_f = P_{B(0,s)}(λ_f + r u_τ),  s = µ|Rσ_ν(x)|
+//! ```
+//!
+//! The last two are the complementarity and Coulomb conditions written as projections; their
+//! defects divided by r are lengths, reported relative to max ‖u‖.
+
+use super::{ContactModel, ContactSolution, Settings};
+use crate::assembly::{Assembler, internal_force, secant_moduli};
+use crate::contact::law::project_ball;
+use crate::dofs::{CONSTRAINED, DofMap};
+use crate::error::Result;
+use crate::problem::Problem;
+
+/// Relative residuals of the discrete problem.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct KktResidual {
+    /// ‖R_u‖ / ‖row scale‖ over the free u rows (equilibrium, true law).
+    pub equilibrium_u: f64,
+    /// ‖R_ϕ‖ / ‖row scale‖ over the free ϕ rows (Gauss's law).
+    pub equilibrium_phi: f64,
+    /// max_i |λ_c − max(0, λ_c + r(u_ν − ρ))| / r / max‖u‖.
+    pub contact: f64,
+    /// max_i ‖λ_f − P_s(λ_f + r u_τ)‖ / r / max‖u‖, with s = µ|Rσ_ν(x)| (PV2).
+    pub friction: f64,
+    /// max_i (u_ν − ρ)₊ [length].
+    pub penetration: f64,
+    /// The largest of the four relative residuals.
+    pub max: f64,
+}
+
+/// Resultant forces on the body [stress·length^(d−1)], d components.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Balance {
+    /// Applied loads: ∫ f0 + ∫Γ2 f2.
+    pub applied: Vec<f64>,
+    /// Force of the foundation on the body: Σ_i w_i (σ_ν ν + σ_τ).
+    pub contact: Vec<f64>,
+    /// Reactions of the clamp on Γ1.
+    pub reaction: Vec<f64>,
+    /// |applied + contact + reaction| / (|applied| + |contact| + |reaction|).
+    pub imbalance: f64,
+}
+
+/// Residuals and balance of a contact solution.
+pub fn assess(
+    problem: &Problem,
+    model: &ContactModel,
+    settings: &Settings,
+    solution: &ContactSolution,
+) -> Result<(KktResidual, Balance)> {
+    let dofs = DofMap::new(problem)?;
+    let (surface, state, x) = (&solution.surface, &solution.state, &solution.x);
+    let dim = problem.mesh.dim();
+    let g = secant_moduli(problem, &dofs, x)?;
+    let (f_int, scale) = internal_force(problem, &dofs, x, &g)?;
+    let f_ext = Assembler::load_vector_of(problem, &dofs);
+    let mut contact_force = vec![0.0; dofs.n_total()];
+    let rho = model.compliance.stop();
+    let mut kkt = KktResidual::default();
+    let max_u = (0..problem.mesh.n_nodes())
+        .map(|a| (0..dim).map(|c| x[dofs.u(a, c)].powi(2)).sum::<f64>().sqrt())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    for i in 0..surface.len() {
+        let (u_nu, u_tau) = surface.split(&dofs, x, i);
+        let phi = surface.phi(&dofs, x, i);
+        let (w, node) = (surface.weight[i], surface.nodes[i]);
+        for c in 0..dim {
+            contact_force[dofs.u(node, c)] +=
+                w * (solution.sigma_nu[i] * surface.normal[i][c] - state.lambda_f[i][c]);
+        }
+        let lambda_c = state.lambda_c[i];
+        kkt.contact = kkt.contact.max(
+            (lambda_c - (lambda_c + settings.r * (u_nu - rho)).max(0.0)).abs() / settings.r / max_u,
+        );
+        kkt.penetration = kkt.penetration.max(u_nu - rho);
+        if let Some((_, conduction)) = &model.pv2 {
+            contact_force[dofs.phi(node)] += w * conduction.flux(u_nu, phi, model.compliance.gap);
+            let z = [0, 1, 2].map(|c| state.lambda_f[i][c] + settings.r * u_tau[c]);
+            let p = project_ball(z, solution.s[i]);
+            let defect = (0..3).map(|c| (state.lambda_f[i][c] - p[c]).powi(2)).sum::<f64>().sqrt();
+            kkt.friction = kkt.friction.max(defect / settings.r / max_u);
+        }
+    }
+    let (mut r_u, mut s_u, mut r_phi, mut s_phi) = (0.0, 0.0, 0.0, 0.0);
+    let mut balance = Balance {
+        applied: vec![0.0; dim],
+        contact: vec![0.0; dim],
+        reaction: vec![0.0; dim],
+        imbalance: 0.0,
+    };
+    for gdof in 0..dofs.n_total() {
+        let residual = f_int[gdof] - f_ext[gdof] - contact_force[gdof];
+        let row_scale = scale[gdof] + f_ext[gdof].abs() + contact_force[gdof].abs();
+        let is_u = gdof < dim * problem.mesh.n_nodes();
+        if is_u {
+            let c = gdof % dim;
+            balance.applied[c] += f_ext[gdof];
+            balance.contact[c] += contact_force[gdof];
+        }
+        match (dofs.free_index(gdof) == CONSTRAINED, is_u) {
+            (true, true) => balance.reaction[gdof % dim] += f_int[gdof] - f_ext[gdof],
+            (true, false) => {}
+            (false, true) => {
+                r_u += residual * residual;
+                s_u += row_scale * row_scale;
+            }
+            (false, false) => {
+                r_phi += residual * residual;
+                s_phi += row_scale * row_scale;
+            }
+        }
+    }
+    let ratio = |r: f64, s: f64| if s > 0.0 { (r / s).sqrt() } else { r.sqrt() };
+    kkt.equilibrium_u = ratio(r_u, s_u);
+    kkt.equilibrium_phi = ratio(r_phi, s_phi);
+    kkt.max = kkt.equilibrium_u.max(kkt.equilibrium_phi).max(kkt.contact).max(kkt.friction);
+    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let total: Vec<f64> =
+        (0..dim).map(|c| balance.applied[c] + balance.contact[c] + balance.reaction[c]).collect();
+    let size = norm(&balance.applied) + norm(&balance.contact) + norm(&balance.reaction);
+    balance.imbalance = if size > 0.0 { norm(&total) / size } else { 0.0 };
+    Ok((kkt, balance))
+}

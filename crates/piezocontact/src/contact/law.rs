@@ -1,0 +1,153 @@
+//! Contact laws on Γ3, [P] (2.5)–(2.8) and Section 7, with the gap/penetration reading of
+//! SPEC §9. Every constant is a parameter; the paper's forms are the provided choice.
+
+/// Normal compliance with finite penetration, (2.5):
+///
+/// ```text
+/// u_ν ≤ g_a + g_p,   σ_ν + h_ν(ϕ − ϕ0) p_ν(u_ν − g_a) ≤ 0,   complementarity,
+/// p_ν(s) = 0 (s < 0), s (0 ≤ s ≤ n_ν), n_ν (s > n_ν)
+/// h_ν(s) = c_ν α_ν (|s| > S), c_ν (1 + (α_ν − 1)|s|/S) otherwise     (S = 128 in [P])
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalCompliance {
+    /// g_a: gap, where compliance and conduction start (the paper's ρ) [length].
+    pub gap: f64,
+    /// g_p ≥ 0: penetration before the rigid stop at u_ν = g_a + g_p [length].
+    pub penetration: f64,
+    /// c_ν > 0 [stress/length].
+    pub c_nu: f64,
+    /// α_ν > 1 [-].
+    pub alpha_nu: f64,
+    /// n_ν > 0: saturation of p_ν [length].
+    pub n_nu: f64,
+    /// S: the potential difference at which h_ν saturates (128 in [P]) [potential].
+    pub h_nu_range: f64,
+    /// ϕ0: potential of the foundation [potential].
+    pub phi0: f64,
+}
+
+impl NormalCompliance {
+    /// The rigid stop g_a + g_p (the ρ of Algorithms 2 and 4) [length].
+    pub fn stop(&self) -> f64 {
+        self.gap + self.penetration
+    }
+
+    /// p_ν(s) [length].
+    pub fn p_nu(&self, s: f64) -> f64 {
+        s.clamp(0.0, self.n_nu)
+    }
+
+    /// h_ν(s) [stress/length], s = ϕ − ϕ0.
+    pub fn h_nu(&self, s: f64) -> f64 {
+        if s.abs() > self.h_nu_range {
+            self.c_nu * self.alpha_nu
+        } else {
+            self.c_nu * (1.0 + (self.alpha_nu - 1.0) * s.abs() / self.h_nu_range)
+        }
+    }
+
+    /// The compliance pressure h_ν(ϕ − ϕ0) p_ν(u_ν − g_a) [stress].
+    pub fn pressure(&self, u_nu: f64, phi: f64) -> f64 {
+        self.h_nu(phi - self.phi0) * self.p_nu(u_nu - self.gap)
+    }
+}
+
+/// Conductive foundation, (2.7)–(2.8): D·ν = ψ(u_ν − g_a) φ_L(ϕ − ϕ0),
+/// ψ = k_e ψ0, ψ0(s) = 0 (s < 0), δ s (0 ≤ s ≤ 1/δ), 1 (s > 1/δ), φ_L = clamp(·, −L, L).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Conduction {
+    /// k_e ≥ 0 [charge/(potential·length^d)].
+    pub ke: f64,
+    /// ϕ0: potential of the foundation [potential].
+    pub phi0: f64,
+    /// δ > 0 [1/length].
+    pub delta: f64,
+    /// L > 0 [potential].
+    pub truncation: f64,
+}
+
+impl Conduction {
+    /// ψ(s) = k_e ψ0(s).
+    pub fn psi(&self, s: f64) -> f64 {
+        self.ke * (self.delta * s).clamp(0.0, 1.0)
+    }
+
+    /// φ_L(s) [potential].
+    pub fn phi_l(&self, s: f64) -> f64 {
+        s.clamp(-self.truncation, self.truncation)
+    }
+
+    /// The normal charge flux ψ(u_ν − g_a) φ_L(ϕ − ϕ0) [charge/length^(d−1)].
+    pub fn flux(&self, u_nu: f64, phi: f64, gap: f64) -> f64 {
+        self.psi(u_nu - gap) * self.phi_l(phi - self.phi0)
+    }
+}
+
+/// The regularisation operator R of the friction bound µ|Rσ_ν| (2.7).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Regularization {
+    /// R = identity: local Coulomb friction.
+    Identity,
+    /// A mollifier average of σ_ν over the Γ3 nodes within `radius` [length], weighted by
+    /// w_j (1 − (r/a)²)² — nonlocal Coulomb friction.
+    Mollifier {
+        /// a > 0 [length].
+        radius: f64,
+    },
+}
+
+/// Regularised Coulomb friction, (2.7).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Friction {
+    /// µ ≥ 0 on Γ3 [-].
+    pub mu: f64,
+    /// µ on particular Γ3 parts (mesh part index, µ); a node shared by several parts takes
+    /// their mean.
+    pub mu_parts: Vec<(usize, f64)>,
+    /// R.
+    pub regularization: Regularization,
+}
+
+/// The projection of z on the ball of radius s (any dimension), the closed form of Steps 2–3
+/// of Algorithm 2.
+pub fn project_ball<const D: usize>(z: [f64; D], s: f64) -> [f64; D] {
+    let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if norm > s { z.map(|v| v * s / norm) } else { z }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paper_functions() {
+        let law = NormalCompliance {
+            gap: 0.5,
+            penetration: 0.1,
+            c_nu: 2.0,
+            alpha_nu: 3.0,
+            n_nu: 0.2,
+            h_nu_range: 128.0,
+            phi0: 32.0,
+        };
+        assert_eq!(law.stop(), 0.6);
+        assert_eq!((law.p_nu(-1.0), law.p_nu(0.1), law.p_nu(5.0)), (0.0, 0.1, 0.2));
+        assert_eq!(law.h_nu(0.0), 2.0);
+        assert_eq!(law.h_nu(-64.0), 2.0 * (1.0 + 2.0 * 0.5));
+        assert_eq!(law.h_nu(500.0), 6.0);
+        // h_ν(0) p_ν(0.55 − 0.5) = 2 × 0.05.
+        assert!((law.pressure(0.55, 32.0) - 0.1).abs() < 1e-15);
+        let c = Conduction { ke: 2.0, phi0: 32.0, delta: 4.0, truncation: 10.0 };
+        assert_eq!((c.psi(-1.0), c.psi(0.125), c.psi(1.0)), (0.0, 1.0, 2.0));
+        assert_eq!((c.phi_l(-20.0), c.phi_l(3.0), c.phi_l(20.0)), (-10.0, 3.0, 10.0));
+    }
+
+    #[test]
+    fn ball_projection() {
+        assert_eq!(project_ball([3.0, 4.0], 10.0), [3.0, 4.0]);
+        let p = project_ball([3.0, 4.0], 1.0);
+        assert!((p[0] - 0.6).abs() < 1e-15 && (p[1] - 0.8).abs() < 1e-15);
+        assert_eq!(project_ball([-2.0], 0.5), [-0.5]);
+        assert_eq!(project_ball([1.0, 1.0, 1.0], 0.0), [0.0; 3]);
+    }
+}
