@@ -1,7 +1,11 @@
+use piezocontact::algorithm::{ContactModel, Settings};
+use piezocontact::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
 use piezocontact::material::{
     ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants,
 };
+use piezocontact::mesh::rectangle::{Diagonal, Rectangle, Segment};
 use piezocontact::mesh::{Mesh, gmsh};
+use piezocontact::problem::{BodyLoads, Boundary, Problem, constant_vector};
 use std::path::PathBuf;
 
 /// ε0 in the paper cases' units (m, GPa, C, GV): 8.885e−12 C/(V m) = 8.885e−3 C/(GV m).
@@ -65,4 +69,98 @@ pub fn perturbed_square(n: usize, amplitude: f64) -> Mesh {
         piezocontact::mesh::BoundaryPart::new("top", side(&|i| [id(i, n), id(i + 1, n)])),
     ];
     Mesh::new(2, coords, cells, parts).unwrap()
+}
+
+/// A unit system for the paper's example: the stress unit is `stress` Pa and the potential
+/// unit `potential` V; lengths in m, charges in C. (1e9, 1e9) is the paper cases' (GPa, GV).
+#[derive(Clone, Copy)]
+pub struct Units {
+    pub stress: f64,
+    pub potential: f64,
+}
+
+pub const PAPER_UNITS: Units = Units { stress: 1e9, potential: 1e9 };
+pub const SI: Units = Units { stress: 1.0, potential: 1.0 };
+
+impl Units {
+    /// A stress given in GPa, in these units.
+    pub fn stress(&self, gpa: f64) -> f64 {
+        gpa * 1e9 / self.stress
+    }
+    /// A potential given in GV, in these units.
+    pub fn potential(&self, gv: f64) -> f64 {
+        gv * 1e9 / self.potential
+    }
+}
+
+/// Example 7.1's bar on an nx × ny rectangle: ends clamped (Γ1 = Γb), top and bottom ends
+/// loaded by f2 = (0, −5 GPa) and grounded (Γ2 = Γa), Γ3 = [2,10]×{0}.
+pub fn paper_problem(nx: usize, ny: usize, units: Units, law: ElasticLaw) -> Problem {
+    let seg = |s: &str| s.parse::<Segment>().unwrap();
+    let parts = vec![
+        ("ends".to_string(), vec![seg("{0}x[0,2]"), seg("{12}x[0,2]")]),
+        ("load".to_string(), vec![seg("[0,12]x{2}"), seg("[0,2]x{0}"), seg("[10,12]x{0}")]),
+        ("contact".to_string(), vec![seg("[2,10]x{0}")]),
+    ];
+    let mesh = Rectangle { x: [0.0, 12.0], y: [0.0, 2.0], nx, ny, diagonal: Diagonal::Right }
+        .mesh(&parts)
+        .unwrap();
+    let elasticity = Elasticity::from_young_poisson(units.stress(58.7102), 0.3912, law).unwrap();
+    let eps0 = 8.885e-12 * units.potential;
+    let material = Material::new(
+        2,
+        elasticity,
+        PiezoConstants { e31: -5.4, e33: 15.8, e15: 12.3 },
+        PermittivityConstants { beta11: 916.0 * eps0, beta33: 830.0 * eps0 },
+    )
+    .unwrap();
+    let load = mesh.part_index("load").unwrap();
+    let boundary = Boundary {
+        clamped: vec![mesh.part_index("ends").unwrap()],
+        grounded: vec![load],
+        contact: vec![mesh.part_index("contact").unwrap()],
+        traction: vec![(load, constant_vector(vec![0.0, units.stress(-5.0)]))],
+        ..Boundary::default()
+    };
+    Problem::new(mesh, material, boundary, BodyLoads::default()).unwrap()
+}
+
+/// The contact model of Examples 7.1 (`pv2 = None`) and 7.2 (`Some((µ, k_e))`), with gap 0.5,
+/// penetration `penetration`, ϕ0 = 32 GV and the case files' defaults for the constants the
+/// paper does not give.
+pub fn paper_model(pv2: Option<(f64, f64)>, penetration: f64, units: Units) -> ContactModel {
+    let phi0 = units.potential(32.0);
+    let compliance = NormalCompliance {
+        gap: 0.5,
+        penetration,
+        c_nu: units.stress(1.0),
+        alpha_nu: 2.0,
+        n_nu: 1.0,
+        h_nu_range: units.potential(128.0),
+        phi0,
+    };
+    let pv2 = pv2.map(|(mu, ke)| {
+        (
+            Friction { mu, mu_parts: Vec::new(), regularization: Regularization::Identity },
+            // ψ φ_L is a charge density: ψ scales inversely to the potential unit.
+            Conduction {
+                ke: ke * units.potential / 1e9,
+                phi0,
+                delta: 1.0,
+                truncation: units.potential(1000.0),
+            },
+        )
+    });
+    ContactModel { compliance, pv2 }
+}
+
+/// The paper's settings (r = 0.25 E) with tolerances `eps` = `eps_fp`.
+pub fn paper_settings(units: Units, eps: f64) -> Settings {
+    Settings {
+        r: units.stress(0.25 * 58.7102),
+        eps,
+        eps_fp: eps,
+        max_inner: 100_000,
+        max_outer: 200,
+    }
 }

@@ -2,6 +2,8 @@
 
 /// Shared builders: the PZT-5A material, meshes, exact fields.
 mod common;
+/// Algorithms 1–4: KKT conditions, balances, limits, counts.
+mod contact;
 /// Manufactured solutions: convergence rates of the coupled system.
 mod convergence;
 /// Gmsh import: round trip of physical names, errors.

@@ -1,7 +1,7 @@
 //! The assembled matrix of B̌: symmetric, u-block positive definite, ϕ-block negative
 //! definite after Dirichlet elimination; one numeric factorisation serves many solves.
 
-use super::common::{perturbed_square, pzt, read_mesh};
+use super::common::{PAPER_UNITS, SI, paper_problem, perturbed_square, pzt, read_mesh};
 use piezocontact::assembly::Assembler;
 use piezocontact::material::ElasticLaw;
 use piezocontact::mesh::Mesh;
@@ -62,47 +62,17 @@ fn one_numeric_factorisation_serves_many_solves() {
     assert_eq!((t.numeric_count, t.solve_count), (1, 5));
 }
 
-/// The paper's bar (no contact) in a unit system whose stress unit is `stress` Pa and whose
-/// potential unit is `potential` V: E and f2 are divided by `stress`, ε0 [C/(V·m)] is
-/// multiplied by `potential`; lengths stay in m and charges in C.
-fn paper_bar(stress: f64, potential: f64) -> Problem {
-    use piezocontact::material::{Elasticity, Material, PermittivityConstants, PiezoConstants};
-    use piezocontact::mesh::rectangle::{Diagonal, Rectangle, Segment};
-    let seg = |s: &str| s.parse::<Segment>().unwrap();
-    let parts = vec![
-        ("ends".to_string(), vec![seg("{0}x[0,2]"), seg("{12}x[0,2]")]),
-        ("load".to_string(), vec![seg("[0,12]x{2}"), seg("[0,2]x{0}"), seg("[10,12]x{0}")]),
-    ];
-    let mesh =
-        Rectangle { x: [0.0, 12.0], y: [0.0, 2.0], nx: 48, ny: 8, diagonal: Diagonal::Right }
-            .mesh(&parts)
-            .unwrap();
-    let elasticity =
-        Elasticity::from_young_poisson(58.7102e9 / stress, 0.3912, ElasticLaw::Linear).unwrap();
-    let eps0 = 8.885e-12 * potential;
-    let material = Material::new(
-        2,
-        elasticity,
-        PiezoConstants { e31: -5.4, e33: 15.8, e15: 12.3 },
-        PermittivityConstants { beta11: 916.0 * eps0, beta33: 830.0 * eps0 },
-    )
-    .unwrap();
-    let load = mesh.part_index("load").unwrap();
-    let boundary = Boundary {
-        clamped: vec![mesh.part_index("ends").unwrap()],
-        grounded: vec![load],
-        traction: vec![(load, constant_vector(vec![0.0, -5e9 / stress]))],
-        ..Boundary::default()
-    };
-    Problem::new(mesh, material, boundary, BodyLoads::default()).unwrap()
-}
-
 #[test]
 fn the_solution_does_not_depend_on_the_unit_system() {
     use piezocontact::dofs::DofMap;
     use piezocontact::solver::solve_without_contact;
     // (m, GPa, C, GV) as the paper cases, and SI (m, Pa, C, V).
-    let (paper, si) = (paper_bar(1e9, 1e9), paper_bar(1.0, 1.0));
+    let without_contact = |units| {
+        let mut p = paper_problem(48, 8, units, ElasticLaw::Linear);
+        p.boundary.contact.clear();
+        p
+    };
+    let (paper, si) = (without_contact(PAPER_UNITS), without_contact(SI));
     let (x_paper, x_si) =
         (solve_without_contact(&paper).unwrap().x, solve_without_contact(&si).unwrap().x);
     let dofs = DofMap::new(&paper).unwrap();
