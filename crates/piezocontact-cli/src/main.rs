@@ -354,6 +354,9 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
         dofs.n_free_u(),
         dofs.n_free() - dofs.n_free_u()
     );
+    if case.file.contact.is_some() {
+        println!("problem: {:?}", case.problem_kind());
+    }
     println!("contact and solver settings (in the case's units):");
     for (key, value) in case.contact_settings()? {
         println!("  {key:<22} = {value}");

@@ -211,6 +211,57 @@ fn a_gmsh_case_runs_and_mesh_info_describes_the_file() {
 }
 
 #[test]
+fn contact_overrides_reach_the_solver() {
+    let o = piezocontact(&[
+        "check",
+        "cases/paper-7.2.toml",
+        "--set",
+        "friction.mu=0.2",
+        "--set",
+        "conductivity.ke=0.3",
+        "--set",
+        "conductivity.phi0=10",
+        "--set",
+        "contact.problem=PV2",
+    ]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    for line in [
+        "friction.mu            = 0.2",
+        "conductivity.ke        = 0.3",
+        "conductivity.phi0      = 10",
+        "problem: PV2",
+    ] {
+        assert!(t.contains(line), "{line}: {t}");
+    }
+    // The same case with friction and conduction switched off is PV1, and gives Example 7.1.
+    let out = temp_dir("pv1");
+    let args = |case: &'static str, extra: &'static [&'static str]| {
+        let mut a = vec![
+            "run",
+            case,
+            "--out",
+            out.to_str().unwrap(),
+            "--set",
+            "mesh.nx=24",
+            "--set",
+            "mesh.ny=4",
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(str::to_string).collect::<Vec<_>>()
+    };
+    let run = |a: Vec<String>| {
+        let refs: Vec<&str> = a.iter().map(String::as_str).collect();
+        let o = piezocontact(&refs);
+        assert!(o.status.success(), "{}", text(&o));
+        std::fs::read_to_string(out.join("contact.csv")).unwrap()
+    };
+    let switched_off = run(args("cases/paper-7.2.toml", &["--set", "contact.problem=PV1"]));
+    let pv1 = run(args("cases/paper-7.1.toml", &[]));
+    assert_eq!(switched_off, pv1);
+}
+
+#[test]
 fn check_prints_the_mesh_and_dof_summary() {
     let o = piezocontact(&[
         "check",
