@@ -182,14 +182,7 @@ fn run_contact(
         Field { name: "contact_pressure", components: 1, values: &pressure },
     ];
     output::write_atomic(&out.join("contact.csv"), report::contact_csv(&rows).as_bytes())?;
-    output::write_atomic(
-        &out.join("summary.json"),
-        serde_json::to_string_pretty(&summary)?.as_bytes(),
-    )?;
-    output::write_atomic(
-        &out.join("solution.vtu"),
-        output::solution_vtu(problem, &dofs, &solution.x, &extra)?.as_bytes(),
-    )?;
+    output::write_results(out, &summary, problem, &dofs, &solution.x, &extra)?;
     let (units, g3) = (&case.file.units, &summary["gamma3"]);
     println!(
         "{}: {}, {} nodes, {} elements, {} free DOFs",
@@ -270,14 +263,7 @@ fn run_without_contact(
             },
         }),
     );
-    output::write_atomic(
-        &out.join("summary.json"),
-        serde_json::to_string_pretty(&summary)?.as_bytes(),
-    )?;
-    output::write_atomic(
-        &out.join("solution.vtu"),
-        output::solution_vtu(problem, &dofs, &solution.x, &[])?.as_bytes(),
-    )?;
+    output::write_results(out, &summary, problem, &dofs, &solution.x, &[])?;
     println!(
         "{}: {} nodes, {} elements, {} free DOFs (no contact)",
         case.path.display(),

@@ -26,6 +26,19 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     result.with_context(|| format!("cannot write {}", path.display()))
 }
 
+/// Writes DIR/summary.json and DIR/solution.vtu (with the extra point fields).
+pub fn write_results(
+    out: &Path,
+    summary: &serde_json::Value,
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    extra: &[Field],
+) -> Result<()> {
+    write_atomic(&out.join("summary.json"), serde_json::to_string_pretty(summary)?.as_bytes())?;
+    write_atomic(&out.join("solution.vtu"), solution_vtu(problem, dofs, x, extra)?.as_bytes())
+}
+
 /// The solution as a ParaView file: point data u (3 components), phi and `extra`; cell data
 /// sigma (3 × 3), D (3 components).
 pub fn solution_vtu(

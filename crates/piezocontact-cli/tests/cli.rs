@@ -27,6 +27,24 @@ fn temp_dir(name: &str) -> PathBuf {
     dir
 }
 
+/// `piezocontact run CASE --out OUT` on the coarse 24 × 4 mesh, with more `--set`s.
+fn run_coarse(case: &str, out: &Path, sets: &[&str]) -> Output {
+    let mut args = vec![
+        "run",
+        case,
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "mesh.nx=24",
+        "--set",
+        "mesh.ny=4",
+    ];
+    for set in sets {
+        args.extend(["--set", set]);
+    }
+    piezocontact(&args)
+}
+
 /// Writes a variant of the paper case with `from` replaced by `to`.
 fn variant(dir: &Path, from: &str, to: &str) -> PathBuf {
     let case = std::fs::read_to_string(root().join("cases/paper-7.1.toml")).unwrap();
@@ -77,16 +95,7 @@ fn read_vtu(path: &Path) -> Vtu {
 #[test]
 fn run_writes_a_summary_a_contact_table_and_a_vtu_that_a_reader_accepts() {
     let out = temp_dir("run");
-    let o = piezocontact(&[
-        "run",
-        "cases/paper-7.1.toml",
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
-        "mesh.nx=24",
-        "--set",
-        "mesh.ny=4",
-    ]);
+    let o = run_coarse("cases/paper-7.1.toml", &out, &[]);
     assert!(o.status.success(), "{}", text(&o));
     assert!(text(&o).contains("max |sigma_nu|") && text(&o).contains(" GPa\n"), "{}", text(&o));
     let summary: serde_json::Value =
@@ -139,18 +148,7 @@ fn run_writes_a_summary_a_contact_table_and_a_vtu_that_a_reader_accepts() {
 #[test]
 fn an_iteration_cap_is_an_error_with_the_partial_result_written() {
     let out = temp_dir("cap");
-    let o = piezocontact(&[
-        "run",
-        "cases/paper-7.2.toml",
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
-        "mesh.nx=24",
-        "--set",
-        "mesh.ny=4",
-        "--set",
-        "solver.max_inner=3",
-    ]);
+    let o = run_coarse("cases/paper-7.2.toml", &out, &["solver.max_inner=3"]);
     let t = text(&o);
     assert_eq!(o.status.code(), Some(3), "{t}");
     assert!(
@@ -163,18 +161,7 @@ fn an_iteration_cap_is_an_error_with_the_partial_result_written() {
     assert_eq!(summary["converged"], false);
     assert!(summary["failure"].as_str().unwrap().contains("Uzawa loop"));
     assert!(out.join("contact.csv").exists() && out.join("solution.vtu").exists());
-    let o = piezocontact(&[
-        "run",
-        "cases/paper-7.2.toml",
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
-        "mesh.nx=24",
-        "--set",
-        "mesh.ny=4",
-        "--set",
-        "solver.max_outer=2",
-    ]);
+    let o = run_coarse("cases/paper-7.2.toml", &out, &["solver.max_outer=2"]);
     let t = text(&o);
     assert_eq!(o.status.code(), Some(3), "{t}");
     assert!(
@@ -236,28 +223,13 @@ fn contact_overrides_reach_the_solver() {
     }
     // The same case with friction and conduction switched off is PV1, and gives Example 7.1.
     let out = temp_dir("pv1");
-    let args = |case: &'static str, extra: &'static [&'static str]| {
-        let mut a = vec![
-            "run",
-            case,
-            "--out",
-            out.to_str().unwrap(),
-            "--set",
-            "mesh.nx=24",
-            "--set",
-            "mesh.ny=4",
-        ];
-        a.extend_from_slice(extra);
-        a.into_iter().map(str::to_string).collect::<Vec<_>>()
-    };
-    let run = |a: Vec<String>| {
-        let refs: Vec<&str> = a.iter().map(String::as_str).collect();
-        let o = piezocontact(&refs);
+    let table = |case: &str, sets: &[&str]| {
+        let o = run_coarse(case, &out, sets);
         assert!(o.status.success(), "{}", text(&o));
         std::fs::read_to_string(out.join("contact.csv")).unwrap()
     };
-    let switched_off = run(args("cases/paper-7.2.toml", &["--set", "contact.problem=PV1"]));
-    let pv1 = run(args("cases/paper-7.1.toml", &[]));
+    let switched_off = table("cases/paper-7.2.toml", &["contact.problem=PV1"]);
+    let pv1 = table("cases/paper-7.1.toml", &[]);
     assert_eq!(switched_off, pv1);
 }
 
