@@ -5,16 +5,17 @@ mod bench;
 mod case;
 mod output;
 mod report;
+mod runner;
+mod sweep;
 
 use anyhow::{Context, Result};
 use case::Case;
 use clap::{Parser, Subcommand};
-use piezocontact::algorithm::{ContactModel, NodeStatus, residual, solve_contact};
 use piezocontact::dofs::DofMap;
 use piezocontact::mesh::gmsh;
-use piezocontact::output::vtu::Field;
 use piezocontact::problem::Problem;
 use piezocontact::solver::solve_without_contact;
+use runner::ContactRun;
 use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -43,6 +44,28 @@ enum Command {
         /// Override a case key, e.g. --set mesh.nx=192 (repeatable).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+    },
+    /// Run a case once per value of swept keys, in parallel; write DIR/sweep.csv.
+    Sweep {
+        /// The case file (TOML).
+        case: PathBuf,
+        /// Keys and values: KEY[=KEY...]=V1,V2,... (every key takes each value), e.g.
+        /// friction.mu=conductivity.ke=0.6,0.2,6.8e-2.
+        #[arg(long = "set-list", value_name = "KEYS=VALUES")]
+        set_list: String,
+        /// Override a case key in every run (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Overrides that turn the case into the reference run for ‖x − x_ref‖_X, e.g.
+        /// --reference contact.problem=PV1 (repeatable).
+        #[arg(long, value_name = "KEY=VALUE")]
+        reference: Vec<String>,
+        /// Runs in parallel (default: the number of cores).
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Output directory.
+        #[arg(long, default_value = "out/sweep")]
+        out: PathBuf,
     },
     /// Validate a case and print its mesh and DOF summary.
     Check {
@@ -86,6 +109,17 @@ fn main() -> ExitCode {
 fn run(command: Command) -> Result<Outcome> {
     match command {
         Command::Run { case, out, set } => run_case(&case, &out, &set),
+        Command::Sweep { case, set_list, set, reference, jobs, out } => {
+            let request = sweep::SweepRequest {
+                case: &case,
+                set_list: &set_list,
+                set: &set,
+                reference: &reference,
+                jobs,
+                out: &out,
+            };
+            Ok(if sweep::sweep(&request)? { Outcome::Done } else { Outcome::NotConverged })
+        }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
         Command::Bench { sizes, lu } => bench::run(&sizes, lu).map(|_| Outcome::Done),
@@ -103,125 +137,25 @@ enum Outcome {
 fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<Outcome> {
     let start = Instant::now();
     let case = Case::load(path, set)?;
-    let problem = case.problem()?;
-    let model = case.contact_model(&problem)?;
     std::fs::create_dir_all(out)
         .with_context(|| format!("cannot create the output directory {}", out.display()))?;
-    match model {
-        Some(model) if !problem.boundary.contact.is_empty() => {
-            run_contact(&case, &problem, &model, out, start)
-        }
-        Some(_) => anyhow::bail!(
-            "{}: [contact] is given but boundary.contact names no boundary part",
-            case.locate("boundary")
-        ),
-        None => {
-            if !problem.boundary.contact.is_empty() {
-                log::warn!(
-                    "the case has no [contact] table: Γ3 is treated as free (traction and charge free)"
-                );
-            }
-            run_without_contact(&case, &problem, out, start)
-        }
+    if case.file.contact.is_some() {
+        return run_contact(&case, out);
     }
+    let problem = case.problem()?;
+    if !problem.boundary.contact.is_empty() {
+        log::warn!(
+            "the case has no [contact] table: Γ3 is treated as free (traction and charge free)"
+        );
+    }
+    run_without_contact(&case, &problem, out, start)
 }
 
-/// Fields common to every summary.json.
-fn common_summary(case: &Case, problem: &Problem, dofs: &DofMap) -> serde_json::Value {
-    let units = &case.file.units;
-    json!({
-        "case": case.path.display().to_string(),
-        "title": case.file.title,
-        "units": { "length": units.length, "stress": units.stress, "charge": units.charge, "potential": units.potential },
-        "dim": problem.mesh.dim(),
-        "nodes": problem.mesh.n_nodes(),
-        "elements": problem.mesh.n_cells(),
-        "dofs": { "total": dofs.n_total(), "free": dofs.n_free(), "free_u": dofs.n_free_u(), "free_phi": dofs.n_free() - dofs.n_free_u() },
-    })
-}
-
-fn merge(mut a: serde_json::Value, b: serde_json::Value) -> serde_json::Value {
-    if let (Some(a), serde_json::Value::Object(b)) = (a.as_object_mut(), b) {
-        a.extend(b);
-    }
-    a
-}
-
-fn run_contact(
-    case: &Case,
-    problem: &Problem,
-    model: &ContactModel,
-    out: &Path,
-    start: Instant,
-) -> Result<Outcome> {
-    let settings = case.settings();
-    let solution = solve_contact(problem, model, &settings)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", case.path.display()))?;
-    let (kkt, balance) = residual::assess(problem, model, &settings, &solution)?;
-    let rows = report::rows(problem, model, &solution)?;
-    let dofs = DofMap::new(problem)?;
-    let total = start.elapsed().as_secs_f64();
-    let mut summary = merge(
-        common_summary(case, problem, &dofs),
-        report::contact_summary(model, &solution, &kkt, &balance, &rows),
-    );
-    summary["timings_seconds"]["total"] = json!(total);
-    let mut status = vec![0.0; problem.mesh.n_nodes()];
-    let mut pressure = vec![0.0; problem.mesh.n_nodes()];
-    for (i, row) in rows.iter().enumerate() {
-        let node = solution.surface.nodes[i];
-        status[node] = match row.status {
-            NodeStatus::Separated => 1.0,
-            NodeStatus::Contact | NodeStatus::Stick => 2.0,
-            NodeStatus::Slip => 3.0,
-        };
-        pressure[node] = -row.sigma_nu;
-    }
-    let extra = [
-        Field { name: "contact_status", components: 1, values: &status },
-        Field { name: "contact_pressure", components: 1, values: &pressure },
-    ];
-    output::write_atomic(&out.join("contact.csv"), report::contact_csv(&rows).as_bytes())?;
-    output::write_results(out, &summary, problem, &dofs, &solution.x, &extra)?;
-    let (units, g3) = (&case.file.units, &summary["gamma3"]);
-    println!(
-        "{}: {}, {} nodes, {} elements, {} free DOFs",
-        case.path.display(),
-        model.name(),
-        problem.mesh.n_nodes(),
-        problem.mesh.n_cells(),
-        dofs.n_free()
-    );
-    println!(
-        "  outer iterations   = {} ({})",
-        solution.outer_iterations,
-        if solution.converged { "converged" } else { "NOT converged" }
-    );
-    println!("  inner iterations   = {:?}", solution.inner_iterations);
-    println!(
-        "  max |sigma_nu|     = {:.6e} {}",
-        g3["max_abs_sigma_nu"].as_f64().unwrap_or(f64::NAN),
-        units.stress
-    );
-    println!(
-        "  max |sigma_tau|    = {:.6e} {}",
-        g3["max_abs_sigma_tau"].as_f64().unwrap_or(f64::NAN),
-        units.stress
-    );
-    let (c, st, sl) = report::zone_measures(&solution, &rows);
-    println!("  contact / stick / slip measure = {c:.4} / {st:.4} / {sl:.4} {}", units.length);
-    println!(
-        "  KKT residual       = {:.3e} (equilibrium u {:.1e}, phi {:.1e}; contact {:.1e}; friction {:.1e})",
-        kkt.max, kkt.equilibrium_u, kkt.equilibrium_phi, kkt.contact, kkt.friction
-    );
-    println!("  force balance      = relative imbalance {:.1e}", balance.imbalance);
-    let t = solution.timings;
-    println!(
-        "  time: assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}), total {total:.3} s",
-        t.assembly, t.symbolic, t.numeric, t.numeric_count, t.solve, t.solve_count
-    );
-    println!("  wrote contact.csv, summary.json, solution.vtu in {}", out.display());
-    if let Some(failure) = &solution.failure {
+fn run_contact(case: &Case, out: &Path) -> Result<Outcome> {
+    let run = ContactRun::solve(case)?;
+    run.write(case, out)?;
+    run.print(case, out);
+    if let Some(failure) = &run.solution.failure {
         eprintln!(
             "error: {}: {failure}; the partial result is in {} (marked \"converged\": false)",
             case.path.display(),
@@ -251,8 +185,9 @@ fn run_without_contact(
         phi.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
     let t = solution.timings;
     let total = start.elapsed().as_secs_f64();
-    let summary = merge(
-        common_summary(case, problem, &dofs),
+    let mut summary = runner::common_summary(case, problem, &dofs);
+    runner::merge(
+        &mut summary,
         json!({
             "problem": "coupled electro-elastic, no contact",
             "converged": true,

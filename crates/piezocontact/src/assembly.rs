@@ -429,6 +429,32 @@ pub fn mass_norm_squared(problem: &Problem, dofs: &DofMap, x: &[f64]) -> f64 {
     sum
 }
 
+/// ‖x‖²_X = ‖ε(u)‖²_{L2} + ‖∇ϕ‖²_{L2}, the norm of the product space X of [P] (3.1), in
+/// which Theorem 4.1 bounds ‖x(µ, k_e) − x‖_X.
+pub fn x_norm_squared(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<f64> {
+    let mut sum = 0.0;
+    for c in 0..problem.mesh.n_cells() {
+        sum += match problem.mesh.dim() {
+            2 => x_norm_on::<2, 3>(problem, dofs, x, c)?,
+            _ => x_norm_on::<3, 4>(problem, dofs, x, c)?,
+        };
+    }
+    Ok(sum)
+}
+
+fn x_norm_on<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    c: usize,
+) -> Result<f64> {
+    let (eps, grad_phi) = cell_gradients::<D, N>(problem, dofs, x, c)?;
+    let vol = simplex::<D, N>(problem, c)?.measure();
+    let e2: f64 = eps.iter().flatten().map(|v| v * v).sum();
+    let p2: f64 = grad_phi.iter().map(|v| v * v).sum();
+    Ok(vol * (e2 + p2))
+}
+
 /// Per-element secant moduli g(‖ε^D(u_n)‖²) [stress] at the iterate x_n (global vector).
 pub fn secant_moduli(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Vec<f64>> {
     (0..problem.mesh.n_cells())

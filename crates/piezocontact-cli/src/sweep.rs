@@ -1,0 +1,149 @@
+//! `piezocontact sweep`: one run per value of a swept key, in parallel, with a progress bar
+//! on a terminal and plain lines otherwise; DIR/sweep.csv holds one row per run.
+
+use crate::case::Case;
+use crate::output::write_atomic;
+use crate::runner::ContactRun;
+use anyhow::{Context, Result, anyhow, bail};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use std::fmt::Write;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+/// A run to do: a label for messages, the case, and where to write its files.
+pub struct Job {
+    pub label: String,
+    pub case: Case,
+    pub out: Option<PathBuf>,
+}
+
+/// Runs the jobs on `threads` threads and returns the runs in the jobs' order.
+pub fn run_jobs(jobs: Vec<Job>, threads: usize) -> Result<Vec<ContactRun>> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.max(1))
+        .build()
+        .map_err(|e| anyhow!("thread pool: {e}"))?;
+    let total = jobs.len();
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let bar = ProgressBar::new(total as u64);
+        bar.set_style(
+            ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} {msg}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        bar
+    });
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let results: Vec<Result<ContactRun>> = pool.install(|| {
+        jobs.par_iter()
+            .map(|job| {
+                let run =
+                    ContactRun::solve(&job.case).with_context(|| format!("run {}", job.label))?;
+                if let Some(out) = &job.out {
+                    run.write(&job.case, out)?;
+                }
+                let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+                let line = format!(
+                    "{}: {} outer iterations, {}, {:.2} s",
+                    job.label,
+                    run.solution.outer_iterations,
+                    if run.solution.converged { "converged" } else { "NOT converged" },
+                    run.seconds
+                );
+                match &bar {
+                    Some(bar) => {
+                        bar.inc(1);
+                        bar.set_message(line);
+                    }
+                    None => eprintln!("[{k}/{total}] {line}"),
+                }
+                Ok(run)
+            })
+            .collect()
+    });
+    if let Some(bar) = bar {
+        bar.finish();
+    }
+    results.into_iter().collect()
+}
+
+/// The number of threads: `--jobs`, or the machine's cores.
+pub fn threads(jobs: Option<usize>) -> usize {
+    jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+}
+
+/// Parses `key1=key2=...=v1,v2,...`.
+pub fn parse_set_list(spec: &str) -> Result<(Vec<String>, Vec<String>)> {
+    let (keys, values) = spec
+        .rsplit_once('=')
+        .ok_or_else(|| anyhow!("--set-list {spec}: expected KEY[=KEY...]=V1,V2,..., e.g. friction.mu=conductivity.ke=0.6,0.2"))?;
+    let keys: Vec<String> = keys.split('=').map(|k| k.trim().to_string()).collect();
+    let values: Vec<String> =
+        values.split(',').map(|v| v.trim().to_string()).filter(|v| !v.is_empty()).collect();
+    if keys.iter().any(|k| k.is_empty()) || values.is_empty() {
+        bail!(
+            "--set-list {spec}: expected KEY[=KEY...]=V1,V2,..., e.g. friction.mu=conductivity.ke=0.6,0.2"
+        );
+    }
+    Ok((keys, values))
+}
+
+/// What `sweep` was asked to do.
+pub struct SweepRequest<'a> {
+    pub case: &'a Path,
+    pub set_list: &'a str,
+    pub set: &'a [String],
+    pub reference: &'a [String],
+    pub jobs: Option<usize>,
+    pub out: &'a Path,
+}
+
+/// Runs a sweep; returns whether every run converged.
+pub fn sweep(request: &SweepRequest) -> Result<bool> {
+    let (keys, values) = parse_set_list(request.set_list)?;
+    let reference = if request.reference.is_empty() {
+        None
+    } else {
+        let overrides: Vec<String> = request.set.iter().chain(request.reference).cloned().collect();
+        let case = Case::load(request.case, &overrides)?;
+        let out = request.out.join("reference");
+        Some(run_jobs(vec![Job { label: "reference".into(), case, out: Some(out) }], 1)?.remove(0))
+    };
+    let mut jobs = Vec::new();
+    for (i, value) in values.iter().enumerate() {
+        let mut overrides = request.set.to_vec();
+        overrides.extend(keys.iter().map(|k| format!("{k}={value}")));
+        let case = Case::load(request.case, &overrides)?;
+        let label = format!("{}={value}", keys.join("="));
+        jobs.push(Job { label, case, out: Some(request.out.join(format!("run-{i:02}"))) });
+    }
+    let runs = run_jobs(jobs, threads(request.jobs))?;
+    let mut csv = keys.join(",");
+    csv.push_str(",outer_iterations,inner_iterations,converged,max_abs_sigma_nu,max_abs_sigma_tau,contact_length,stick_length,slip_length,distance_to_reference,wall_seconds\n");
+    for (value, run) in values.iter().zip(&runs) {
+        let (sigma_nu, sigma_tau) = run.peaks();
+        let (contact, stick, slip) = run.zones();
+        let distance = match &reference {
+            Some(r) => format!("{:e}", run.distance_to(r)?),
+            None => String::new(),
+        };
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{:e},{:e},{:e},{:e},{:e},{distance},{:.3}",
+            vec![value.as_str(); keys.len()].join(","),
+            run.solution.outer_iterations,
+            run.solution.inner_iterations.iter().sum::<usize>(),
+            run.solution.converged,
+            sigma_nu,
+            sigma_tau,
+            contact,
+            stick,
+            slip,
+            run.seconds
+        );
+    }
+    write_atomic(&request.out.join("sweep.csv"), csv.as_bytes())?;
+    println!("{}", csv.trim_end());
+    println!("wrote {} and one directory per run", request.out.join("sweep.csv").display());
+    Ok(runs.iter().all(|r| r.solution.converged))
+}
