@@ -4,7 +4,9 @@
 mod bench;
 mod case;
 mod output;
+mod plot;
 mod report;
+mod reproduce;
 mod runner;
 mod sweep;
 
@@ -67,6 +69,19 @@ enum Command {
         #[arg(long, default_value = "out/sweep")]
         out: PathBuf,
     },
+    /// Regenerate the paper's Section 7: Examples 7.1–7.2, Table 2, Figures 1–4, with a
+    /// Theorem 4.1 study, a mesh study, a stopping-rule study and DIR/REPORT.md.
+    Reproduce {
+        /// Output directory.
+        #[arg(long, default_value = "out/reproduce")]
+        out: PathBuf,
+        /// Base mesh NX,NY (the studies also use 2× and 4×).
+        #[arg(long, default_value = "96,16", value_parser = parse_mesh)]
+        mesh: (usize, usize),
+        /// Runs in parallel (default: the number of cores).
+        #[arg(long)]
+        jobs: Option<usize>,
+    },
     /// Validate a case and print its mesh and DOF summary.
     Check {
         /// The case file (TOML).
@@ -90,6 +105,20 @@ enum Command {
         #[arg(long)]
         lu: bool,
     },
+}
+
+/// Parses `NX,NY`.
+fn parse_mesh(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("'{s}' is not NX,NY with NX, NY ≥ 1, e.g. 96,16");
+    let (a, b) = s.split_once(',').ok_or_else(bad)?;
+    let (nx, ny) = (
+        a.trim().parse::<usize>().map_err(|_| bad())?,
+        b.trim().parse::<usize>().map_err(|_| bad())?,
+    );
+    if nx == 0 || ny == 0 {
+        return Err(bad());
+    }
+    Ok((nx, ny))
 }
 
 fn main() -> ExitCode {
@@ -119,6 +148,12 @@ fn run(command: Command) -> Result<Outcome> {
                 out: &out,
             };
             Ok(if sweep::sweep(&request)? { Outcome::Done } else { Outcome::NotConverged })
+        }
+        Command::Reproduce { out, mesh, jobs } => {
+            let converged =
+                reproduce::reproduce(&reproduce::Request { out: out.clone(), mesh, jobs })?;
+            println!("wrote {} with its figures and tables", out.join("REPORT.md").display());
+            Ok(if converged { Outcome::Done } else { Outcome::NotConverged })
         }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),

@@ -351,3 +351,106 @@ fn bench_prints_the_phases() {
         assert!(t.contains(column), "{column}: {t}");
     }
 }
+
+/// Width and height from a PNG's IHDR chunk, after checking the signature.
+fn png_size(bytes: &[u8]) -> (u32, u32) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "not a PNG");
+    assert_eq!(&bytes[12..16], b"IHDR");
+    let be = |k: usize| u32::from_be_bytes([bytes[k], bytes[k + 1], bytes[k + 2], bytes[k + 3]]);
+    (be(16), be(20))
+}
+
+#[test]
+fn reproduce_writes_every_file_of_the_report() {
+    let out = temp_dir("reproduce");
+    let o = piezocontact(&[
+        "reproduce",
+        "--out",
+        out.to_str().unwrap(),
+        "--mesh",
+        "24,4",
+        "--jobs",
+        "2",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let report = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+    for figure in [
+        "figure1a",
+        "figure1b",
+        "figure2a",
+        "figure2b",
+        "figure3a",
+        "figure3b",
+        "figure4",
+        "theorem41",
+    ] {
+        let png = std::fs::read(out.join(format!("{figure}.png"))).unwrap();
+        let (w, h) = png_size(&png);
+        assert!(
+            w >= 800 && h >= 400 && png.len() > 10_000,
+            "{figure}.png: {w}×{h}, {} bytes",
+            png.len()
+        );
+        let svg = std::fs::read_to_string(out.join(format!("{figure}.svg"))).unwrap();
+        assert!(
+            svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>") && svg.contains("<text"),
+            "{figure}.svg"
+        );
+        assert!(report.contains(&format!("({figure}.png)")), "REPORT.md does not show {figure}");
+    }
+    for section in [
+        "## Example 7.1",
+        "## Example 7.2",
+        "## Table 2",
+        "## Figures 3 and 4",
+        "## Theorem 4.1",
+        "## Mesh convergence",
+        "## Accuracy of the paper's stopping rule",
+        "**Units.**",
+    ] {
+        assert!(report.contains(section), "REPORT.md lacks {section}");
+    }
+    let table = std::fs::read_to_string(out.join("table2.csv")).unwrap();
+    let mut lines = table.lines();
+    assert_eq!(
+        lines.next(),
+        Some(
+            "mu,ke,paper_outer_iterations,outer_iterations,inner_iterations,converged,max_abs_sigma_nu,max_abs_sigma_tau,distance_to_pv1,wall_seconds"
+        )
+    );
+    assert_eq!(lines.count(), 8);
+    for csv in ["mesh_convergence.csv", "stopping_rule.csv"] {
+        assert!(std::fs::read_to_string(out.join(csv)).unwrap().lines().count() >= 3, "{csv}");
+    }
+}
+
+/// Table 2's trend on the default mesh: outer iterations fall monotonically as µ = k_e
+/// decreases and reach the paper's 2 at the small values.
+#[test]
+fn table2_trend() {
+    let out = temp_dir("table2");
+    let o = piezocontact(&[
+        "sweep",
+        "cases/paper-7.2.toml",
+        "--set-list",
+        "friction.mu=conductivity.ke=0.6,0.2,6.8e-2,5.1e-3,6.2e-4,1.4e-5,3.5e-6,8.5e-7",
+        "--reference",
+        "contact.problem=PV1",
+        "--out",
+        out.to_str().unwrap(),
+        "--jobs",
+        "2",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let rows: Vec<Vec<String>> =
+        csv.lines().skip(1).map(|l| l.split(',').map(str::to_string).collect()).collect();
+    let outer: Vec<usize> = rows.iter().map(|r| r[2].parse().unwrap()).collect();
+    assert!(outer.windows(2).all(|w| w[1] <= w[0]), "{outer:?}");
+    assert_eq!(outer[outer.len() - 1], 2, "{outer:?}");
+    let paper = [7, 5, 4, 3, 2, 2, 2, 2];
+    let within_one = outer.iter().zip(paper).filter(|(o, p)| o.abs_diff(*p) <= 1).count();
+    assert_eq!(within_one, 8, "{outer:?} against the paper's {paper:?}");
+    let distance: Vec<f64> = rows.iter().map(|r| r[10].parse().unwrap()).collect();
+    assert!(distance[0] > distance[3] && distance[3] > distance[7], "{distance:?}");
+}

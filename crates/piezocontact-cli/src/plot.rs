@@ -1,0 +1,445 @@
+//! Figures drawn by the program with plotters, as PNG and SVG. Text uses DejaVu Sans
+//! embedded in the binary (the `dejavu` crate), so labels render on machines without fonts.
+
+use crate::output::write_atomic;
+use crate::runner::ContactRun;
+use anyhow::{Result, anyhow};
+use piezocontact::algorithm::NodeStatus;
+use piezocontact::dofs::DofMap;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+/// The font family every figure uses.
+const FONT: &str = "sans-serif";
+
+/// Registers the embedded font once per process.
+fn fonts() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        let _ = plotters::style::register_font(FONT, FontStyle::Normal, dejavu::sans::regular());
+        let _ = plotters::style::register_font(FONT, FontStyle::Bold, dejavu::sans::bold());
+    });
+}
+
+/// Distinct colours for curves.
+pub const PALETTE: [RGBColor; 7] = [
+    RGBColor(0, 0, 0),
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(140, 86, 75),
+];
+
+/// One curve.
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+    pub color: RGBColor,
+    /// Mark the points as well as joining them.
+    pub markers: bool,
+}
+
+/// A line plot.
+pub struct LinePlot {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+    /// Logarithmic axes (both).
+    pub log_log: bool,
+    /// Where the legend goes; linear plots get head room above the data for it.
+    pub legend: SeriesLabelPosition,
+}
+
+fn err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
+    anyhow!("drawing failed: {e:?}")
+}
+
+/// Writes `stem.png` and `stem.svg` for a drawing function generic over the back end.
+macro_rules! both_backends {
+    ($stem:expr, $size:expr, $draw:expr) => {{
+        fonts();
+        let stem: &Path = $stem;
+        let size: (u32, u32) = $size;
+        let mut svg = String::new();
+        {
+            let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+            $draw(&root)?;
+            root.present().map_err(err)?;
+        }
+        write_atomic(&stem.with_extension("svg"), svg.as_bytes())?;
+        // plotters encodes the PNG into a file: a temporary one, renamed when complete.
+        let png = stem.with_extension("png");
+        let name = png.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let tmp = png.with_file_name(format!(".{}.{name}", std::process::id()));
+        {
+            let root = BitMapBackend::new(&tmp, size).into_drawing_area();
+            $draw(&root)?;
+            root.present().map_err(err)?;
+        }
+        std::fs::rename(&tmp, &png).map_err(|e| anyhow!("cannot write {}: {e}", png.display()))?;
+        Ok(())
+    }};
+}
+
+/// Axis range with a margin; never empty.
+fn range(values: impl Iterator<Item = f64>, margin: f64) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let pad = if hi > lo { margin * (hi - lo) } else { lo.abs().max(1.0) * 0.5 };
+    (lo - pad, hi + pad)
+}
+
+/// Draws a line plot.
+pub fn line_plot(plot: &LinePlot, stem: &Path) -> Result<()> {
+    both_backends!(stem, (900, 560), |root: &DrawingArea<_, Shift>| draw_lines(root, plot))
+}
+
+fn draw_lines<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &LinePlot) -> Result<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let xs = plot.series.iter().flat_map(|s| s.points.iter().map(|p| p.0));
+    let ys = plot.series.iter().flat_map(|s| s.points.iter().map(|p| p.1));
+    let mut builder = ChartBuilder::on(root);
+    builder.caption(&plot.title, (FONT, 22)).margin(14).x_label_area_size(50).y_label_area_size(80);
+    if plot.log_log {
+        let positive = |v: &f64| *v > 0.0;
+        let (x0, x1) = range(xs.filter(positive).map(f64::log10), 0.05);
+        let (y0, y1) = range(ys.filter(positive).map(f64::log10), 0.08);
+        let mut chart = builder
+            .build_cartesian_2d(
+                (10f64.powf(x0)..10f64.powf(x1)).log_scale(),
+                (10f64.powf(y0)..10f64.powf(y1)).log_scale(),
+            )
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc(&plot.x_label)
+            .y_desc(&plot.y_label)
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style((FONT, 15))
+            .axis_desc_style((FONT, 17))
+            .draw()
+            .map_err(err)?;
+        for s in &plot.series {
+            let pts: Vec<(f64, f64)> =
+                s.points.iter().copied().filter(|p| p.0 > 0.0 && p.1 > 0.0).collect();
+            draw_series(&mut chart, s, pts)?;
+        }
+        legend(&mut chart, plot.legend.clone())
+    } else {
+        let (x0, x1) = range(xs, 0.02);
+        let (y0, y1) = range(ys, 0.08);
+        // Head room for the legend: one line of 4 % of the height per series.
+        let y1 = y1 + (y1 - y0) * (0.06 + 0.055 * plot.series.len() as f64);
+        let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc(&plot.x_label)
+            .y_desc(&plot.y_label)
+            .label_style((FONT, 15))
+            .axis_desc_style((FONT, 17))
+            .draw()
+            .map_err(err)?;
+        for s in &plot.series {
+            draw_series(&mut chart, s, s.points.clone())?;
+        }
+        legend(&mut chart, plot.legend.clone())
+    }
+}
+
+fn draw_series<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)>>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    s: &Series,
+    pts: Vec<(f64, f64)>,
+) -> Result<()> {
+    let color = s.color;
+    chart
+        .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+        .map_err(err)?
+        .label(&s.label)
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(2)));
+    if s.markers {
+        chart
+            .draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
+fn legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+) -> Result<()> {
+    chart
+        .configure_series_labels()
+        .label_font((FONT, 14))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(position)
+        .draw()
+        .map_err(err)
+}
+
+/// A blue–white–red style map of t ∈ [0, 1] (viridis-like anchors).
+pub fn colormap(t: f64) -> RGBColor {
+    const ANCHORS: [(f64, [f64; 3]); 5] = [
+        (0.0, [68.0, 1.0, 84.0]),
+        (0.25, [59.0, 82.0, 139.0]),
+        (0.5, [33.0, 145.0, 140.0]),
+        (0.75, [94.0, 201.0, 98.0]),
+        (1.0, [253.0, 231.0, 37.0]),
+    ];
+    let t = t.clamp(0.0, 1.0);
+    let k = ANCHORS.iter().position(|a| a.0 >= t).unwrap_or(4).max(1);
+    let (a, b) = (ANCHORS[k - 1], ANCHORS[k]);
+    let s = (t - a.0) / (b.0 - a.0);
+    let c = |i: usize| (a.1[i] + s * (b.1[i] - a.1[i])).round() as u8;
+    RGBColor(c(0), c(1), c(2))
+}
+
+/// Labels of the body figure.
+pub struct BodyLabels<'a> {
+    pub title: &'a str,
+    pub length: &'a str,
+    pub stress: &'a str,
+    pub potential: &'a str,
+}
+
+/// The deformed body (displacements to scale) coloured by ϕ with a colour bar, the contact
+/// force on Γ3 as arrows, the rigid stop, and for PV2 the stick and slip nodes.
+pub fn body_plot(run: &ContactRun, labels: &BodyLabels, stem: &Path) -> Result<()> {
+    both_backends!(stem, (1200, 520), |root: &DrawingArea<_, Shift>| draw_body(root, run, labels))
+}
+
+fn draw_body<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    run: &ContactRun,
+    labels: &BodyLabels,
+) -> Result<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let (problem, solution) = (&run.problem, &run.solution);
+    let mesh = &problem.mesh;
+    let dofs = DofMap::new(problem)?;
+    let x = &solution.x;
+    let deformed =
+        |n: usize| (mesh.node(n)[0] + x[dofs.u(n, 0)], mesh.node(n)[1] + x[dofs.u(n, 1)]);
+    let phi: Vec<f64> = (0..mesh.n_nodes()).map(|n| x[dofs.phi(n)]).collect();
+    let (phi_lo, phi_hi) =
+        phi.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    let span = if phi_hi > phi_lo { phi_hi - phi_lo } else { 1.0 };
+    let surface = &solution.surface;
+    let rho = run.model.compliance.stop();
+    let stop: Vec<(f64, f64)> = (0..surface.len())
+        .map(|i| {
+            let p = surface.position(problem, i);
+            (p[0] + rho * surface.normal[i][0], p[1] + rho * surface.normal[i][1])
+        })
+        .collect();
+    let (main, bar) = root.split_horizontally(1060);
+    let all = (0..mesh.n_nodes()).map(deformed).chain(stop.iter().copied());
+    let pts: Vec<(f64, f64)> = all.collect();
+    let (x0, x1) = range(pts.iter().map(|p| p.0), 0.03);
+    let (y0, y1) = range(pts.iter().map(|p| p.1), 0.25);
+    // Equal scales on both axes.
+    let (w, h) = (1060.0 - 140.0, 520.0 - 120.0);
+    let scale = ((x1 - x0) / w).max((y1 - y0) / h);
+    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    let (x0, x1, y0, y1) =
+        (cx - scale * w / 2.0, cx + scale * w / 2.0, cy - scale * h / 2.0, cy + scale * h / 2.0);
+    let mut chart = ChartBuilder::on(&main)
+        .caption(labels.title, (FONT, 22))
+        .margin(14)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc(format!("x + u_x [{}]", labels.length))
+        .y_desc(format!("y + u_y [{}]", labels.length))
+        .label_style((FONT, 14))
+        .axis_desc_style((FONT, 16))
+        .draw()
+        .map_err(err)?;
+    chart
+        .draw_series((0..mesh.n_cells()).map(|c| {
+            let cell = mesh.cell(c);
+            let mean = cell.iter().map(|&n| phi[n]).sum::<f64>() / 3.0;
+            Polygon::new(
+                cell.iter().map(|&n| deformed(n)).collect::<Vec<_>>(),
+                colormap((mean - phi_lo) / span).filled(),
+            )
+        }))
+        .map_err(err)?;
+    chart
+        .draw_series(LineSeries::new(stop.clone(), BLACK.stroke_width(2)))
+        .map_err(err)?
+        .label(format!("rigid stop (gap + penetration = {rho} {})", labels.length))
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2)));
+    // Contact force on the body, t = σ_ν ν + σ_τ, drawn from the foundation side.
+    let peak = run.rows.iter().map(|r| r.sigma_nu.abs().hypot(r.sigma_tau)).fold(0.0, f64::max);
+    let arrow_length = 0.12 * (y1 - y0) / peak.max(f64::MIN_POSITIVE);
+    let step = (surface.len() / 24).max(1);
+    for i in (0..surface.len()).step_by(step) {
+        let (row, n) = (&run.rows[i], surface.normal[i]);
+        let t = surface.tangent(i);
+        let force = (
+            row.sigma_nu * n[0] + row.sigma_tau * t[0],
+            row.sigma_nu * n[1] + row.sigma_tau * t[1],
+        );
+        if force.0.hypot(force.1) == 0.0 {
+            continue;
+        }
+        let head = deformed(surface.nodes[i]);
+        let tail = (head.0 - arrow_length * force.0, head.1 - arrow_length * force.1);
+        chart.draw_series(std::iter::once(arrow(tail, head, RGBColor(200, 0, 0)))).map_err(err)?;
+    }
+    if run.model.pv2.is_some() {
+        for (status, color, name) in [
+            (NodeStatus::Stick, RGBColor(31, 119, 180), "stick"),
+            (NodeStatus::Slip, RGBColor(255, 127, 14), "slip"),
+        ] {
+            let nodes: Vec<(f64, f64)> = (0..surface.len())
+                .filter(|&i| run.rows[i].status == status)
+                .map(|i| deformed(surface.nodes[i]))
+                .collect();
+            chart
+                .draw_series(nodes.into_iter().map(move |p| Circle::new(p, 4, color.filled())))
+                .map_err(err)?
+                .label(format!("{name} nodes"))
+                .legend(move |(x, y)| Circle::new((x + 12, y), 4, color.filled()));
+        }
+    }
+    chart
+        .draw_series(std::iter::once(PathElement::new(
+            vec![(x0, y0), (x0, y0)],
+            RGBColor(200, 0, 0),
+        )))
+        .map_err(err)?
+        .label(format!("contact force on Γ3 (peak {peak:.3} {})", labels.stress))
+        .legend(|(x, y)| {
+            let red = RGBColor(200, 0, 0).stroke_width(2);
+            PathElement::new(
+                vec![(x, y), (x + 24, y), (x + 18, y - 4), (x + 24, y), (x + 18, y + 4)],
+                red,
+            )
+        });
+    chart
+        .configure_series_labels()
+        .label_font((FONT, 14))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(err)?;
+    color_bar(&bar, phi_lo, phi_hi, &format!("ϕ [{}]", labels.potential))
+}
+
+/// An arrow from `tail` to `head` in chart coordinates.
+fn arrow(tail: (f64, f64), head: (f64, f64), color: RGBColor) -> PathElement<(f64, f64)> {
+    let (dx, dy) = (head.0 - tail.0, head.1 - tail.1);
+    let (a, b) = (0.25 * dx, 0.25 * dy);
+    let left = (head.0 - a - 0.5 * b, head.1 - b + 0.5 * a);
+    let right = (head.0 - a + 0.5 * b, head.1 - b - 0.5 * a);
+    PathElement::new(vec![tail, head, left, head, right], color.stroke_width(2))
+}
+
+fn color_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    lo: f64,
+    hi: f64,
+    label: &str,
+) -> Result<()> {
+    let hi = if hi > lo { hi } else { lo + 1.0 };
+    let mut chart = ChartBuilder::on(area)
+        .margin_top(60)
+        .margin_bottom(60)
+        .margin_right(10)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..1.0, lo..hi)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_desc(label)
+        .y_label_formatter(&|v| format!("{v:.3}"))
+        .label_style((FONT, 13))
+        .axis_desc_style((FONT, 15))
+        .draw()
+        .map_err(err)?;
+    let n = 100;
+    chart
+        .draw_series((0..n).map(|k| {
+            let (a, b) =
+                (lo + (hi - lo) * k as f64 / n as f64, lo + (hi - lo) * (k + 1) as f64 / n as f64);
+            Rectangle::new([(0.0, a), (1.0, b)], colormap((k as f64 + 0.5) / n as f64).filled())
+        }))
+        .map_err(err)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Text renders from the embedded font: the caption area of a figure has dark pixels.
+    #[test]
+    fn text_renders_without_system_fonts() {
+        fonts();
+        let size = (400, 120);
+        let mut pixels = vec![0u8; 400 * 120 * 3];
+        {
+            let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
+            root.fill(&WHITE).unwrap();
+            root.draw(&Text::new(
+                "σ_ν on Γ3 [GPa]",
+                (10, 40),
+                (FONT, 30).into_font().color(&BLACK),
+            ))
+            .unwrap();
+            root.present().unwrap();
+        }
+        let dark = pixels.chunks(3).filter(|p| p.iter().all(|&c| c < 100)).count();
+        assert!(dark > 300, "only {dark} dark pixels: the text did not render");
+    }
+
+    #[test]
+    fn line_plots_write_png_and_svg() {
+        let dir = std::env::temp_dir().join(format!("piezocontact-plot-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let plot = LinePlot {
+            title: "test".into(),
+            x_label: "µ = k_e [-]".into(),
+            y_label: "distance [-]".into(),
+            series: vec![Series {
+                label: "slope 1".into(),
+                points: vec![(1e-3, 1e-3), (1e-1, 1e-1)],
+                color: PALETTE[1],
+                markers: true,
+            }],
+            log_log: true,
+            legend: SeriesLabelPosition::LowerRight,
+        };
+        line_plot(&plot, &dir.join("loglog")).unwrap();
+        let svg = std::fs::read_to_string(dir.join("loglog.svg")).unwrap();
+        assert!(
+            svg.starts_with("<svg")
+                && svg.trim_end().ends_with("</svg>")
+                && svg.contains("slope 1")
+        );
+        let png = std::fs::read(dir.join("loglog.png")).unwrap();
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+        assert!(png.len() > 5000);
+    }
+}
