@@ -413,6 +413,7 @@ impl Case {
                 _ => Diagonal::Right,
             },
         };
+        self.check_memory(rectangle.nx, rectangle.ny)?;
         let mut parts = Vec::new();
         for (name, specs) in &m.segments {
             let segments: Result<Vec<Segment>, _> = specs.iter().map(|s| s.parse()).collect();
@@ -424,6 +425,25 @@ impl Case {
             ));
         }
         rectangle.mesh(&parts).map_err(|e| self.context(e))
+    }
+
+    /// Refuses a rectangle whose solve would not fit in memory, before allocating anything.
+    /// The estimate, about 12 KB per node growing like log n with the fill of the factor, is
+    /// measured on the paper's bar (1536 × 256 cells: 3.5 GB).
+    fn check_memory(&self, nx: usize, ny: usize) -> Result<()> {
+        let nodes = (nx as f64 + 1.0) * (ny as f64 + 1.0);
+        let bytes = nodes * 12e3 * (nodes.log2() / 18.0).max(1.0);
+        let available = available_memory();
+        if bytes > available {
+            bail!(
+                "{}: mesh.nx × mesh.ny = {nx} × {ny} cells ({nodes:.3e} nodes, {:.3e} unknowns) would need about {:.3e} GiB, and this machine has {:.1} GiB available; reduce mesh.nx and mesh.ny",
+                self.locate("mesh.nx"),
+                3.0 * nodes,
+                bytes / 2f64.powi(30),
+                available / 2f64.powi(30)
+            );
+        }
+        Ok(())
     }
 
     /// The material in dimension `dim`.
@@ -510,6 +530,41 @@ impl Case {
             lines.push((key.to_string(), value));
         }
         Ok(lines)
+    }
+
+    /// The paper's hypotheses (h1)–(h6) checked on this case's data, as warnings with the
+    /// numbers (Section 2 of [P]); an empty list when all hold.
+    pub fn hypothesis_warnings(&self, material: &Material) -> Vec<String> {
+        let el = material.elasticity;
+        let d = material.dim as f64;
+        let mut warnings = Vec::new();
+        if el.mu1 > 0.5 * d * el.k0 {
+            warnings.push(format!(
+                "(h1)(a) fails: g(0) = µ1 = {:.4e} exceeds d·k0/2 = {:.4e} (Poisson's ratio {} is below the bound of (h1)(a) in {}D)",
+                el.mu1, 0.5 * d * el.k0, self.file.material.poisson, material.dim
+            ));
+        }
+        if let ElasticLaw::Hencky { t0 } = el.law {
+            let e = std::f64::consts::E;
+            warnings.push(format!(
+                "(h1)(b) holds only for ‖ε^D‖² < e·t0 = {:.4e}: beyond it g + 2g't = µ1 (t0/t)(1 − ln(t/t0)) < 0 (the law softens), and g(t) → 0 as t → ∞ (g(100 t0) = {:.4e}), so (h1)(a) has no g0 > 0 for unbounded strains; results whose strains exceed e·t0 are outside the paper's theory",
+                e * t0,
+                el.g(100.0 * t0)
+            ));
+        }
+        warnings
+    }
+
+    /// The bounds and Lipschitz constants of p_ν and h_ν ((h5), (h6)) and the quantity that
+    /// Theorem 3.1 needs small for uniqueness.
+    pub fn uniqueness_note(&self) -> Option<String> {
+        let c = self.file.contact.as_ref()?;
+        let (m_h, l_h) = (c.c_nu * c.alpha_nu, c.c_nu * (c.alpha_nu - 1.0) / c.h_nu_range);
+        let (m_p, l_p) = (c.n_nu, 1.0);
+        Some(format!(
+            "p_ν is bounded by M_p = {m_p} with Lipschitz constant {l_p}, h_ν by M_h = {m_h} with {l_h:.4e}: M_h·L_p + L_h·M_p = {:.4e} must be below the L* of Theorem 3.1 for uniqueness (the paper does not give L*)",
+            m_h * l_p + l_h * m_p
+        ))
     }
 
     /// PV1 or PV2, as the case says or as its sections imply.
@@ -648,6 +703,17 @@ impl Case {
         };
         Problem::new(mesh, material, boundary, loads).map_err(|e| self.context(e))
     }
+}
+
+/// Memory available to this process [bytes]: MemAvailable of /proc/meminfo, else 24 GiB.
+fn available_memory() -> f64 {
+    std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|t| {
+            let line = t.lines().find(|l| l.starts_with("MemAvailable:"))?.to_string();
+            line.split_whitespace().nth(1)?.parse::<f64>().ok()
+        })
+        .map_or(24.0 * 2f64.powi(30), |kib| kib * 1024.0)
 }
 
 /// A range rule: key, value, test, and the requirement stated in the error.

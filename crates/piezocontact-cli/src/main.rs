@@ -1,23 +1,15 @@
 //! The `piezocontact` command: parses arguments, reads cases, reports, writes files. All
 //! numerics live in the `piezocontact` library.
 
-mod bench;
-mod case;
-mod output;
-mod plot;
-mod report;
-mod reproduce;
-mod runner;
-mod sweep;
-
 use anyhow::{Context, Result};
-use case::Case;
 use clap::{Parser, Subcommand};
 use piezocontact::dofs::DofMap;
 use piezocontact::mesh::gmsh;
 use piezocontact::problem::Problem;
 use piezocontact::solver::solve_without_contact;
-use runner::ContactRun;
+use piezocontact_cli::case::Case;
+use piezocontact_cli::runner::{self, ContactRun};
+use piezocontact_cli::{bench, output, reproduce, sweep};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -46,6 +38,9 @@ enum Command {
         /// Override a case key, e.g. --set mesh.nx=192 (repeatable).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Write into an output directory that holds files piezocontact did not write.
+        #[arg(long)]
+        force: bool,
     },
     /// Run a case once per value of swept keys, in parallel; write DIR/sweep.csv.
     Sweep {
@@ -68,6 +63,9 @@ enum Command {
         /// Output directory.
         #[arg(long, default_value = "out/sweep")]
         out: PathBuf,
+        /// Write into an output directory that holds files piezocontact did not write.
+        #[arg(long)]
+        force: bool,
     },
     /// Regenerate the paper's Section 7: Examples 7.1–7.2, Table 2, Figures 1–4, with a
     /// Theorem 4.1 study, a mesh study, a stopping-rule study and DIR/REPORT.md.
@@ -81,6 +79,9 @@ enum Command {
         /// Runs in parallel (default: the number of cores).
         #[arg(long)]
         jobs: Option<usize>,
+        /// Write into an output directory that holds files piezocontact did not write.
+        #[arg(long)]
+        force: bool,
     },
     /// Validate a case and print its mesh and DOF summary.
     Check {
@@ -128,6 +129,7 @@ fn main() -> ExitCode {
     match run(cli.command) {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
         Ok(Outcome::NotConverged) => ExitCode::from(3),
+        Ok(Outcome::Failed) => ExitCode::from(4),
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::from(1)
@@ -137,8 +139,12 @@ fn main() -> ExitCode {
 
 fn run(command: Command) -> Result<Outcome> {
     match command {
-        Command::Run { case, out, set } => run_case(&case, &out, &set),
-        Command::Sweep { case, set_list, set, reference, jobs, out } => {
+        Command::Run { case, out, set, force } => {
+            let _claim = output::Claimed::new(&out, force)?;
+            run_case(&case, &out, &set)
+        }
+        Command::Sweep { case, set_list, set, reference, jobs, out, force } => {
+            let _claim = output::Claimed::new(&out, force)?;
             let request = sweep::SweepRequest {
                 case: &case,
                 set_list: &set_list,
@@ -149,7 +155,8 @@ fn run(command: Command) -> Result<Outcome> {
             };
             Ok(if sweep::sweep(&request)? { Outcome::Done } else { Outcome::NotConverged })
         }
-        Command::Reproduce { out, mesh, jobs } => {
+        Command::Reproduce { out, mesh, jobs, force } => {
+            let _claim = output::Claimed::new(&out, force)?;
             let converged =
                 reproduce::reproduce(&reproduce::Request { out: out.clone(), mesh, jobs })?;
             println!("wrote {} with its figures and tables", out.join("REPORT.md").display());
@@ -167,13 +174,13 @@ enum Outcome {
     Done,
     /// A loop hit its cap: results were written, marked unconverged.
     NotConverged,
+    /// A loop diverged or failed numerically: the last finite iterate was written.
+    Failed,
 }
 
 fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<Outcome> {
     let start = Instant::now();
     let case = Case::load(path, set)?;
-    std::fs::create_dir_all(out)
-        .with_context(|| format!("cannot create the output directory {}", out.display()))?;
     if case.file.contact.is_some() {
         return run_contact(&case, out);
     }
@@ -196,7 +203,10 @@ fn run_contact(case: &Case, out: &Path) -> Result<Outcome> {
             case.path.display(),
             out.display()
         );
-        return Ok(Outcome::NotConverged);
+        return Ok(match failure {
+            piezocontact::Error::NotConverged { .. } => Outcome::NotConverged,
+            _ => Outcome::Failed,
+        });
     }
     Ok(Outcome::Done)
 }
@@ -312,6 +322,12 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
     );
     if case.file.contact.is_some() {
         println!("problem: {:?}", case.problem_kind());
+    }
+    for warning in case.hypothesis_warnings(&problem.material) {
+        println!("warning: {warning}");
+    }
+    if let Some(note) = case.uniqueness_note() {
+        println!("note: {note}");
     }
     println!("contact and solver settings (in the case's units):");
     for (key, value) in case.contact_settings()? {

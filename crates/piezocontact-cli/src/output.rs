@@ -1,29 +1,166 @@
-//! Writing results: every file goes to a temporary name in its directory and is renamed into
-//! place, so a reader never sees a half-written file.
+//! Writing results safely.
+//!
+//! - Every file is written in full under a temporary name and renamed into place, so a reader
+//!   never sees half a file. While an output directory is claimed, the temporary files live in
+//!   a staging directory *beside* it: a run killed at any moment leaves only complete files in
+//!   the output directory.
+//! - [`claim`] refuses a directory holding files that piezocontact did not write (unless
+//!   forced) and clears our own earlier output there, so that a rerun replaces it whole. The
+//!   files written are listed in the directory's [`MARKER`] file.
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use piezocontact::dofs::DofMap;
 use piezocontact::output::vtu::{Field, to_vtu};
 use piezocontact::problem::Problem;
 use piezocontact::solver::element_fields;
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// Writes `bytes` to `path` atomically (temporary file in the same directory, then rename).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let dir = path.parent().unwrap_or(Path::new("."));
+/// The file that marks a directory as piezocontact's output and lists what was written.
+pub const MARKER: &str = ".piezocontact-output";
+
+/// The claimed output directory and its staging directory.
+struct Claim {
+    root: PathBuf,
+    staging: PathBuf,
+}
+
+static CLAIM: Mutex<Option<Claim>> = Mutex::new(None);
+static COUNTER: AtomicUsize = AtomicUsize::new(0);
+
+/// Claims `dir` for this process's output: creates it, refuses it if it holds files that
+/// piezocontact did not write (unless `force`), deletes the files of our earlier output
+/// listed in its marker, and prepares the staging directory beside it.
+fn claim(dir: &Path, force: bool) -> Result<()> {
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("cannot create the output directory {}", dir.display()))?;
+    let marker = dir.join(MARKER);
+    let listed: Vec<PathBuf> = std::fs::read_to_string(&marker)
+        .map(|t| t.lines().map(PathBuf::from).collect())
+        .unwrap_or_default();
+    let ours = |name: &std::ffi::OsStr| {
+        name == MARKER
+            || listed.iter().any(|p| p.components().next().is_some_and(|c| c.as_os_str() == name))
+    };
+    let mut foreign: Vec<String> = std::fs::read_dir(dir)
+        .with_context(|| format!("cannot read the output directory {}", dir.display()))?
+        .filter_map(|e| e.ok())
+        .filter(|e| !ours(&e.file_name()))
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    foreign.sort();
+    if !foreign.is_empty() && !force {
+        let shown: Vec<&str> = foreign.iter().take(5).map(String::as_str).collect();
+        bail!(
+            "the output directory {} holds files that piezocontact did not write ({}{}); choose another --out, or pass --force to write there anyway",
+            dir.display(),
+            shown.join(", "),
+            if foreign.len() > 5 { ", …" } else { "" }
+        );
+    }
+    for rel in &listed {
+        let _ = std::fs::remove_file(dir.join(rel));
+        let mut parent = rel.parent();
+        while let Some(p) = parent.filter(|p| !p.as_os_str().is_empty()) {
+            let _ = std::fs::remove_dir(dir.join(p)); // only when empty
+            parent = p.parent();
+        }
+    }
+    std::fs::write(&marker, "").with_context(|| format!("cannot write {}", marker.display()))?;
+    let root = std::fs::canonicalize(dir)?;
+    let name =
+        root.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
+    let parent = root.parent().unwrap_or(Path::new("/")).to_path_buf();
+    let prefix = format!(".{name}.piezocontact-staging-");
+    if let Ok(entries) = std::fs::read_dir(&parent) {
+        for e in entries.filter_map(|e| e.ok()) {
+            if e.file_name().to_string_lossy().starts_with(&prefix) {
+                let _ = std::fs::remove_dir_all(e.path()); // left by a killed run
+            }
+        }
+    }
+    let staging = parent.join(format!("{prefix}{}", std::process::id()));
+    std::fs::create_dir_all(&staging)
+        .with_context(|| format!("cannot create the staging directory {}", staging.display()))?;
+    *CLAIM.lock().unwrap_or_else(|e| e.into_inner()) = Some(Claim { root, staging });
+    Ok(())
+}
+
+/// Ends the claim: removes the staging directory.
+fn release() {
+    if let Some(claim) = CLAIM.lock().unwrap_or_else(|e| e.into_inner()).take() {
+        let _ = std::fs::remove_dir_all(claim.staging);
+    }
+}
+
+/// Holds the claim on an output directory until dropped.
+pub struct Claimed(());
+
+impl Claimed {
+    /// See [`claim`].
+    pub fn new(dir: &Path, force: bool) -> Result<Self> {
+        claim(dir, force)?;
+        Ok(Self(()))
+    }
+}
+
+impl Drop for Claimed {
+    fn drop(&mut self) {
+        release();
+    }
+}
+
+/// A temporary path for `path`: in the staging directory when `path` is inside the claimed
+/// directory, else a hidden name beside `path`. The name keeps `path`'s extension.
+pub fn temporary(path: &Path) -> PathBuf {
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = (|| -> std::io::Result<()> {
+    let unique =
+        format!(".{}-{}-{name}", std::process::id(), COUNTER.fetch_add(1, Ordering::SeqCst));
+    let claim = CLAIM.lock().unwrap_or_else(|e| e.into_inner());
+    match claim.as_ref() {
+        Some(c) if absolute(path).starts_with(&c.root) => c.staging.join(unique),
+        _ => path.with_file_name(unique),
+    }
+}
+
+/// Renames a complete temporary file into place and lists it in the marker.
+pub fn commit(temporary: &Path, path: &Path) -> Result<()> {
+    if let Err(e) = std::fs::rename(temporary, path) {
+        let _ = std::fs::remove_file(temporary);
+        return Err(e).with_context(|| format!("cannot write {}", path.display()));
+    }
+    let claim = CLAIM.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(c) = claim.as_ref()
+        && let Ok(rel) = absolute(path).strip_prefix(&c.root)
+    {
+        let mut marker =
+            std::fs::OpenOptions::new().append(true).create(true).open(c.root.join(MARKER))?;
+        writeln!(marker, "{}", rel.display())?;
+    }
+    Ok(())
+}
+
+fn absolute(path: &Path) -> PathBuf {
+    let parent = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = std::fs::canonicalize(parent).unwrap_or_else(|_| parent.to_path_buf());
+    dir.join(path.file_name().unwrap_or_default())
+}
+
+/// Writes `bytes` to `path` atomically.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let tmp = temporary(path);
+    let written = (|| -> std::io::Result<()> {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
+        f.sync_all()
     })();
-    if result.is_err() {
+    if let Err(e) = written {
         let _ = std::fs::remove_file(&tmp);
+        return Err(e).with_context(|| format!("cannot write {}", path.display()));
     }
-    result.with_context(|| format!("cannot write {}", path.display()))
+    commit(&tmp, path)
 }
 
 /// Writes DIR/summary.json and DIR/solution.vtu (with the extra point fields).
@@ -38,7 +175,6 @@ pub fn write_results(
     write_atomic(&out.join("summary.json"), serde_json::to_string_pretty(summary)?.as_bytes())?;
     write_atomic(&out.join("solution.vtu"), solution_vtu(problem, dofs, x, extra)?.as_bytes())
 }
-
 /// The solution as a ParaView file: point data u (3 components), phi and `extra`; cell data
 /// sigma (3 × 3), D (3 components).
 pub fn solution_vtu(

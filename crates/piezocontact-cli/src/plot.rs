@@ -74,15 +74,13 @@ macro_rules! both_backends {
         write_atomic(&stem.with_extension("svg"), svg.as_bytes())?;
         // plotters encodes the PNG into a file: a temporary one, renamed when complete.
         let png = stem.with_extension("png");
-        let name = png.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-        let tmp = png.with_file_name(format!(".{}.{name}", std::process::id()));
+        let tmp = crate::output::temporary(&png);
         {
             let root = BitMapBackend::new(&tmp, size).into_drawing_area();
             $draw(&root)?;
             root.present().map_err(err)?;
         }
-        std::fs::rename(&tmp, &png).map_err(|e| anyhow!("cannot write {}: {e}", png.display()))?;
-        Ok(())
+        crate::output::commit(&tmp, &png)
     }};
 }
 

@@ -96,6 +96,7 @@ impl ContactRun {
             ),
         );
         summary["timings_seconds"]["total"] = json!(self.seconds);
+        summary["warnings"] = json!(case.hypothesis_warnings(&self.problem.material));
         Ok(summary)
     }
 

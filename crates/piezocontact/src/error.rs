@@ -110,15 +110,26 @@ pub enum Error {
     /// An iteration cap was hit before the stopping rule held.
     #[error(
         "{what} did not converge in {iterations} iterations: last criterion {criterion:.3e}, \
-         tolerance {tolerance:e}; {hint}"
+         tolerance {tolerance:e} (criterion history, last values: {history}); {hint}"
     )]
     NotConverged {
         what: String,
         iterations: usize,
         criterion: f64,
         tolerance: f64,
-        hint: &'static str,
+        history: String,
+        hint: String,
     },
+
+    /// A loop's criterion grew instead of falling.
+    #[error(
+        "{what} diverged at iteration {iteration} (criterion history, last values: {history}); {hint}"
+    )]
+    Diverged { what: String, iteration: usize, history: String, hint: String },
+
+    /// A factorisation or an iterate failed numerically (singular matrix, NaN, infinity).
+    #[error("{what} failed at iteration {iteration}: {cause}; {hint}")]
+    NumericalFailure { what: String, iteration: usize, cause: String, hint: String },
 
     /// A vector or field of the wrong length.
     #[error("{what}: expected length {expected}, got {got}")]

@@ -15,7 +15,9 @@
 //!
 //! The reported number of outer iterations is n + 1 at the stop, as Table 2 counts.
 //! Hitting an iteration cap is not a silent stop: the result carries
-//! [`Error::NotConverged`] naming the loop and its last criterion.
+//! [`Error::NotConverged`] naming the loop and its last criterion. A growing criterion
+//! ([`Error::Diverged`]), a singular matrix or a NaN ([`Error::NumericalFailure`]) stop the run
+//! the same way, keeping the last finite iterate.
 
 pub mod residual;
 pub mod uzawa;
@@ -127,7 +129,17 @@ pub fn solve_contact(
     let mut factorised_with: Option<Vec<f64>> = None;
     for n in 0..settings.max_outer {
         if factorised_with.as_ref() != Some(&g) {
-            system.factorize(problem, &g, &blocks)?;
+            if let Err(e) = system.factorize(problem, &g, &blocks) {
+                solution.failure = Some(Error::NumericalFailure {
+                    what: format!("the factorisation of B̌(x_n) + r M in outer step {}", n + 1),
+                    iteration: n + 1,
+                    cause: e.to_string(),
+                    hint: "check the case with `piezocontact check`; a singular matrix means the \
+                           body is not held (Γ1, Γa) or a material constant is not physical"
+                        .into(),
+                });
+                break;
+            }
             factorised_with = Some(g.clone());
         }
         let base = lagged_loads(&dofs, &surface, model, &solution.x);
@@ -157,18 +169,42 @@ pub fn solve_contact(
                 .collect(),
             None => vec![0.0; n3],
         };
-        if !inner.converged {
-            solution.failure = Some(Error::NotConverged {
-                what: format!(
-                    "the Uzawa loop (Algorithm {}) of outer step {}",
-                    if model.pv2.is_some() { 2 } else { 4 },
-                    n + 1
-                ),
+        let what = format!(
+            "the Uzawa loop (Algorithm {}) of outer step {}",
+            if model.pv2.is_some() { 2 } else { 4 },
+            n + 1
+        );
+        let r_hint = format!(
+            "r too small or too large for this problem: try solver.r = {:.4e} or {:.4e} (now {:.4e}; the paper uses 0.25 E)",
+            2.0 * settings.r,
+            0.5 * settings.r,
+            settings.r
+        );
+        let failure = match inner.stop {
+            uzawa::Stop::Converged => None,
+            uzawa::Stop::Cap => Some(Error::NotConverged {
+                what,
                 iterations: inner.iterations,
                 criterion: inner.history.last().copied().unwrap_or(f64::NAN),
                 tolerance: settings.eps,
-                hint: "raise solver.max_inner, or change solver.r (the paper uses 0.25 E)",
-            });
+                history: tail(&inner.history),
+                hint: format!("raise solver.max_inner (now {}), or {r_hint}", settings.max_inner),
+            }),
+            uzawa::Stop::Diverged => Some(Error::Diverged {
+                what,
+                iteration: inner.iterations,
+                history: tail(&inner.history),
+                hint: r_hint,
+            }),
+            uzawa::Stop::NotFinite(cause) => Some(Error::NumericalFailure {
+                what,
+                iteration: inner.iterations,
+                cause,
+                hint: r_hint,
+            }),
+        };
+        if failure.is_some() {
+            solution.failure = failure;
             break;
         }
         let g_next = secant_moduli(problem, &dofs, &solution.x)?;
@@ -189,6 +225,10 @@ pub fn solve_contact(
             solution.converged = true;
             break;
         }
+        if let Some(failure) = outer_failure(model, &solution) {
+            solution.failure = Some(failure);
+            break;
+        }
     }
     if !solution.converged && solution.failure.is_none() {
         solution.failure = Some(Error::NotConverged {
@@ -199,12 +239,44 @@ pub fn solve_contact(
             iterations: solution.outer_iterations,
             criterion: solution.outer_history.last().copied().unwrap_or(f64::NAN),
             tolerance: settings.eps_fp,
-            hint: "raise solver.max_outer; a growing criterion means the lagged contact terms \
-                   (h_ν, ψ) are too strong for the fixed point",
+            history: tail(&solution.outer_history),
+            hint: format!(
+                "raise solver.max_outer (now {}); a criterion that stalls means the lagged contact \
+                 terms (h_ν, ψ) are too strong for the fixed point",
+                settings.max_outer
+            ),
         });
     }
     solution.timings = system.timings();
     Ok(solution)
+}
+
+/// The last values of a criterion history, for messages.
+fn tail(history: &[f64]) -> String {
+    let start = history.len().saturating_sub(5);
+    let values: Vec<String> = history[start..].iter().map(|v| format!("{v:.3e}")).collect();
+    values.join(", ")
+}
+
+/// A non-finite outer criterion or friction bound, or a growing outer criterion.
+fn outer_failure(model: &ContactModel, solution: &ContactSolution) -> Option<Error> {
+    let n = solution.outer_iterations;
+    let what =
+        format!("the fixed-point loop (Algorithm {})", if model.pv2.is_some() { 1 } else { 3 });
+    let last = *solution.outer_history.last()?;
+    let hint = "the lagged contact terms are too strong for the fixed point: reduce \
+                conductivity.ke, contact.c_nu or contact.penetration";
+    if !last.is_finite() || solution.s.iter().any(|v| !v.is_finite()) {
+        let cause = "the criterion or the friction bound s is not finite".into();
+        return Some(Error::NumericalFailure { what, iteration: n, cause, hint: hint.into() });
+    }
+    let smallest = solution.outer_history.iter().copied().fold(f64::INFINITY, f64::min);
+    (n >= 3 && last > uzawa::DIVERGENCE * smallest).then(|| Error::Diverged {
+        what,
+        iteration: n,
+        history: tail(&solution.outer_history),
+        hint: hint.into(),
+    })
 }
 
 /// µ on each Γ3 node: the case's µ, or the mean of the µ of the parts a node belongs to.

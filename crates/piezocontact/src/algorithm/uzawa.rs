@@ -45,19 +45,35 @@ impl ContactState {
     }
 }
 
+/// Why a loop stopped.
+#[derive(Clone, Debug)]
+pub enum Stop {
+    /// The stopping rule held.
+    Converged,
+    /// The iteration cap was reached.
+    Cap,
+    /// The criterion grew by a factor [`DIVERGENCE`] over its smallest value.
+    Diverged,
+    /// A solve produced NaN or infinity, or a criterion was not finite.
+    NotFinite(String),
+}
+
+/// A criterion this many times its smallest value so far means divergence.
+pub const DIVERGENCE: f64 = 1e3;
+
 /// What one Uzawa loop produced.
 #[derive(Clone, Debug)]
 pub struct UzawaResult {
-    /// x^{k+1} at the stop (global vector).
+    /// The last finite x^k (global vector).
     pub x: Vec<f64>,
-    /// The multipliers and auxiliary variables at the stop.
+    /// The multipliers and auxiliary variables with it.
     pub state: ContactState,
     /// Iterations done.
     pub iterations: usize,
     /// The criterion of (6.12) (square root of the ratio) at each iteration.
     pub history: Vec<f64>,
-    /// Whether the criterion fell below ε before the cap.
-    pub converged: bool,
+    /// Why the loop stopped.
+    pub stop: Stop,
 }
 
 /// Everything the loop reads.
@@ -84,9 +100,21 @@ impl Uzawa<'_> {
         let dofs = system.dofs().clone();
         let mut state = ContactState::cold(surface.len());
         let mut x = vec![0.0; dofs.n_total()];
-        let mut history = Vec::new();
+        let mut history: Vec<f64> = Vec::new();
+        let mut smallest = f64::INFINITY;
         for k in 0..self.settings.max_inner {
-            let x_new = system.solve(Some(&self.right_hand_side(&dofs, &state)))?;
+            let x_new = match system.solve(Some(&self.right_hand_side(&dofs, &state))) {
+                Ok(x_new) => x_new,
+                Err(e) => {
+                    return Ok(UzawaResult {
+                        x,
+                        state,
+                        iterations: k + 1,
+                        history,
+                        stop: Stop::NotFinite(e.to_string()),
+                    });
+                }
+            };
             let mut next = state.clone();
             let (mut num, mut den) = (0.0, 0.0);
             for i in 0..surface.len() {
@@ -109,13 +137,31 @@ impl Uzawa<'_> {
             den += mass_norm_squared(self.problem, &dofs, &x_new);
             let criterion = if den > 0.0 { (num / den).sqrt() } else { 0.0 };
             history.push(criterion);
+            if !criterion.is_finite() {
+                let cause = format!("the criterion (6.12) is {criterion}");
+                return Ok(UzawaResult {
+                    x,
+                    state,
+                    iterations: k + 1,
+                    history,
+                    stop: Stop::NotFinite(cause),
+                });
+            }
             x = x_new;
             state = next;
-            if criterion < self.settings.eps {
-                return Ok(UzawaResult { x, state, iterations: k + 1, history, converged: true });
+            smallest = smallest.min(criterion);
+            let stop = if criterion < self.settings.eps {
+                Some(Stop::Converged)
+            } else if criterion > DIVERGENCE * smallest {
+                Some(Stop::Diverged)
+            } else {
+                None
+            };
+            if let Some(stop) = stop {
+                return Ok(UzawaResult { x, state, iterations: k + 1, history, stop });
             }
         }
-        Ok(UzawaResult { x, state, iterations: self.settings.max_inner, history, converged: false })
+        Ok(UzawaResult { x, state, iterations: self.settings.max_inner, history, stop: Stop::Cap })
     }
 
     /// The Step 1 right-hand side beyond f̌: base + Σ_i w_i [(r p_c − λ_c) ν_i + (r p_f − λ_f)].
