@@ -678,6 +678,13 @@ impl Case {
         }
         let mut charge = Vec::new();
         for c in &b.charge {
+            if !c.q2.is_finite() {
+                bail!(
+                    "{}: boundary.charge.q2 = {} must be a finite number",
+                    self.locate("boundary.charge"),
+                    c.q2
+                );
+            }
             for p in parts("boundary.charge.parts", &c.parts)? {
                 charge.push((p, constant_scalar(c.q2)));
             }
@@ -699,7 +706,12 @@ impl Case {
                 .map(|f| vector("loads.f0", f))
                 .transpose()?
                 .map(constant_vector),
-            q0: self.file.loads.q0.map(constant_scalar),
+            q0: match self.file.loads.q0 {
+                Some(q) if !q.is_finite() => {
+                    bail!("{}: loads.q0 = {q} must be a finite number", self.locate("loads.q0"))
+                }
+                q => q.map(constant_scalar),
+            },
         };
         Problem::new(mesh, material, boundary, loads).map_err(|e| self.context(e))
     }
@@ -746,9 +758,23 @@ fn apply_override(doc: &mut toml_edit::DocumentMut, setting: &str) -> Result<()>
             anyhow!("--set {setting}: '{}' is not a table", path[..=depth].join("."))
         })?;
     }
-    table[path[path.len() - 1]] = toml_edit::value(value);
+    let last = path[path.len() - 1];
+    // An override replaces the key under whichever of its spellings the file uses.
+    for &(section, a, b) in ALIASES {
+        if path[..path.len() - 1] == [section] && (last == a || last == b) {
+            table.remove(if last == a { b } else { a });
+        }
+    }
+    table[last] = toml_edit::value(value);
     Ok(())
 }
+
+/// Keys with two spellings (serde aliases): (table, key, alias).
+const ALIASES: &[(&str, &str, &str)] = &[
+    ("material", "e31", "e32"),
+    ("material", "e15", "e24"),
+    ("material", "beta11_rel", "beta22_rel"),
+];
 
 /// Line (1-based) of a dotted key in a TOML text.
 pub fn key_line(source: &str, dotted: &str) -> Option<usize> {

@@ -4,6 +4,7 @@
 
 pub mod bench;
 pub mod case;
+pub mod fuzzing;
 pub mod output;
 pub mod plot;
 pub mod report;

@@ -250,6 +250,8 @@ fn check_prints_the_mesh_and_dof_summary() {
         "{t}"
     );
     assert!(t.contains("dofs: 117 in all"), "{t}");
+    assert!(t.contains("warning: (h1)(b) holds only for ‖ε^D‖² < e·t0 = 4.8929e0"), "{t}");
+    assert!(t.contains("note: p_ν is bounded by M_p = 1"), "{t}");
 }
 
 /// 1-based line of the first line of the paper case that starts with `prefix`.

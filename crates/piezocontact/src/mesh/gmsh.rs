@@ -148,18 +148,36 @@ fn blocks(msh: &MshFile) -> impl Iterator<Item = &mshio::mshfile::ElementBlock<u
 fn parse(bytes: &[u8]) -> Result<(MshFile, PhysicalNames)> {
     let header = section(bytes, "MeshFormat")
         .ok_or_else(|| Error::Gmsh("not a Gmsh MSH file: it has no $MeshFormat section".into()))?;
-    let version = header.split_whitespace().next().unwrap_or("").to_string();
+    let words: Vec<&str> = header.split_whitespace().collect();
+    let version = words.first().copied().unwrap_or("").to_string();
     if version != "4.1" {
         return Err(Error::GmshUnsupported(format!(
             "MSH version {version}; piezocontact reads MSH 4.1 (ASCII or binary): re-export with \
              `gmsh -format msh41` or set Mesh.MshFileVersion = 4.1 in the .geo file"
         )));
     }
-    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| {
-        let text = e.to_string();
-        let summary: Vec<&str> = text.lines().filter(|l| !l.trim().is_empty()).take(6).collect();
-        Error::Gmsh(summary.join("; "))
-    })?;
+    // mshio does not check these and stops the program on values it has no parser for.
+    match (words.get(1), words.get(2)) {
+        (Some(&("0" | "1")), Some(&("4" | "8"))) => {}
+        _ => {
+            return Err(Error::Gmsh(format!(
+                "the $MeshFormat line '{}' is not 'version file-type data-size' with file-type 0 \
+                 (ASCII) or 1 (binary) and data-size 4 or 8",
+                header.trim()
+            )));
+        }
+    }
+    let parsed =
+        std::panic::catch_unwind(|| mshio::parse_msh_bytes(bytes).map_err(|e| e.to_string()));
+    let msh = match parsed {
+        Ok(Ok(msh)) => msh,
+        Ok(Err(text)) => {
+            let summary: Vec<&str> =
+                text.lines().filter(|l| !l.trim().is_empty()).take(6).collect();
+            return Err(Error::Gmsh(summary.join("; ")));
+        }
+        Err(_) => return Err(Error::Gmsh("the MSH parser failed on malformed content".into())),
+    };
     Ok((msh, physical_names(bytes)?))
 }
 

@@ -374,3 +374,21 @@ fn nonlocal_friction_and_friction_per_part() {
     let by_part = solve(&problem, &per_part, &settings);
     assert!(distance(&problem, &by_part.x, &local.x) < 1e-12);
 }
+
+/// A NaN that reaches an iterate (here through ϕ0, which a case file cannot set to NaN)
+/// stops the run with a numerical failure naming the loop, and keeps a finite iterate.
+#[test]
+fn a_nan_in_an_iterate_is_a_numerical_failure() {
+    let problem = paper_problem(24, 4, PAPER_UNITS, ElasticLaw::Linear);
+    let mut model = paper_model(Some((0.2, 0.2)), 0.05, PAPER_UNITS);
+    model.compliance.phi0 = f64::NAN;
+    let solution = solve_contact(&problem, &model, &paper_settings(PAPER_UNITS, 1e-4)).unwrap();
+    assert!(!solution.converged);
+    let failure = solution.failure.expect("a failure").to_string();
+    assert!(
+        failure.contains("Uzawa loop (Algorithm 2) of outer step")
+            && failure.contains("not finite"),
+        "{failure}"
+    );
+    assert!(solution.x.iter().all(|v| v.is_finite()));
+}

@@ -58,6 +58,7 @@ fn malformed_and_unsupported_files_are_errors() {
     let cases: Vec<(String, &str)> = vec![
         ("hello".into(), "no $MeshFormat section"),
         ("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n".into(), "MSH version 2.2"),
+        ("$MeshFormat\n4.1 1 9\n$EndMeshFormat\n".into(), "data-size 4 or 8"),
         (good[..good.len() / 2].to_string(), "cannot read the Gmsh file"),
         (good.replacen("$Elements", "$Elementz", 1), "cannot read the Gmsh file"),
         (good.replace("1 3 \"contact\"", "1 x \"contact\""), "malformed $PhysicalNames line '1 x"),

@@ -1,0 +1,203 @@
+//! Failure handling end to end: numerical failures write the last finite iterate marked
+//! unconverged and exit with their documented code; output directories are never clobbered;
+//! a killed run leaves only complete files.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::Duration;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn command() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_piezocontact"));
+    c.current_dir(root());
+    c
+}
+
+fn piezocontact(args: &[&str]) -> Output {
+    command().args(args).output().unwrap()
+}
+
+fn text(o: &Output) -> String {
+    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("piezocontact-failures-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// Every number in a JSON document is finite (serde_json writes NaN and infinity as null).
+fn assert_no_null_numbers(value: &serde_json::Value, path: &str) {
+    match value {
+        serde_json::Value::Null => assert!(path.ends_with("failure"), "null at {path}"),
+        serde_json::Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .for_each(|(i, v)| assert_no_null_numbers(v, &format!("{path}[{i}]"))),
+        serde_json::Value::Object(o) => {
+            o.iter().for_each(|(k, v)| assert_no_null_numbers(v, &format!("{path}.{k}")))
+        }
+        _ => {}
+    }
+}
+
+#[test]
+fn a_diverging_fixed_point_exits_4_and_writes_its_last_finite_iterate() {
+    let out = temp_dir("diverge");
+    let o = piezocontact(&[
+        "run",
+        "cases/paper-7.2.toml",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "mesh.nx=24",
+        "--set",
+        "mesh.ny=4",
+        "--set",
+        "conductivity.ke=1e4",
+        "--set",
+        "contact.penetration=0.05",
+    ]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(4), "{t}");
+    assert!(t.contains("the fixed-point loop (Algorithm 1) diverged at iteration"), "{t}");
+    assert!(
+        t.contains("criterion history, last values:") && t.contains("reduce conductivity.ke"),
+        "{t}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["converged"], false);
+    assert!(summary["failure"].as_str().unwrap().contains("diverged"));
+    assert_no_null_numbers(&summary, "summary");
+    for file in ["contact.csv", "solution.vtu"] {
+        let content = std::fs::read_to_string(out.join(file)).unwrap();
+        assert!(
+            !content.contains("NaN") && !content.contains("inf"),
+            "{file} holds a non-finite number"
+        );
+    }
+}
+
+#[test]
+fn output_directories_are_never_clobbered() {
+    let out = temp_dir("clobber");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    let args = |extra: &[&str]| {
+        let mut a = vec![
+            "run",
+            "cases/paper-7.1.toml",
+            "--out",
+            out.to_str().unwrap(),
+            "--set",
+            "mesh.nx=12",
+            "--set",
+            "mesh.ny=2",
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    let run = |a: Vec<String>| command().args(&a).output().unwrap();
+    let o = run(args(&[]));
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(
+        text(&o).contains("holds files that piezocontact did not write (notes.txt)")
+            && text(&o).contains("--force")
+    );
+    assert!(!out.join("summary.json").exists());
+    // --force writes beside the foreign file and keeps it.
+    let o = run(args(&["--force"]));
+    assert!(o.status.success(), "{}", text(&o));
+    assert_eq!(std::fs::read_to_string(out.join("notes.txt")).unwrap(), "mine");
+    assert!(out.join("contact.csv").exists());
+    // Rerunning into our own output replaces it whole: a run without contact writes no
+    // contact.csv, and the earlier one is gone.
+    std::fs::remove_file(out.join("notes.txt")).unwrap();
+    let o = run(args(&["--set", "contact.problem=PV1"]));
+    assert!(o.status.success(), "{}", text(&o));
+    let case = std::fs::read_to_string(root().join("cases/paper-7.1.toml")).unwrap();
+    let without_contact = out.with_extension("case.toml");
+    let stripped: String = case.split("\n[contact]").next().unwrap().to_string();
+    std::fs::write(&without_contact, stripped).unwrap();
+    let o = piezocontact(&[
+        "run",
+        without_contact.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "mesh.nx=12",
+        "--set",
+        "mesh.ny=2",
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(!out.join("contact.csv").exists(), "the earlier contact.csv was not removed");
+    assert!(out.join("summary.json").exists() && out.join("solution.vtu").exists());
+}
+
+/// Whether a file is complete: PNG with IEND, SVG and VTU closed, JSON parsed, text ending
+/// in a newline; marker and temporary names are reported as such.
+fn assert_complete(path: &Path) {
+    let name = path.file_name().unwrap().to_string_lossy().to_string();
+    assert!(
+        !name.starts_with('.') || name == ".piezocontact-output",
+        "temporary file {name} left behind"
+    );
+    let bytes = std::fs::read(path).unwrap();
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("png") => assert!(
+            bytes.starts_with(b"\x89PNG") && bytes.ends_with(&[0xae, 0x42, 0x60, 0x82]),
+            "{name} is cut"
+        ),
+        Some("svg") => {
+            assert!(String::from_utf8_lossy(&bytes).trim_end().ends_with("</svg>"), "{name} is cut")
+        }
+        Some("vtu") => assert!(
+            String::from_utf8_lossy(&bytes).trim_end().ends_with("</VTKFile>"),
+            "{name} is cut"
+        ),
+        Some("json") => {
+            assert!(serde_json::from_slice::<serde_json::Value>(&bytes).is_ok(), "{name} is cut")
+        }
+        Some("csv") | Some("md") => {
+            assert!(bytes.is_empty() || bytes.ends_with(b"\n"), "{name} is cut")
+        }
+        _ => {}
+    }
+}
+
+fn assert_all_complete(dir: &Path) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() { assert_all_complete(&path) } else { assert_complete(&path) }
+    }
+}
+
+#[test]
+fn a_killed_run_leaves_only_complete_files() {
+    let mut killed_while_running = 0;
+    for (k, delay) in [150u64, 600, 1500].into_iter().enumerate() {
+        let out = temp_dir(&format!("kill{k}"));
+        let mut child = command()
+            .args(["reproduce", "--out", out.to_str().unwrap(), "--mesh", "24,4", "--jobs", "2"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(delay));
+        if child.try_wait().unwrap().is_none() {
+            killed_while_running += 1;
+        }
+        let _ = child.kill();
+        let _ = child.wait();
+        if out.exists() {
+            assert_all_complete(&out);
+        }
+    }
+    assert!(killed_while_running >= 2, "the runs ended before they could be killed");
+}
