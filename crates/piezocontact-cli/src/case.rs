@@ -561,8 +561,17 @@ impl Case {
         let c = self.file.contact.as_ref()?;
         let (m_h, l_h) = (c.c_nu * c.alpha_nu, c.c_nu * (c.alpha_nu - 1.0) / c.h_nu_range);
         let (m_p, l_p) = (c.n_nu, 1.0);
+        let psi = match (&self.file.conductivity, self.problem_kind()) {
+            (Some(k), ProblemKey::PV2) => format!(
+                "; ψ is bounded by M_ψ = k_e = {} with Lipschitz constant k_e·δ = {} and φ_L by L = {}",
+                k.ke,
+                k.ke * k.delta,
+                k.truncation
+            ),
+            _ => String::new(),
+        };
         Some(format!(
-            "p_ν is bounded by M_p = {m_p} with Lipschitz constant {l_p}, h_ν by M_h = {m_h} with {l_h:.4e}: M_h·L_p + L_h·M_p = {:.4e} must be below the L* of Theorem 3.1 for uniqueness (the paper does not give L*)",
+            "p_ν is bounded by M_p = {m_p} with Lipschitz constant {l_p}, h_ν by M_h = {m_h} with {l_h:.4e}: M_h·L_p + L_h·M_p = {:.4e} must be below the L* of Theorem 3.1 for uniqueness (the paper does not give L*){psi}",
             m_h * l_p + l_h * m_p
         ))
     }
