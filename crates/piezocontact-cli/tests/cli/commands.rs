@@ -1,31 +1,9 @@
 //! The `piezocontact` command end to end: runs, outputs (read back with an independent VTU
 //! reader), and one test per error message.
 
+use super::common::{piezocontact, root, temp_dir, text};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn piezocontact(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_piezocontact"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .unwrap()
-}
-
-fn text(o: &Output) -> String {
-    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("piezocontact-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use std::process::Output;
 
 /// `piezocontact run CASE --out OUT` on the coarse 24 × 4 mesh, with more `--set`s.
 fn run_coarse(case: &str, out: &Path, sets: &[&str]) -> Output {

@@ -2,31 +2,14 @@
 //! unconverged and exit with their documented code; output directories are never clobbered;
 //! a killed run leaves only complete files.
 
+use super::common::{command, piezocontact, root, text};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::Stdio;
 use std::time::Duration;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn command() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_piezocontact"));
-    c.current_dir(root());
-    c
-}
-
-fn piezocontact(args: &[&str]) -> Output {
-    command().args(args).output().unwrap()
-}
-
-fn text(o: &Output) -> String {
-    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
-}
-
+/// A temporary directory that does not exist yet.
 fn temp_dir(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("piezocontact-failures-{name}-{}", std::process::id()));
+    let dir = super::common::temp_dir(name);
     let _ = std::fs::remove_dir_all(&dir);
     dir
 }
@@ -89,10 +72,10 @@ fn output_directories_are_never_clobbered() {
     let out = temp_dir("clobber");
     std::fs::create_dir_all(&out).unwrap();
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
-    let args = |extra: &[&str]| {
+    let case_args = |case: &str, extra: &[&str]| {
         let mut a = vec![
             "run",
-            "cases/paper-7.1.toml",
+            case,
             "--out",
             out.to_str().unwrap(),
             "--set",
@@ -103,6 +86,7 @@ fn output_directories_are_never_clobbered() {
         a.extend_from_slice(extra);
         a.into_iter().map(String::from).collect::<Vec<_>>()
     };
+    let args = |extra: &[&str]| case_args("cases/paper-7.1.toml", extra);
     let run = |a: Vec<String>| command().args(&a).output().unwrap();
     let o = run(args(&[]));
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
@@ -125,16 +109,7 @@ fn output_directories_are_never_clobbered() {
     let without_contact = out.with_extension("case.toml");
     let stripped: String = case.split("\n[contact]").next().unwrap().to_string();
     std::fs::write(&without_contact, stripped).unwrap();
-    let o = piezocontact(&[
-        "run",
-        without_contact.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
-        "mesh.nx=12",
-        "--set",
-        "mesh.ny=2",
-    ]);
+    let o = run(case_args(without_contact.to_str().unwrap(), &[]));
     assert!(o.status.success(), "{}", text(&o));
     assert!(!out.join("contact.csv").exists(), "the earlier contact.csv was not removed");
     assert!(out.join("summary.json").exists() && out.join("solution.vtu").exists());

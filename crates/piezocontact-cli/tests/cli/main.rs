@@ -1,0 +1,12 @@
+//! Integration tests of the `piezocontact` command, one binary (fast linking on 2 cores).
+
+/// The commands end to end: outputs, overrides, reproduce, and one test per error message.
+mod commands;
+/// Helpers: running the command, temporary directories.
+mod common;
+/// The fuzz targets' regression corpus, replayed.
+mod corpus;
+/// Numerical failures, output-directory rules, a killed run.
+mod failures;
+/// Random valid cases solve or fail with typed errors, never NaN in outputs.
+mod properties;
