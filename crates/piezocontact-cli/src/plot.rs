@@ -5,7 +5,6 @@ use crate::output::write_atomic;
 use crate::runner::ContactRun;
 use anyhow::{Result, anyhow};
 use piezocontact::algorithm::NodeStatus;
-use piezocontact::dofs::DofMap;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -226,8 +225,7 @@ fn draw_body<DB: DrawingBackend>(
     root.fill(&WHITE).map_err(err)?;
     let (problem, solution) = (&run.problem, &run.solution);
     let mesh = &problem.mesh;
-    let dofs = DofMap::new(problem)?;
-    let x = &solution.x;
+    let (dofs, x) = (&solution.dofs, &solution.x);
     let deformed =
         |n: usize| (mesh.node(n)[0] + x[dofs.u(n, 0)], mesh.node(n)[1] + x[dofs.u(n, 1)]);
     let phi: Vec<f64> = (0..mesh.n_nodes()).map(|n| x[dofs.phi(n)]).collect();

@@ -3,7 +3,6 @@
 
 use piezocontact::algorithm::residual::{Balance, KktResidual};
 use piezocontact::algorithm::{ContactModel, ContactSolution, NodeStatus};
-use piezocontact::dofs::DofMap;
 use piezocontact::problem::Problem;
 use serde_json::{Value, json};
 use std::fmt::Write;
@@ -29,17 +28,13 @@ pub struct Row {
 }
 
 /// The Γ3 rows of a solution.
-pub fn rows(
-    problem: &Problem,
-    model: &ContactModel,
-    solution: &ContactSolution,
-) -> anyhow::Result<Vec<Row>> {
-    let dofs = DofMap::new(problem)?;
+pub fn rows(problem: &Problem, model: &ContactModel, solution: &ContactSolution) -> Vec<Row> {
+    let dofs = &solution.dofs;
     let surface = &solution.surface;
     let dim = problem.mesh.dim();
-    Ok((0..surface.len())
+    (0..surface.len())
         .map(|i| {
-            let (u_nu, u_tau) = surface.split(&dofs, &solution.x, i);
+            let (u_nu, u_tau) = surface.split(dofs, &solution.x, i);
             let lambda_f = solution.state.lambda_f[i];
             let (u_tau, sigma_tau) = if dim == 2 {
                 let t = surface.tangent(i);
@@ -56,12 +51,12 @@ pub fn rows(
                 u_tau,
                 sigma_nu: solution.sigma_nu[i],
                 sigma_tau,
-                phi: surface.phi(&dofs, &solution.x, i),
+                phi: surface.phi(dofs, &solution.x, i),
                 s: solution.s[i],
                 status: solution.status(i, model.pv2.is_some()),
             }
         })
-        .collect())
+        .collect()
 }
 
 /// `contact.csv`: columns exactly `x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status`.

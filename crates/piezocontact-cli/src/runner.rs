@@ -45,7 +45,7 @@ impl ContactRun {
         let solution = solve_contact(&problem, &model, &settings)
             .map_err(|e| anyhow!("{}: {e}", case.path.display()))?;
         let (kkt, balance) = assess(&problem, &model, &settings, &solution)?;
-        let rows = report::rows(&problem, &model, &solution)?;
+        let rows = report::rows(&problem, &model, &solution);
         Ok(Self {
             problem,
             model,
@@ -70,21 +70,20 @@ impl ContactRun {
 
     /// ‖x − x_ref‖_X / ‖x_ref‖_X, both runs on the same mesh.
     pub fn distance_to(&self, reference: &ContactRun) -> Result<f64> {
-        let dofs = DofMap::new(&reference.problem)?;
+        let dofs = &reference.solution.dofs;
         if self.solution.x.len() != reference.solution.x.len() {
             anyhow::bail!("the reference run has another mesh: distances need the same mesh");
         }
         let d: Vec<f64> =
             self.solution.x.iter().zip(&reference.solution.x).map(|(a, b)| a - b).collect();
-        Ok((x_norm_squared(&reference.problem, &dofs, &d)?
-            / x_norm_squared(&reference.problem, &dofs, &reference.solution.x)?)
+        Ok((x_norm_squared(&reference.problem, dofs, &d)?
+            / x_norm_squared(&reference.problem, dofs, &reference.solution.x)?)
         .sqrt())
     }
 
     /// The summary.json document.
-    pub fn summary(&self, case: &Case) -> Result<Value> {
-        let dofs = DofMap::new(&self.problem)?;
-        let mut summary = common_summary(case, &self.problem, &dofs);
+    pub fn summary(&self, case: &Case) -> Value {
+        let mut summary = common_summary(case, &self.problem, &self.solution.dofs);
         merge(
             &mut summary,
             report::contact_summary(
@@ -97,7 +96,7 @@ impl ContactRun {
         );
         summary["timings_seconds"]["total"] = json!(self.seconds);
         summary["warnings"] = json!(case.hypothesis_warnings(&self.problem.material));
-        Ok(summary)
+        summary
     }
 
     /// Writes contact.csv, summary.json and solution.vtu into `out`.
@@ -105,7 +104,6 @@ impl ContactRun {
         std::fs::create_dir_all(out)
             .map_err(|e| anyhow!("cannot create {}: {e}", out.display()))?;
         let (problem, solution) = (&self.problem, &self.solution);
-        let dofs = DofMap::new(problem)?;
         let mut status = vec![0.0; problem.mesh.n_nodes()];
         let mut pressure = vec![0.0; problem.mesh.n_nodes()];
         for (row, &node) in self.rows.iter().zip(&solution.surface.nodes) {
@@ -121,7 +119,14 @@ impl ContactRun {
             Field { name: "contact_pressure", components: 1, values: &pressure },
         ];
         output::write_atomic(&out.join("contact.csv"), report::contact_csv(&self.rows).as_bytes())?;
-        output::write_results(out, &self.summary(case)?, problem, &dofs, &solution.x, &extra)
+        output::write_results(
+            out,
+            &self.summary(case),
+            problem,
+            &solution.dofs,
+            &solution.x,
+            &extra,
+        )
     }
 
     /// Prints the run's figures, each with its unit.

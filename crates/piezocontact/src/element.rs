@@ -48,18 +48,10 @@ impl<const D: usize, const N: usize> Simplex<D, N> {
     }
 }
 
-/// Determinant and inverse of a small matrix (D = 1, 2, 3), `None` when singular.
+/// Determinant and inverse of a small matrix (D = 2, 3), `None` when singular.
 fn invert<const D: usize>(a: &[[f64; D]; D]) -> Option<(f64, [[f64; D]; D])> {
     let mut inv = [[0.0; D]; D];
     let det = match D {
-        1 => {
-            let det = a[0][0];
-            if det == 0.0 {
-                return None;
-            }
-            inv[0][0] = 1.0 / det;
-            det
-        }
         2 => {
             let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
             if det == 0.0 {
@@ -88,7 +80,7 @@ fn invert<const D: usize>(a: &[[f64; D]; D]) -> Option<(f64, [[f64; D]; D])> {
             }
             det
         }
-        _ => unreachable!("P1 simplices exist for d = 1, 2, 3 only"),
+        _ => unreachable!("P1 simplices are used for d = 2, 3 only"),
     };
     Some((det, inv))
 }
@@ -122,7 +114,7 @@ pub fn facet_measure_normal<const D: usize>(x: &[[f64; D]]) -> (f64, [f64; D]) {
     (measure, n)
 }
 
-/// A quadrature rule on a simplex of dimension `dim` (0 ≤ dim ≤ 3), exact for polynomials of
+/// A quadrature rule on a simplex of dimension `dim` (1 ≤ dim ≤ 3), exact for polynomials of
 /// degree 2: points in barycentric coordinates (the first dim + 1 entries used) and weights
 /// that sum to 1 (multiply by the measure).
 pub fn quadrature(dim: usize) -> &'static [([f64; 4], f64)] {
@@ -133,7 +125,6 @@ pub fn quadrature(dim: usize) -> &'static [([f64; 4], f64)] {
     const A: f64 = 0.585_410_196_624_968_5;
     const B: f64 = 0.138_196_601_125_010_5;
     match dim {
-        0 => &[([1.0, 0.0, 0.0, 0.0], 1.0)],
         1 => &[([G1, G2, 0.0, 0.0], 0.5), ([G2, G1, 0.0, 0.0], 0.5)],
         2 => &[
             ([T1, T2, T2, 0.0], 1.0 / 3.0),
@@ -146,7 +137,7 @@ pub fn quadrature(dim: usize) -> &'static [([f64; 4], f64)] {
             ([B, B, A, B], 0.25),
             ([B, B, B, A], 0.25),
         ],
-        _ => unreachable!("quadrature is defined for simplices of dimension 0 to 3"),
+        _ => unreachable!("quadrature is defined for simplices of dimension 1 to 3"),
     }
 }
 

@@ -66,9 +66,9 @@ impl SymmetricPattern {
         self.symbolic.nrows()
     }
 
-    /// Number of stored (lower-triangle) non-zeros.
-    pub fn nnz(&self) -> usize {
-        self.symbolic.compute_nnz()
+    /// Number of values an assembly produces (positions, repetitions included).
+    pub fn entries(&self) -> usize {
+        self.entries
     }
 
     /// Places `values` (in the order of the positions given to [`SymmetricPattern::new`])

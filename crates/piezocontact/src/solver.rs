@@ -33,7 +33,9 @@ pub struct CoupledSystem {
     assembler: Assembler,
     solver: LdltSolver,
     matrix: Option<SymmetricMatrix>,
-    /// f̌ on the free DOFs plus the Dirichlet lifting of the current matrix.
+    /// f̌ on the free DOFs: assembled once, it does not depend on x_n.
+    load: Vec<f64>,
+    /// f̌ plus the Dirichlet lifting of the current matrix, on the free DOFs.
     rhs: Vec<f64>,
     timings: Timings,
 }
@@ -44,21 +46,21 @@ impl CoupledSystem {
     pub fn new(problem: &Problem, block_nodes: &[usize]) -> Result<Self> {
         let t = Instant::now();
         let assembler = Assembler::new(problem, block_nodes)?;
+        let load = assembler.restrict(&assembler.load_vector(problem));
         let assembly = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let solver = LdltSolver::analyze(assembler.pattern(), assembler.dofs().signs())?;
         let timings =
             Timings { assembly, symbolic: t.elapsed().as_secs_f64(), ..Timings::default() };
-        Ok(Self { assembler, solver, matrix: None, rhs: Vec::new(), timings })
+        Ok(Self { assembler, solver, matrix: None, load, rhs: Vec::new(), timings })
     }
 
     /// Assembles B̌ with the secant moduli `g` (one per element) plus the nodal `blocks`, and
-    /// f̌, and factorises.
+    /// factorises.
     pub fn factorize(&mut self, problem: &Problem, g: &[f64], blocks: &[NodalBlock]) -> Result<()> {
         let t = Instant::now();
         let (matrix, lifting) = self.assembler.matrix(problem, g, blocks)?;
-        let load = self.assembler.restrict(&self.assembler.load_vector(problem));
-        self.rhs = load.iter().zip(&lifting).map(|(f, l)| f + l).collect();
+        self.rhs = self.load.iter().zip(&lifting).map(|(f, l)| f + l).collect();
         self.timings.assembly += t.elapsed().as_secs_f64();
         let t = Instant::now();
         self.solver.factorize(&matrix)?;

@@ -1,27 +1,8 @@
 //! The `piezocontact` command end to end: runs, outputs (read back with an independent VTU
 //! reader), and one test per error message.
 
-use super::common::{piezocontact, root, temp_dir, text};
+use super::common::{piezocontact, root, run_coarse, temp_dir, text};
 use std::path::{Path, PathBuf};
-use std::process::Output;
-
-/// `piezocontact run CASE --out OUT` on the coarse 24 × 4 mesh, with more `--set`s.
-fn run_coarse(case: &str, out: &Path, sets: &[&str]) -> Output {
-    let mut args = vec![
-        "run",
-        case,
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
-        "mesh.nx=24",
-        "--set",
-        "mesh.ny=4",
-    ];
-    for set in sets {
-        args.extend(["--set", set]);
-    }
-    piezocontact(&args)
-}
 
 /// Writes a variant of the paper case with `from` replaced by `to`.
 fn variant(dir: &Path, from: &str, to: &str) -> PathBuf {

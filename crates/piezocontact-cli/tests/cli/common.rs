@@ -1,4 +1,4 @@
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// The repository's root (the command runs there, so case paths are relative to it).
@@ -29,4 +29,22 @@ pub fn temp_dir(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
+}
+
+/// `piezocontact run CASE --out OUT` on the coarse 24 × 4 mesh, with more `--set`s.
+pub fn run_coarse(case: &str, out: &Path, sets: &[&str]) -> Output {
+    let mut args = vec![
+        "run",
+        case,
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "mesh.nx=24",
+        "--set",
+        "mesh.ny=4",
+    ];
+    for set in sets {
+        args.extend(["--set", set]);
+    }
+    piezocontact(&args)
 }

@@ -2,7 +2,7 @@
 //! unconverged and exit with their documented code; output directories are never clobbered;
 //! a killed run leaves only complete files.
 
-use super::common::{command, piezocontact, root, text};
+use super::common::{command, root, run_coarse, text};
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 use std::time::Duration;
@@ -32,20 +32,11 @@ fn assert_no_null_numbers(value: &serde_json::Value, path: &str) {
 #[test]
 fn a_diverging_fixed_point_exits_4_and_writes_its_last_finite_iterate() {
     let out = temp_dir("diverge");
-    let o = piezocontact(&[
-        "run",
+    let o = run_coarse(
         "cases/paper-7.2.toml",
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
-        "mesh.nx=24",
-        "--set",
-        "mesh.ny=4",
-        "--set",
-        "conductivity.ke=1e4",
-        "--set",
-        "contact.penetration=0.05",
-    ]);
+        &out,
+        &["conductivity.ke=1e4", "contact.penetration=0.05"],
+    );
     let t = text(&o);
     assert_eq!(o.status.code(), Some(4), "{t}");
     assert!(t.contains("the fixed-point loop (Algorithm 1) diverged at iteration"), "{t}");

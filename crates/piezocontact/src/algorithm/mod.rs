@@ -22,7 +22,7 @@
 pub mod residual;
 pub mod uzawa;
 
-use crate::assembly::{NodalBlock, mass_norm_squared, secant_moduli};
+use crate::assembly::{MassNorm, NodalBlock, secant_moduli};
 use crate::contact::ContactSurface;
 use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
 use crate::dofs::{CONSTRAINED, DofMap};
@@ -68,6 +68,8 @@ impl ContactModel {
 pub struct ContactSolution {
     /// x = (u, ϕ), global vector.
     pub x: Vec<f64>,
+    /// The DOF numbering of `x`.
+    pub dofs: DofMap,
     /// Γ3 and its nodal geometry.
     pub surface: ContactSurface,
     /// The multipliers of the last Uzawa loop.
@@ -103,6 +105,7 @@ pub fn solve_contact(
     let dofs = DofMap::new(problem)?;
     let surface = ContactSurface::new(problem, &dofs)?;
     let mut system = CoupledSystem::new(problem, &surface.nodes)?;
+    let mass = MassNorm::new(problem)?;
     let blocks = step1_blocks(&surface, settings.r, model.pv2.is_some());
     let mollifier = Mollifier::new(problem, &surface, model);
     let mu = model
@@ -112,6 +115,7 @@ pub fn solve_contact(
     let n3 = surface.len();
     let mut solution = ContactSolution {
         x: vec![0.0; dofs.n_total()],
+        dofs: dofs.clone(),
         surface: surface.clone(),
         state: ContactState::cold(n3),
         s_used: vec![0.0; n3],
@@ -146,6 +150,8 @@ pub fn solve_contact(
         let s_n = solution.s.clone();
         let uzawa = Uzawa {
             problem,
+            dofs: &dofs,
+            mass: &mass,
             surface: &surface,
             compliance: &model.compliance,
             friction_bound: model.pv2.as_ref().map(|_| s_n.as_slice()),
@@ -208,7 +214,7 @@ pub fn solve_contact(
             break;
         }
         let g_next = secant_moduli(problem, &dofs, &solution.x)?;
-        let x_criterion = relative_change(problem, &dofs, &solution.x, &x_previous);
+        let x_criterion = relative_change(problem, &dofs, &mass, &solution.x, &x_previous);
         let s_norm: f64 = (0..n3).map(|i| surface.weight[i] * solution.s[i].powi(2)).sum();
         let criterion = if model.pv2.is_some() && s_norm > 0.0 {
             let ds: f64 = (0..n3)
@@ -403,10 +409,10 @@ pub fn normal_stress(
 }
 
 /// ‖a − b‖ / ‖a‖ in the L2(Ω) norm of (6.15).
-fn relative_change(problem: &Problem, dofs: &DofMap, a: &[f64], b: &[f64]) -> f64 {
+fn relative_change(problem: &Problem, dofs: &DofMap, mass: &MassNorm, a: &[f64], b: &[f64]) -> f64 {
     let difference: Vec<f64> = a.iter().zip(b).map(|(p, q)| p - q).collect();
-    let norm = mass_norm_squared(problem, dofs, a);
-    if norm > 0.0 { (mass_norm_squared(problem, dofs, &difference) / norm).sqrt() } else { 0.0 }
+    let norm = mass.squared(problem, dofs, a);
+    if norm > 0.0 { (mass.squared(problem, dofs, &difference) / norm).sqrt() } else { 0.0 }
 }
 
 /// The regularisation R as a sparse averaging operator on the Γ3 nodes.

@@ -17,7 +17,7 @@
 use super::{ContactModel, ContactSolution, Settings};
 use crate::assembly::{Assembler, internal_force, secant_moduli};
 use crate::contact::law::project_ball;
-use crate::dofs::{CONSTRAINED, DofMap};
+use crate::dofs::CONSTRAINED;
 use crate::error::Result;
 use crate::problem::Problem;
 
@@ -58,12 +58,12 @@ pub fn assess(
     settings: &Settings,
     solution: &ContactSolution,
 ) -> Result<(KktResidual, Balance)> {
-    let dofs = DofMap::new(problem)?;
+    let dofs = &solution.dofs;
     let (surface, state, x) = (&solution.surface, &solution.state, &solution.x);
     let dim = problem.mesh.dim();
-    let g = secant_moduli(problem, &dofs, x)?;
-    let (f_int, scale) = internal_force(problem, &dofs, x, &g)?;
-    let f_ext = Assembler::load_vector_of(problem, &dofs);
+    let g = secant_moduli(problem, dofs, x)?;
+    let (f_int, scale) = internal_force(problem, dofs, x, &g)?;
+    let f_ext = Assembler::load_vector_of(problem, dofs);
     let mut contact_force = vec![0.0; dofs.n_total()];
     let rho = model.compliance.stop();
     let mut kkt = KktResidual::default();
@@ -72,8 +72,8 @@ pub fn assess(
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
     for i in 0..surface.len() {
-        let (u_nu, u_tau) = surface.split(&dofs, x, i);
-        let phi = surface.phi(&dofs, x, i);
+        let (u_nu, u_tau) = surface.split(dofs, x, i);
+        let phi = surface.phi(dofs, x, i);
         let (w, node) = (surface.weight[i], surface.nodes[i]);
         for c in 0..dim {
             contact_force[dofs.u(node, c)] +=

@@ -12,7 +12,7 @@
 //! O(|Γ3|) work. Every call starts cold (p = λ = 0, x⁰ = 0), as SPEC §7 requires.
 
 use super::Settings;
-use crate::assembly::mass_norm_squared;
+use crate::assembly::MassNorm;
 use crate::contact::ContactSurface;
 use crate::contact::law::{NormalCompliance, project_ball};
 use crate::dofs::{CONSTRAINED, DofMap};
@@ -80,6 +80,10 @@ pub struct UzawaResult {
 pub struct Uzawa<'a> {
     /// The problem.
     pub problem: &'a Problem,
+    /// Its DOF map (the system's).
+    pub dofs: &'a DofMap,
+    /// The L2(Ω) norm of (6.12).
+    pub mass: &'a MassNorm,
     /// Γ3.
     pub surface: &'a ContactSurface,
     /// The normal law (for ρ = g_a + g_p).
@@ -97,13 +101,13 @@ impl Uzawa<'_> {
     pub fn run(&self, system: &mut CoupledSystem) -> Result<UzawaResult> {
         let (surface, r) = (self.surface, self.settings.r);
         let rho = self.compliance.stop();
-        let dofs = system.dofs().clone();
+        let dofs = self.dofs;
         let mut state = ContactState::cold(surface.len());
         let mut x = vec![0.0; dofs.n_total()];
         let mut history: Vec<f64> = Vec::new();
         let mut smallest = f64::INFINITY;
         for k in 0..self.settings.max_inner {
-            let x_new = match system.solve(Some(&self.right_hand_side(&dofs, &state))) {
+            let x_new = match system.solve(Some(&self.right_hand_side(dofs, &state))) {
                 Ok(x_new) => x_new,
                 Err(e) => {
                     return Ok(UzawaResult {
@@ -118,7 +122,7 @@ impl Uzawa<'_> {
             let mut next = state.clone();
             let (mut num, mut den) = (0.0, 0.0);
             for i in 0..surface.len() {
-                let (u_nu, u_tau) = surface.split(&dofs, &x_new, i);
+                let (u_nu, u_tau) = surface.split(dofs, &x_new, i);
                 let w = surface.weight[i];
                 next.p_c[i] = (u_nu + state.lambda_c[i] / r).min(rho);
                 next.lambda_c[i] = (state.lambda_c[i] + r * (u_nu - rho)).max(0.0);
@@ -133,8 +137,8 @@ impl Uzawa<'_> {
                 den += w * (next.p_c[i].powi(2) + squared_distance(&next.p_f[i], &[0.0; 3]));
             }
             let difference: Vec<f64> = x_new.iter().zip(&x).map(|(a, b)| a - b).collect();
-            num += mass_norm_squared(self.problem, &dofs, &difference);
-            den += mass_norm_squared(self.problem, &dofs, &x_new);
+            num += self.mass.squared(self.problem, dofs, &difference);
+            den += self.mass.squared(self.problem, dofs, &x_new);
             let criterion = if den > 0.0 { (num / den).sqrt() } else { 0.0 };
             history.push(criterion);
             if !criterion.is_finite() {

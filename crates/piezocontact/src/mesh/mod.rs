@@ -300,7 +300,7 @@ impl Mesh {
 
     /// All boundary facets (faces of exactly one cell), each with its cell and its nodes in
     /// the order whose normal points outward.
-    pub fn boundary_facets(&self) -> HashMap<FacetKey, (usize, Vec<usize>)> {
+    fn boundary_facets(&self) -> HashMap<FacetKey, (usize, Vec<usize>)> {
         let n = self.dim + 1;
         let mut count: HashMap<FacetKey, (usize, usize, usize)> = HashMap::new();
         for c in 0..self.n_cells() {

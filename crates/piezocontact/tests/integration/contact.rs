@@ -5,7 +5,7 @@
 use super::common::{PAPER_UNITS, Units, paper_model, paper_problem, paper_settings};
 use piezocontact::algorithm::residual::assess;
 use piezocontact::algorithm::{ContactModel, ContactSolution, NodeStatus, Settings, solve_contact};
-use piezocontact::assembly::mass_norm_squared;
+use piezocontact::assembly::MassNorm;
 use piezocontact::dofs::DofMap;
 use piezocontact::material::ElasticLaw;
 use piezocontact::problem::Problem;
@@ -136,7 +136,8 @@ fn kkt_conditions_hold_on_a_curved_contact_face() {
 fn distance(problem: &Problem, a: &[f64], b: &[f64]) -> f64 {
     let dofs = DofMap::new(problem).unwrap();
     let d: Vec<f64> = a.iter().zip(b).map(|(p, q)| p - q).collect();
-    (mass_norm_squared(problem, &dofs, &d) / mass_norm_squared(problem, &dofs, b)).sqrt()
+    let mass = MassNorm::new(problem).unwrap();
+    (mass.squared(problem, &dofs, &d) / mass.squared(problem, &dofs, b)).sqrt()
 }
 
 /// Theorem 4.1: ‖x(µ, k_e) − x_PV1‖ ≤ c (µ + k_e). With µ = k_e = 0, PV2 is PV1. The
