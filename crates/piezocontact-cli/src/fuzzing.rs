@@ -1,7 +1,7 @@
 //! Entry points shared by the fuzz targets (`fuzz/`) and the regression tests that replay
 //! their corpus: each takes untrusted input and must return, never panic.
 
-use crate::case::Case;
+use piezocontact::case::Case;
 use std::path::Path;
 
 /// Meshes larger than this many cells are parsed and validated but not built: the fuzzer's

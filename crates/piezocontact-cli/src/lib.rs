@@ -1,13 +1,10 @@
 //! The `piezocontact` command's parts, as a library so that tests and fuzz targets reach them:
-//! case files, runs, sweeps, the reproduction of the paper, figures and output files. All
-//! numerics live in the `piezocontact` crate.
+//! benchmarks, sweeps, the reproduction of the paper, figures and the terminal report of a run.
+//! Case files, runs, post-processing and output files live in the `piezocontact` library.
 
 pub mod bench;
-pub mod case;
 pub mod fuzzing;
-pub mod output;
 pub mod plot;
-pub mod report;
+pub mod print;
 pub mod reproduce;
-pub mod runner;
 pub mod sweep;

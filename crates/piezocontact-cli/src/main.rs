@@ -3,13 +3,13 @@
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use piezocontact::dofs::DofMap;
+use piezocontact::case::Case;
 use piezocontact::mesh::gmsh;
+use piezocontact::output::files as output;
 use piezocontact::problem::Problem;
+use piezocontact::run::{self as runner, ContactRun};
 use piezocontact::solver::solve_without_contact;
-use piezocontact_cli::case::Case;
-use piezocontact_cli::runner::{self, ContactRun};
-use piezocontact_cli::{bench, output, reproduce, sweep};
+use piezocontact_cli::{bench, print, reproduce, sweep};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -97,11 +97,15 @@ enum Command {
         file: PathBuf,
     },
     /// Time assembly, symbolic analysis, numeric factorisation and solve on the paper's
-    /// rectangle at several mesh sizes.
+    /// rectangle at several mesh sizes, or on a Gmsh mesh, beside faer's bare LDLᵀ.
     Bench {
         /// Mesh sizes NXxNY, comma separated.
         #[arg(long, default_value = "96x16,384x64,1536x256", value_delimiter = ',')]
         sizes: Vec<String>,
+        /// A Gmsh MSH 4.1 mesh (2D or 3D) instead of the rectangle: every boundary part is
+        /// clamped and grounded.
+        #[arg(long, conflicts_with = "sizes")]
+        mesh: Option<PathBuf>,
         /// Also time faer's sparse LU on the same matrices, for comparison.
         #[arg(long)]
         lu: bool,
@@ -164,7 +168,13 @@ fn run(command: Command) -> Result<Outcome> {
         }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
-        Command::Bench { sizes, lu } => bench::run(&sizes, lu).map(|_| Outcome::Done),
+        Command::Bench { sizes, mesh, lu } => {
+            let target = match &mesh {
+                Some(path) => bench::Target::Mesh(path),
+                None => bench::Target::Sizes(&sizes),
+            };
+            bench::run(&target, lu).map(|_| Outcome::Done)
+        }
     }
 }
 
@@ -196,7 +206,7 @@ fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<Outcome> {
 fn run_contact(case: &Case, out: &Path) -> Result<Outcome> {
     let run = ContactRun::solve(case)?;
     run.write(case, out)?;
-    run.print(case, out);
+    print::contact_run(&run, case, out);
     if let Some(failure) = &run.solution.failure {
         eprintln!(
             "error: {}: {failure}; the partial result is in {} (marked \"converged\": false)",
@@ -217,9 +227,8 @@ fn run_without_contact(
     out: &Path,
     start: Instant,
 ) -> Result<Outcome> {
-    let solution = solve_without_contact(problem)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", case.path.display()))?;
-    let dofs = DofMap::new(problem)?;
+    let solution = solve_without_contact(problem).map_err(|e| case.context(e))?;
+    let dofs = &solution.dofs;
     let units = &case.file.units;
     let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
     let max_u = (0..n)
@@ -230,7 +239,7 @@ fn run_without_contact(
         phi.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
     let t = solution.timings;
     let total = start.elapsed().as_secs_f64();
-    let mut summary = runner::common_summary(case, problem, &dofs);
+    let mut summary = runner::common_summary(case, problem, dofs);
     runner::merge(
         &mut summary,
         json!({
@@ -238,12 +247,12 @@ fn run_without_contact(
             "converged": true,
             "norms": { "max_abs_u": max_u, "min_phi": phi_min, "max_phi": phi_max, "relative_residual": solution.relative_residual },
             "timings_seconds": {
-                "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
+                "pattern": t.pattern, "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
                 "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count, "total": total,
             },
         }),
     );
-    output::write_results(out, &summary, problem, &dofs, &solution.x, &[])?;
+    output::write_results(out, &summary, problem, dofs, &solution.x, &[])?;
     println!(
         "{}: {} nodes, {} elements, {} free DOFs (no contact)",
         case.path.display(),
@@ -255,8 +264,8 @@ fn run_without_contact(
     println!("  phi range          = [{phi_min:.6e}, {phi_max:.6e}] {}", units.potential);
     println!("  relative residual  = {:.3e}", solution.relative_residual);
     println!(
-        "  time: assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, total {total:.3} s",
-        t.assembly, t.symbolic, t.numeric, t.solve
+        "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, total {total:.3} s",
+        t.pattern, t.assembly, t.symbolic, t.numeric, t.solve
     );
     println!("  wrote summary.json and solution.vtu in {}", out.display());
     Ok(Outcome::Done)

@@ -1,10 +1,10 @@
 //! Figures drawn by the program with plotters, as PNG and SVG. Text uses DejaVu Sans
 //! embedded in the binary (the `dejavu` crate), so labels render on machines without fonts.
 
-use crate::output::write_atomic;
-use crate::runner::ContactRun;
 use anyhow::{Result, anyhow};
 use piezocontact::algorithm::NodeStatus;
+use piezocontact::output::files::write_atomic;
+use piezocontact::run::ContactRun;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -73,13 +73,13 @@ macro_rules! both_backends {
         write_atomic(&stem.with_extension("svg"), svg.as_bytes())?;
         // plotters encodes the PNG into a file: a temporary one, renamed when complete.
         let png = stem.with_extension("png");
-        let tmp = crate::output::temporary(&png);
+        let tmp = piezocontact::output::files::temporary(&png);
         {
             let root = BitMapBackend::new(&tmp, size).into_drawing_area();
             $draw(&root)?;
             root.present().map_err(err)?;
         }
-        crate::output::commit(&tmp, &png)
+        Ok(piezocontact::output::files::commit(&tmp, &png)?)
     }};
 }
 

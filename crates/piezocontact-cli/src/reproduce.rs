@@ -2,14 +2,14 @@
 //! 7.1 and 7.2, Table 2, Figures 1–4 — with a Theorem 4.1 convergence figure, a mesh study
 //! and a stopping-rule study, and writes REPORT.md around them.
 
-use crate::case::Case;
-use crate::output::write_atomic;
 use crate::plot::{self, BodyLabels, LinePlot, PALETTE, Series};
-use crate::report::Row;
-use crate::runner::ContactRun;
 use crate::sweep::{Job, run_jobs, threads};
 use anyhow::Result;
 use piezocontact::algorithm::NodeStatus;
+use piezocontact::case::Case;
+use piezocontact::output::files::write_atomic;
+use piezocontact::report::Row;
+use piezocontact::run::ContactRun;
 use plotters::prelude::SeriesLabelPosition;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -131,7 +131,7 @@ pub fn reproduce(request: &Request) -> Result<bool> {
 struct Report<'a> {
     request: &'a Request,
     get: &'a dyn Fn(&str) -> &'a ContactRun,
-    units: &'a crate::case::Units,
+    units: &'a piezocontact::case::Units,
 }
 
 impl Report<'_> {
@@ -154,7 +154,7 @@ impl Report<'_> {
         self.limit(&mut md)?;
         self.mesh_study(&mut md)?;
         self.stopping_study(&mut md)?;
-        write_atomic(&self.path("REPORT.md"), md.as_bytes())
+        Ok(write_atomic(&self.path("REPORT.md"), md.as_bytes())?)
     }
 
     fn header(&self, md: &mut String) {
@@ -265,7 +265,7 @@ impl Report<'_> {
             };
             let _ = writeln!(
                 md,
-                "Algorithm 3 {verdict}. The contact zone covers {c:.2} of the 8 {l} of Γ3 and the normal stress peaks at {sn:.2} {s_}, the ≈ 6 of the paper's Figure 1(a); σ_τ vanishes (frictionless). With the paper's gap and no penetration allowed, p_ν and ψ vanish at the solution (SPEC §9): the contact is Signorini's with gap ρ, and the rigid stop carries the whole contact pressure.\n",
+                "Algorithm 3 {verdict}. The contact zone covers {c:.2} of the 8 {l} of Γ3 and the normal stress peaks at {sn:.2} {s_}, the ≈ 6 of the paper's Figure 1(a); σ_τ vanishes (frictionless). With the paper's gap and no penetration allowed, p_ν and ψ vanish at the solution (docs/model.md §9): the contact is Signorini's with gap ρ, and the rigid stop carries the whole contact pressure.\n",
                 l = u.length,
                 s_ = u.stress
             );
@@ -328,7 +328,7 @@ impl Report<'_> {
             TABLE2.iter().zip(&ours).filter(|((_, p), o)| p.abs_diff(**o) <= 1).count();
         let _ = writeln!(
             md,
-            "\nOur counts {} as µ = k_e decreases and reach the paper's 2 at the small values. They equal the paper's in {equal} of 8 entries and are within one step in {within_one} of 8. The last column shows the criterion of each outer step (the first step compares with s_0 = 0, hence 1): it falls by a factor of 3 to 10 per step, so where a run's criterion lands near ε_fp = 1e−4 a small change in the data moves the stop by one step — this is where our counts differ from the paper's. The paper's count depends on details it does not give: c_ν, α_ν, n_ν, δ (which act through the small penetration of the Uzawa iterates, SPEC §9), its mesh, and how its Uzawa loop starts. The last column is the distance to the PV1 solution of Example 7.1; at µ = k_e ≤ 1e−5 it is the size of the stopping error of ε = 1e−4, not of µ.\n",
+            "\nOur counts {} as µ = k_e decreases and reach the paper's 2 at the small values. They equal the paper's in {equal} of 8 entries and are within one step in {within_one} of 8. The last column shows the criterion of each outer step (the first step compares with s_0 = 0, hence 1): it falls by a factor of 3 to 10 per step, so where a run's criterion lands near ε_fp = 1e−4 a small change in the data moves the stop by one step — this is where our counts differ from the paper's. The paper's count depends on details it does not give: c_ν, α_ν, n_ν, δ (which act through the small penetration of the Uzawa iterates, docs/model.md §9), its mesh, and how its Uzawa loop starts. The last column is the distance to the PV1 solution of Example 7.1; at µ = k_e ≤ 1e−5 it is the size of the stopping error of ε = 1e−4, not of µ.\n",
             if monotone { "decrease monotonically" } else { "do not decrease monotonically" }
         );
         Ok(())
@@ -494,7 +494,7 @@ impl Report<'_> {
         );
         let _ = writeln!(
             md,
-            "Theorem 4.1 bounds the distance by c(µ + k_e): a slope of at least 1. In the paper's example (g_p = 0) **µ drives the limit**: the conduction term ψ(u_ν − ρ) vanishes wherever u_ν ≤ ρ, which holds at every solution, so k_e alone does not move the solution (SPEC §9), and the µ = k_e series coincides with the µ-only one. With an active compliance/conduction layer (g_p = {LAYER} {l}, so that p_ν and ψ act on the penetrating nodes), k_e alone moves ϕ on the contact zone and the distance falls with k_e as well; this is the case in which the theorem's k_e term is visible. Where the fitted slope falls below 1 at the largest values, the distance saturates (most of Γ3 sticks); the rate in the limit is the one at the small values.\n",
+            "Theorem 4.1 bounds the distance by c(µ + k_e): a slope of at least 1. In the paper's example (g_p = 0) **µ drives the limit**: the conduction term ψ(u_ν − ρ) vanishes wherever u_ν ≤ ρ, which holds at every solution, so k_e alone does not move the solution (docs/model.md §9), and the µ = k_e series coincides with the µ-only one. With an active compliance/conduction layer (g_p = {LAYER} {l}, so that p_ν and ψ act on the penetrating nodes), k_e alone moves ϕ on the contact zone and the distance falls with k_e as well; this is the case in which the theorem's k_e term is visible. Where the fitted slope falls below 1 at the largest values, the distance saturates (most of Γ3 sticks); the rate in the limit is the one at the small values.\n",
             l = self.units.length
         );
         Ok(())

@@ -1,11 +1,11 @@
 //! `piezocontact sweep`: one run per value of a swept key, in parallel, with a progress bar
 //! on a terminal and plain lines otherwise; DIR/sweep.csv holds one row per run.
 
-use crate::case::Case;
-use crate::output::write_atomic;
-use crate::runner::ContactRun;
 use anyhow::{Context, Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressStyle};
+use piezocontact::case::Case;
+use piezocontact::output::files::write_atomic;
+use piezocontact::run::ContactRun;
 use rayon::prelude::*;
 use std::fmt::Write;
 use std::io::IsTerminal;

@@ -12,7 +12,7 @@ use crate::problem::Problem;
 pub const CONSTRAINED: usize = usize::MAX;
 
 /// Free numbering and prescribed values of all DOFs.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct DofMap {
     dim: usize,
     n_nodes: usize,

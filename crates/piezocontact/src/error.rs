@@ -131,6 +131,19 @@ pub enum Error {
     #[error("{what} failed at iteration {iteration}: {cause}; {hint}")]
     NumericalFailure { what: String, iteration: usize, cause: String, hint: String },
 
+    /// A case file, an override or an output request that cannot be used: the message names
+    /// the file, the line and the key where known, and the fix.
+    #[error("{0}")]
+    Input(String),
+
+    /// An error placed in a case file: `location` is "file" or "file:line".
+    #[error("{location}: {source}")]
+    Located { location: String, source: Box<Error> },
+
+    /// A file that cannot be read or written.
+    #[error("{what}: {cause}")]
+    Io { what: String, cause: String },
+
     /// A vector or field of the wrong length.
     #[error("{what}: expected length {expected}, got {got}")]
     Length { what: String, expected: usize, got: usize },

@@ -35,20 +35,37 @@
 //! - [`material`]: Hencky law g, piezoelectric and permittivity tensors.
 //! - [`problem`]: a checked problem: mesh, material, boundary roles, loads.
 //! - [`dofs`]: DOF numbering [u; ϕ] and Dirichlet elimination.
-//! - [`assembly`]: B̌ and f̌, pattern once, values refilled.
-//! - [`linalg`]: sparse LDLᵀ (the only module naming faer).
+//! - [`assembly`]: element kernels, B̌ (pattern once, parallel refills), f̌, fields and norms.
+//! - [`linalg`]: the linear-solver seam and sparse LDLᵀ (the only module naming faer).
 //! - [`solver`]: the coupled solve without contact; element fields σ, D.
 //! - [`contact`]: Γ3 kinematics (w_i, ν_i, u_ν, u_τ) and the contact laws.
-//! - [`algorithm`]: Algorithms 1–4 (fixed point around Uzawa), residuals and balances.
-//! - [`output`]: ParaView `.vtu`.
+//! - [`algorithm`]: the outer fixed point (Algorithms 1, 3) around an inner method (Uzawa,
+//!   Algorithms 2, 4), residuals and balances.
+//! - [`case`]: case files — schema, defaults, overrides, validation, hypotheses.
+//! - [`report`], [`run`]: a run of a case, its Γ3 table, summary and files.
+//! - [`output`]: ParaView `.vtu`, atomic files.
 //!
 //! ## Reference
 //!
-//! [P] The paper in `shared/paper/`, restated in `SPEC.md`: equation numbers (2.x), (6.x)
-//! and the Algorithms 1–4 are the paper's.
+//! The model and the method are stated in `docs/model.md` of the repository; "model §n" in doc
+//! comments is its section n. [P] is the paper whose model and method piezocontact implements:
+//! equation numbers (2.x), (6.x), the Algorithms 1–4 and the Examples 7.1–7.2 are its.
+
+/// The one dimension dispatch: calls `f::<D, N>(args)` with (D, N) = (2, 3) on a triangle
+/// mesh and (3, 4) on a tetrahedron mesh, so that element code is written once, generic over
+/// the dimension. [`mesh::Mesh::new`] admits d = 2 and d = 3 only.
+macro_rules! with_simplex {
+    ($dim:expr, $($f:ident)::+ ($($arg:expr),* $(,)?)) => {
+        match $dim {
+            2 => $($f)::+::<2, 3>($($arg),*),
+            _ => $($f)::+::<3, 4>($($arg),*),
+        }
+    };
+}
 
 pub mod algorithm;
 pub mod assembly;
+pub mod case;
 pub mod contact;
 pub mod dofs;
 pub mod element;
@@ -58,6 +75,8 @@ pub mod material;
 pub mod mesh;
 pub mod output;
 pub mod problem;
+pub mod report;
+pub mod run;
 pub mod solver;
 
 pub use error::{Error, Result};

@@ -10,7 +10,7 @@
 //! permittivity tensors of a transversely isotropic ceramic (PZT) are built from engineering
 //! constants: e31 (= e32), e33, e15 (= e24), β11 (= β22), β33. In 2D the plane holds material
 //! axes 2 (x) and 3 (y), so e_{y,xx} = e32, e_{y,yy} = e33, e_{x,xy} = e24, β = diag(β22, β33)
-//! (SPEC §2).
+//! (model §2).
 
 use crate::error::{Error, Result};
 
@@ -195,7 +195,7 @@ impl Material {
     }
 }
 
-/// ‖ε^D‖² with the deviator of the body's own dimension (SPEC §1).
+/// ‖ε^D‖² with the deviator of the body's own dimension (model §1).
 pub fn deviator_norm_squared<const D: usize>(eps: &[[f64; D]; D]) -> f64 {
     let tr: f64 = (0..D).map(|i| eps[i][i]).sum();
     let mut s = 0.0;
@@ -255,7 +255,7 @@ mod tests {
     #[test]
     fn plane_mapping_of_the_paper() {
         let m = pzt(2);
-        // (Eε)_x = 2 e24 ε_xy, (Eε)_y = e32 ε_xx + e33 ε_yy (SPEC §2), with ∇ϕ = 0.
+        // (Eε)_x = 2 e24 ε_xy, (Eε)_y = e32 ε_xx + e33 ε_yy (model §2), with ∇ϕ = 0.
         let eps = [[0.1, 0.2], [0.2, 0.3]];
         let d = m.displacement_field(&eps, &[0.0, 0.0]);
         assert!((d[0] - 2.0 * 12.3 * 0.2).abs() < 1e-12);

@@ -1,19 +1,21 @@
-//! The coupled electro-elastic system without contact: assemble B̌(x_n) and f̌ (SPEC §5),
+//! The coupled electro-elastic system without contact: assemble B̌(x_n) and f̌ (model §5),
 //! factor once, solve. [`CoupledSystem`] keeps the pattern, the symbolic analysis and the
-//! current factorisation so that the contact algorithms reuse them (SPEC §7).
+//! current factorisation so that the contact algorithms reuse them (model §7). The
+//! factorisation sits behind the [`LinearSolver`] seam; LDLᵀ with AMD is the default.
 
-use crate::assembly::{Assembler, NodalBlock, secant_moduli};
+use crate::assembly::{Assembler, NodalBlock, load_vector, secant_moduli};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
-use crate::linalg::{LdltSolver, SymmetricMatrix};
-use crate::material::Material;
+use crate::linalg::{LdltSolver, LinearSolver, Ordering, SymmetricMatrix};
 use crate::problem::Problem;
 use std::time::Instant;
 
 /// Wall-clock seconds spent in each phase.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Timings {
-    /// Pattern construction, element matrices, loads [s].
+    /// The sparsity pattern and its gather plan, once per run [s].
+    pub pattern: f64,
+    /// Element matrices summed into the pattern (every refill), and f̌ [s].
     pub assembly: f64,
     /// Symbolic analysis (ordering, elimination tree) [s].
     pub symbolic: f64,
@@ -27,32 +29,69 @@ pub struct Timings {
     pub solve_count: usize,
 }
 
+impl Timings {
+    /// Assembly time with the solver's counts and times.
+    fn with(pattern: f64, assembly: f64, solver: &dyn LinearSolver) -> Self {
+        let s = solver.stats();
+        Self {
+            pattern,
+            assembly,
+            symbolic: s.symbolic_seconds,
+            numeric: s.numeric_seconds,
+            numeric_count: s.numeric_count,
+            solve: s.solve_seconds,
+            solve_count: s.solve_count,
+        }
+    }
+}
+
 /// Assembler, factorisation and load vector of one problem.
 #[derive(Debug)]
 pub struct CoupledSystem {
     assembler: Assembler,
-    solver: LdltSolver,
+    solver: Box<dyn LinearSolver>,
     matrix: Option<SymmetricMatrix>,
     /// f̌ on the free DOFs: assembled once, it does not depend on x_n.
     load: Vec<f64>,
     /// f̌ plus the Dirichlet lifting of the current matrix, on the free DOFs.
     rhs: Vec<f64>,
-    timings: Timings,
+    /// Time of the pattern [s].
+    pattern_seconds: f64,
+    /// Assembly time so far [s].
+    assembly_seconds: f64,
 }
 
 impl CoupledSystem {
-    /// Numbers DOFs, builds the pattern (with room for nodal blocks on `block_nodes`) and
-    /// runs the symbolic analysis.
-    pub fn new(problem: &Problem, block_nodes: &[usize]) -> Result<Self> {
+    /// Builds the pattern on the DOFs of `dofs` (with room for nodal blocks on
+    /// `block_nodes`) and runs the symbolic analysis of sparse LDLᵀ with AMD.
+    pub fn new(problem: &Problem, dofs: DofMap, block_nodes: &[usize]) -> Result<Self> {
+        Self::with_solver(problem, dofs, block_nodes, Box::new(LdltSolver::new()), &Ordering::Amd)
+    }
+
+    /// As [`CoupledSystem::new`], with the caller's linear solver and ordering.
+    pub fn with_solver(
+        problem: &Problem,
+        dofs: DofMap,
+        block_nodes: &[usize],
+        mut solver: Box<dyn LinearSolver>,
+        ordering: &Ordering,
+    ) -> Result<Self> {
         let t = Instant::now();
-        let assembler = Assembler::new(problem, block_nodes)?;
-        let load = assembler.restrict(&assembler.load_vector(problem));
-        let assembly = t.elapsed().as_secs_f64();
+        let assembler = Assembler::new(problem, dofs, block_nodes)?;
+        let pattern_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let solver = LdltSolver::analyze(assembler.pattern(), assembler.dofs().signs())?;
-        let timings =
-            Timings { assembly, symbolic: t.elapsed().as_secs_f64(), ..Timings::default() };
-        Ok(Self { assembler, solver, matrix: None, load, rhs: Vec::new(), timings })
+        let load = assembler.restrict(&load_vector(problem, assembler.dofs()));
+        let assembly_seconds = t.elapsed().as_secs_f64();
+        solver.analyze(assembler.pattern(), &assembler.dofs().signs(), ordering)?;
+        Ok(Self {
+            assembler,
+            solver,
+            matrix: None,
+            load,
+            rhs: Vec::new(),
+            pattern_seconds,
+            assembly_seconds,
+        })
     }
 
     /// Assembles B̌ with the secant moduli `g` (one per element) plus the nodal `blocks`, and
@@ -61,11 +100,8 @@ impl CoupledSystem {
         let t = Instant::now();
         let (matrix, lifting) = self.assembler.matrix(problem, g, blocks)?;
         self.rhs = self.load.iter().zip(&lifting).map(|(f, l)| f + l).collect();
-        self.timings.assembly += t.elapsed().as_secs_f64();
-        let t = Instant::now();
+        self.assembly_seconds += t.elapsed().as_secs_f64();
         self.solver.factorize(&matrix)?;
-        self.timings.numeric += t.elapsed().as_secs_f64();
-        self.timings.numeric_count = self.solver.numeric_factorizations();
         self.matrix = Some(matrix);
         Ok(())
     }
@@ -77,10 +113,7 @@ impl CoupledSystem {
         if let Some(extra) = extra {
             x.iter_mut().zip(extra).for_each(|(b, e)| *b += e);
         }
-        let t = Instant::now();
         self.solver.solve_in_place(&mut x)?;
-        self.timings.solve += t.elapsed().as_secs_f64();
-        self.timings.solve_count = self.solver.solves();
         if let Some(k) = x.iter().position(|v| !v.is_finite()) {
             return Err(Error::NonFinite { what: format!("solution component {k}") });
         }
@@ -107,14 +140,19 @@ impl CoupledSystem {
         &self.rhs
     }
 
-    /// Number of stored values of the LDLᵀ factor.
+    /// Number of stored values of the factor.
     pub fn factor_len(&self) -> usize {
-        self.solver.factor_len()
+        self.solver.stats().factor_len
     }
 
     /// Timings so far.
     pub fn timings(&self) -> Timings {
-        self.timings
+        Timings::with(self.pattern_seconds, self.assembly_seconds, self.solver.as_ref())
+    }
+
+    /// Gives up the DOF map (at the end of a solve, for its result).
+    pub fn into_dofs(self) -> DofMap {
+        self.assembler.into_dofs()
     }
 }
 
@@ -123,6 +161,8 @@ impl CoupledSystem {
 pub struct StaticSolution {
     /// x = (u, ϕ) on all DOFs, global numbering (u_i at node a: a·d + i; ϕ: n·d + a).
     pub x: Vec<f64>,
+    /// The DOF numbering of `x`.
+    pub dofs: DofMap,
     /// Number of free DOFs (the order of the system).
     pub free_dofs: usize,
     /// Relative residual ‖B̌x − f̌‖ / ‖f̌‖ of the linear system on the free DOFs.
@@ -134,7 +174,7 @@ pub struct StaticSolution {
 /// Solves the coupled problem without contact, with B̌(x_0) at x_0 = 0 (g = g(0) = µ1: the
 /// linear problem; the Hencky secant update comes with the contact algorithms).
 pub fn solve_without_contact(problem: &Problem) -> Result<StaticSolution> {
-    let mut system = CoupledSystem::new(problem, &[])?;
+    let mut system = CoupledSystem::new(problem, DofMap::new(problem)?, &[])?;
     let zero = vec![0.0; system.dofs().n_total()];
     let g = secant_moduli(problem, system.dofs(), &zero)?;
     system.factorize(problem, &g, &[])?;
@@ -145,54 +185,6 @@ pub fn solve_without_contact(problem: &Problem) -> Result<StaticSolution> {
     let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
     let r: Vec<f64> = ax.iter().zip(system.rhs()).map(|(a, b)| a - b).collect();
     let relative_residual = norm(&r) / norm(system.rhs()).max(f64::MIN_POSITIVE);
-    Ok(StaticSolution {
-        x,
-        free_dofs: system.dofs().n_free(),
-        relative_residual,
-        timings: system.timings(),
-    })
-}
-
-/// Element fields of a solution, padded to 3D for output.
-#[derive(Clone, Debug, Default)]
-pub struct ElementFields {
-    /// σ per element, 3 × 3 row-major [stress], with the true law g(‖ε^D(u)‖²).
-    pub sigma: Vec<[f64; 9]>,
-    /// D per element [charge/length^(d−1)].
-    pub electric_displacement: Vec<[f64; 3]>,
-}
-
-/// σ and D on every element of the solution x (global vector).
-pub fn element_fields(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<ElementFields> {
-    let mut fields = ElementFields::default();
-    for c in 0..problem.mesh.n_cells() {
-        let (s, d) = match problem.mesh.dim() {
-            2 => fields_on::<2, 3>(problem, &problem.material, dofs, x, c)?,
-            _ => fields_on::<3, 4>(problem, &problem.material, dofs, x, c)?,
-        };
-        fields.sigma.push(s);
-        fields.electric_displacement.push(d);
-    }
-    Ok(fields)
-}
-
-fn fields_on<const D: usize, const N: usize>(
-    problem: &Problem,
-    material: &Material,
-    dofs: &DofMap,
-    x: &[f64],
-    c: usize,
-) -> Result<([f64; 9], [f64; 3])> {
-    let (eps, grad_phi) = crate::assembly::cell_gradients::<D, N>(problem, dofs, x, c)?;
-    let sigma = material.true_stress(&eps, &grad_phi);
-    let d = material.displacement_field(&eps, &grad_phi);
-    let mut s9 = [0.0; 9];
-    let mut d3 = [0.0; 3];
-    for i in 0..D {
-        d3[i] = d[i];
-        for j in 0..D {
-            s9[3 * i + j] = sigma[i][j];
-        }
-    }
-    Ok((s9, d3))
+    let (free_dofs, timings) = (system.dofs().n_free(), system.timings());
+    Ok(StaticSolution { x, dofs: system.into_dofs(), free_dofs, relative_residual, timings })
 }

@@ -1,8 +1,8 @@
 //! Property: any case that validates either solves or fails with a typed error — never a
 //! panic, never a NaN or infinity in an output file.
 
-use piezocontact_cli::case::Case;
-use piezocontact_cli::runner::ContactRun;
+use piezocontact::case::Case;
+use piezocontact::run::ContactRun;
 use proptest::prelude::*;
 use proptest::test_runner::{RngAlgorithm, TestRng, TestRunner};
 use std::path::Path;

@@ -1,6 +1,6 @@
 //! The fixed-point iterations of [P] Section 6 around the Uzawa loop:
 //! Algorithm 1 (PV2: friction and conduction, inner Algorithm 2) and Algorithm 3 (PV1,
-//! inner Algorithm 4), as restated in SPEC §7.
+//! inner Algorithm 4), as restated in model §7.
 //!
 //! ```text
 //! x_0 = 0, s_0 = 0
@@ -29,22 +29,162 @@ use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
 use crate::solver::{CoupledSystem, Timings};
-pub use uzawa::ContactState;
 use uzawa::Uzawa;
 
-/// Parameters of the algorithms.
+/// The method that solves the contact problem of one outer step (model §7).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// The augmented Lagrangian Uzawa block relaxation, Algorithms 2 and 4, started cold.
+    Uzawa {
+        /// r > 0: augmented Lagrangian parameter [stress/length] (paper: 0.25 E).
+        r: f64,
+        /// ε of (6.12)/(6.16) (paper: 1e−4).
+        eps: f64,
+        /// Cap on Uzawa iterations per outer step.
+        max_inner: usize,
+    },
+}
+
+impl Method {
+    /// The name a case file uses for it (`solver.method`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Uzawa { .. } => "uzawa",
+        }
+    }
+
+    /// The constant c > 0 of the complementarity functions λ − max(0, λ + c(u_ν − ρ)) and
+    /// λ_f − P_s(λ_f + c u_τ) by which the KKT residual measures the contact and friction
+    /// conditions [stress/length].
+    pub fn complementarity_constant(&self) -> f64 {
+        match self {
+            Self::Uzawa { r, .. } => *r,
+        }
+    }
+}
+
+/// Parameters of the outer fixed point and the inner method.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
-    /// r > 0: augmented Lagrangian parameter [stress/length] (paper: 0.25 E).
-    pub r: f64,
-    /// ε of (6.12)/(6.16) (paper: 1e−4).
-    pub eps: f64,
+    /// The inner method.
+    pub method: Method,
     /// ε_fp of (6.13)/(6.15) (paper: 1e−4).
     pub eps_fp: f64,
-    /// Cap on Uzawa iterations per outer step.
-    pub max_inner: usize,
     /// Cap on fixed-point iterations.
     pub max_outer: usize,
+}
+
+/// The multipliers on the Γ3 nodes.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ContactState {
+    /// λ_c: contact pressure of the rigid stop [stress].
+    pub lambda_c: Vec<f64>,
+    /// λ_f: friction traction (σ_τ = −λ_f) [stress], 3 components (d used).
+    pub lambda_f: Vec<[f64; 3]>,
+}
+
+impl ContactState {
+    /// λ = 0 on `n` nodes.
+    pub fn cold(n: usize) -> Self {
+        Self { lambda_c: vec![0.0; n], lambda_f: vec![[0.0; 3]; n] }
+    }
+}
+
+/// Why an inner loop stopped.
+#[derive(Clone, Debug)]
+pub enum Stop {
+    /// The stopping rule held.
+    Converged,
+    /// The iteration cap was reached.
+    Cap,
+    /// The criterion grew by a factor [`DIVERGENCE`] over its smallest value.
+    Diverged,
+    /// A solve produced NaN or infinity, or a criterion was not finite.
+    NotFinite(String),
+}
+
+/// A criterion this many times its smallest value so far means divergence.
+pub const DIVERGENCE: f64 = 1e3;
+
+/// What the inner method produced in one outer step.
+#[derive(Clone, Debug)]
+pub struct InnerResult {
+    /// The last finite iterate x (global vector).
+    pub x: Vec<f64>,
+    /// The multipliers with it.
+    pub state: ContactState,
+    /// Iterations done.
+    pub iterations: usize,
+    /// The method's criterion at each iteration.
+    pub history: Vec<f64>,
+    /// Why the loop stopped.
+    pub stop: Stop,
+}
+
+/// The data of one outer step that the inner method reads.
+pub struct Step<'a> {
+    /// The problem.
+    pub problem: &'a Problem,
+    /// The L2(Ω) norm of the stopping rules.
+    pub mass: &'a MassNorm,
+    /// Γ3.
+    pub surface: &'a ContactSurface,
+    /// The normal law (for the rigid stop ρ = g_a + g_p).
+    pub compliance: &'a NormalCompliance,
+    /// s_n on the Γ3 nodes with friction (PV2), `None` without.
+    pub friction_bound: Option<&'a [f64]>,
+    /// f_{1,n} − f̌ on the free DOFs: the lagged −j̃1(x_n) − ľ(x_n).
+    pub base: &'a [f64],
+}
+
+/// The nodal blocks that `method` adds to B̌ on the Γ3 nodes.
+fn method_blocks(method: &Method, surface: &ContactSurface, friction: bool) -> Vec<NodalBlock> {
+    match method {
+        Method::Uzawa { r, .. } => step1_blocks(surface, *r, friction),
+    }
+}
+
+/// Runs `method` on one outer step with the factorised `system`.
+fn run_inner(method: &Method, step: &Step, system: &mut CoupledSystem) -> Result<InnerResult> {
+    match *method {
+        Method::Uzawa { r, eps, max_inner } => Uzawa { step, r, eps, max_inner }.run(system),
+    }
+}
+
+/// The error for an inner loop that stopped without converging: the one place where stops
+/// become errors, with a hint on the method's parameters.
+fn inner_failure(method: &Method, inner: &InnerResult, pv2: bool, step: usize) -> Option<Error> {
+    let Method::Uzawa { r, eps, max_inner } = *method;
+    let what =
+        format!("the Uzawa loop (Algorithm {}) of outer step {step}", if pv2 { 2 } else { 4 });
+    let r_hint = format!(
+        "r too small or too large for this problem: try solver.r = {:.4e} or {:.4e} (now {r:.4e}; the paper uses 0.25 E)",
+        2.0 * r,
+        0.5 * r,
+    );
+    match &inner.stop {
+        Stop::Converged => None,
+        Stop::Cap => Some(Error::NotConverged {
+            what,
+            iterations: inner.iterations,
+            criterion: inner.history.last().copied().unwrap_or(f64::NAN),
+            tolerance: eps,
+            history: tail(&inner.history),
+            hint: format!("raise solver.max_inner (now {max_inner}), or {r_hint}"),
+        }),
+        Stop::Diverged => Some(Error::Diverged {
+            what,
+            iteration: inner.iterations,
+            history: tail(&inner.history),
+            hint: r_hint,
+        }),
+        Stop::NotFinite(cause) => Some(Error::NumericalFailure {
+            what,
+            iteration: inner.iterations,
+            cause: cause.clone(),
+            hint: r_hint,
+        }),
+    }
 }
 
 /// The contact model: normal compliance, and for PV2 friction and conduction.
@@ -72,9 +212,9 @@ pub struct ContactSolution {
     pub dofs: DofMap,
     /// Γ3 and its nodal geometry.
     pub surface: ContactSurface,
-    /// The multipliers of the last Uzawa loop.
+    /// The multipliers of the last inner solve.
     pub state: ContactState,
-    /// s_n: the friction bound used in the last Uzawa loop [stress].
+    /// s_n: the friction bound used in the last inner solve [stress].
     pub s_used: Vec<f64>,
     /// s_{n+1} = µ|Rσ_ν(x_{n+1})|: the friction bound of the last outer step [stress].
     pub s: Vec<f64>,
@@ -86,17 +226,17 @@ pub struct ContactSolution {
     pub failure: Option<Error>,
     /// Outer iterations, counted as Table 2 counts them.
     pub outer_iterations: usize,
-    /// Uzawa iterations of each outer step.
+    /// Inner iterations of each outer step.
     pub inner_iterations: Vec<usize>,
     /// The outer criterion at each step.
     pub outer_history: Vec<f64>,
-    /// The Uzawa criterion at each iteration of each outer step.
+    /// The inner criterion at each iteration of each outer step.
     pub inner_history: Vec<Vec<f64>>,
     /// Time spent in each phase.
     pub timings: Timings,
 }
 
-/// Solves PV1 (Algorithm 3 with 4) or PV2 (Algorithm 1 with 2).
+/// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it).
 pub fn solve_contact(
     problem: &Problem,
     model: &ContactModel,
@@ -104,9 +244,9 @@ pub fn solve_contact(
 ) -> Result<ContactSolution> {
     let dofs = DofMap::new(problem)?;
     let surface = ContactSurface::new(problem, &dofs)?;
-    let mut system = CoupledSystem::new(problem, &surface.nodes)?;
+    let mut system = CoupledSystem::new(problem, dofs, &surface.nodes)?;
     let mass = MassNorm::new(problem)?;
-    let blocks = step1_blocks(&surface, settings.r, model.pv2.is_some());
+    let blocks = method_blocks(&settings.method, &surface, model.pv2.is_some());
     let mollifier = Mollifier::new(problem, &surface, model);
     let mu = model
         .pv2
@@ -114,8 +254,8 @@ pub fn solve_contact(
         .map_or_else(Vec::new, |(friction, _)| nodal_mu(problem, &surface, friction));
     let n3 = surface.len();
     let mut solution = ContactSolution {
-        x: vec![0.0; dofs.n_total()],
-        dofs: dofs.clone(),
+        x: vec![0.0; system.dofs().n_total()],
+        dofs: DofMap::default(),
         surface: surface.clone(),
         state: ContactState::cold(n3),
         s_used: vec![0.0; n3],
@@ -129,43 +269,43 @@ pub fn solve_contact(
         inner_history: Vec::new(),
         timings: Timings::default(),
     };
-    let mut g = secant_moduli(problem, &dofs, &solution.x)?;
+    let mut g = secant_moduli(problem, system.dofs(), &solution.x)?;
     let mut factorised_with: Option<Vec<f64>> = None;
     for n in 0..settings.max_outer {
         if factorised_with.as_ref() != Some(&g) {
             if let Err(e) = system.factorize(problem, &g, &blocks) {
                 solution.failure = Some(Error::NumericalFailure {
-                    what: format!("the factorisation of B̌(x_n) + r M in outer step {}", n + 1),
+                    what: format!("the factorisation of B̌(x_n) in outer step {}", n + 1),
                     iteration: n + 1,
                     cause: e.to_string(),
-                    hint: "check the case with `piezocontact check`; a singular matrix means the \
-                           body is not held (Γ1, Γa) or a material constant is not physical"
+                    hint: "a singular matrix means the body is not held (Γ1, Γa) or a material \
+                           constant is not physical"
                         .into(),
                 });
                 break;
             }
             factorised_with = Some(g.clone());
         }
-        let base = lagged_loads(&dofs, &surface, model, &solution.x);
+        let base = lagged_loads(system.dofs(), &surface, model, &solution.x);
         let s_n = solution.s.clone();
-        let uzawa = Uzawa {
+        let step = Step {
             problem,
-            dofs: &dofs,
             mass: &mass,
             surface: &surface,
             compliance: &model.compliance,
             friction_bound: model.pv2.as_ref().map(|_| s_n.as_slice()),
             base: &base,
-            settings,
         };
-        let inner = uzawa.run(&mut system)?;
+        let inner = run_inner(&settings.method, &step, &mut system)?;
         solution.inner_iterations.push(inner.iterations);
         solution.inner_history.push(inner.history.clone());
         solution.outer_iterations = n + 1;
+        let failure = inner_failure(&settings.method, &inner, model.pv2.is_some(), n + 1);
+        let dofs = system.dofs();
         let x_previous = std::mem::replace(&mut solution.x, inner.x);
         solution.state = inner.state;
         solution.s_used = s_n;
-        solution.sigma_nu = normal_stress(&dofs, &surface, model, &solution.x, &solution.state);
+        solution.sigma_nu = normal_stress(dofs, &surface, model, &solution.x, &solution.state);
         solution.s = match &model.pv2 {
             Some(_) => mollifier
                 .apply(&solution.sigma_nu)
@@ -175,46 +315,12 @@ pub fn solve_contact(
                 .collect(),
             None => vec![0.0; n3],
         };
-        let what = format!(
-            "the Uzawa loop (Algorithm {}) of outer step {}",
-            if model.pv2.is_some() { 2 } else { 4 },
-            n + 1
-        );
-        let r_hint = format!(
-            "r too small or too large for this problem: try solver.r = {:.4e} or {:.4e} (now {:.4e}; the paper uses 0.25 E)",
-            2.0 * settings.r,
-            0.5 * settings.r,
-            settings.r
-        );
-        let failure = match inner.stop {
-            uzawa::Stop::Converged => None,
-            uzawa::Stop::Cap => Some(Error::NotConverged {
-                what,
-                iterations: inner.iterations,
-                criterion: inner.history.last().copied().unwrap_or(f64::NAN),
-                tolerance: settings.eps,
-                history: tail(&inner.history),
-                hint: format!("raise solver.max_inner (now {}), or {r_hint}", settings.max_inner),
-            }),
-            uzawa::Stop::Diverged => Some(Error::Diverged {
-                what,
-                iteration: inner.iterations,
-                history: tail(&inner.history),
-                hint: r_hint,
-            }),
-            uzawa::Stop::NotFinite(cause) => Some(Error::NumericalFailure {
-                what,
-                iteration: inner.iterations,
-                cause,
-                hint: r_hint,
-            }),
-        };
         if failure.is_some() {
             solution.failure = failure;
             break;
         }
-        let g_next = secant_moduli(problem, &dofs, &solution.x)?;
-        let x_criterion = relative_change(problem, &dofs, &mass, &solution.x, &x_previous);
+        let g_next = secant_moduli(problem, dofs, &solution.x)?;
+        let x_criterion = relative_change(problem, dofs, &mass, &solution.x, &x_previous);
         let s_norm: f64 = (0..n3).map(|i| surface.weight[i] * solution.s[i].powi(2)).sum();
         let criterion = if model.pv2.is_some() && s_norm > 0.0 {
             let ds: f64 = (0..n3)
@@ -254,6 +360,7 @@ pub fn solve_contact(
         });
     }
     solution.timings = system.timings();
+    solution.dofs = system.into_dofs();
     Ok(solution)
 }
 
@@ -277,7 +384,7 @@ fn outer_failure(model: &ContactModel, solution: &ContactSolution) -> Option<Err
         return Some(Error::NumericalFailure { what, iteration: n, cause, hint: hint.into() });
     }
     let smallest = solution.outer_history.iter().copied().fold(f64::INFINITY, f64::min);
-    (n >= 3 && last > uzawa::DIVERGENCE * smallest).then(|| Error::Diverged {
+    (n >= 3 && last > DIVERGENCE * smallest).then(|| Error::Diverged {
         what,
         iteration: n,
         history: tail(&solution.outer_history),
@@ -392,7 +499,7 @@ fn lagged_loads(
     base
 }
 
-/// σ_ν = −(λ_c + h_ν(ϕ − ϕ0) p_ν(u_ν − g_a)) on the Γ3 nodes (SPEC §6).
+/// σ_ν = −(λ_c + h_ν(ϕ − ϕ0) p_ν(u_ν − g_a)) on the Γ3 nodes (model §6).
 pub fn normal_stress(
     dofs: &DofMap,
     surface: &ContactSurface,

@@ -1,4 +1,4 @@
-//! How accurate a contact solution is (SPEC §10): the true residual of the discrete problem
+//! How accurate a contact solution is (model §10): the true residual of the discrete problem
 //! with the true Hencky law, the natural residuals of the contact and friction conditions,
 //! and the global force balance.
 //!
@@ -8,14 +8,15 @@
 //! R = F_int(x) − f̌ − F_c − Q = 0 on the free DOFs,
 //! F_c,i = w_i (σ_ν,i ν_i + σ_τ,i),  σ_ν = −(λ_c + h_ν p_ν),  σ_τ = −λ_f       (u rows of Γ3)
 //! Q_i   = w_i ψ(u_ν − g_a) φ_L(ϕ − ϕ0)                                      (ϕ rows, PV2)
-//! λ_c = max(0, λ_c + r(u_ν − ρ)),   λ_f = P_{B(0,s)}(λ_f + r u_τ),  s = µ|Rσ_ν(x)|
+//! λ_c = max(0, λ_c + c(u_ν − ρ)),   λ_f = P_{B(0,s)}(λ_f + c u_τ),  s = µ|Rσ_ν(x)|
 //! ```
 //!
-//! The last two are the complementarity and Coulomb conditions written as projections; their
-//! defects divided by r are lengths, reported relative to max ‖u‖.
+//! The last two are the complementarity and Coulomb conditions written as projections, with the
+//! method's constant c ([`super::Method::complementarity_constant`], r for Uzawa); their
+//! defects divided by c are lengths, reported relative to max ‖u‖.
 
 use super::{ContactModel, ContactSolution, Settings};
-use crate::assembly::{Assembler, internal_force, secant_moduli};
+use crate::assembly::{internal_force, load_vector, secant_moduli};
 use crate::contact::law::project_ball;
 use crate::dofs::CONSTRAINED;
 use crate::error::Result;
@@ -28,9 +29,9 @@ pub struct KktResidual {
     pub equilibrium_u: f64,
     /// ‖R_ϕ‖ / ‖row scale‖ over the free ϕ rows (Gauss's law).
     pub equilibrium_phi: f64,
-    /// max_i |λ_c − max(0, λ_c + r(u_ν − ρ))| / r / max‖u‖.
+    /// max_i |λ_c − max(0, λ_c + c(u_ν − ρ))| / c / max‖u‖.
     pub contact: f64,
-    /// max_i ‖λ_f − P_s(λ_f + r u_τ)‖ / r / max‖u‖, with s = µ|Rσ_ν(x)| (PV2).
+    /// max_i ‖λ_f − P_s(λ_f + c u_τ)‖ / c / max‖u‖, with s = µ|Rσ_ν(x)| (PV2).
     pub friction: f64,
     /// max_i (u_ν − ρ)₊ [length].
     pub penetration: f64,
@@ -60,10 +61,11 @@ pub fn assess(
 ) -> Result<(KktResidual, Balance)> {
     let dofs = &solution.dofs;
     let (surface, state, x) = (&solution.surface, &solution.state, &solution.x);
+    let constant = settings.method.complementarity_constant();
     let dim = problem.mesh.dim();
     let g = secant_moduli(problem, dofs, x)?;
     let (f_int, scale) = internal_force(problem, dofs, x, &g)?;
-    let f_ext = Assembler::load_vector_of(problem, dofs);
+    let f_ext = load_vector(problem, dofs);
     let mut contact_force = vec![0.0; dofs.n_total()];
     let rho = model.compliance.stop();
     let mut kkt = KktResidual::default();
@@ -81,15 +83,15 @@ pub fn assess(
         }
         let lambda_c = state.lambda_c[i];
         kkt.contact = kkt.contact.max(
-            (lambda_c - (lambda_c + settings.r * (u_nu - rho)).max(0.0)).abs() / settings.r / max_u,
+            (lambda_c - (lambda_c + constant * (u_nu - rho)).max(0.0)).abs() / constant / max_u,
         );
         kkt.penetration = kkt.penetration.max(u_nu - rho);
         if let Some((_, conduction)) = &model.pv2 {
             contact_force[dofs.phi(node)] += w * conduction.flux(u_nu, phi, model.compliance.gap);
-            let z = [0, 1, 2].map(|c| state.lambda_f[i][c] + settings.r * u_tau[c]);
+            let z = [0, 1, 2].map(|k| state.lambda_f[i][k] + constant * u_tau[k]);
             let p = project_ball(z, solution.s[i]);
-            let defect = (0..3).map(|c| (state.lambda_f[i][c] - p[c]).powi(2)).sum::<f64>().sqrt();
-            kkt.friction = kkt.friction.max(defect / settings.r / max_u);
+            let defect = (0..3).map(|k| (state.lambda_f[i][k] - p[k]).powi(2)).sum::<f64>().sqrt();
+            kkt.friction = kkt.friction.max(defect / constant / max_u);
         }
     }
     let (mut r_u, mut s_u, mut r_phi, mut s_phi) = (0.0, 0.0, 0.0, 0.0);

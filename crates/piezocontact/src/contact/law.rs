@@ -1,5 +1,5 @@
 //! Contact laws on Γ3, [P] (2.5)–(2.8) and Section 7, with the gap/penetration reading of
-//! SPEC §9. Every constant is a parameter; the paper's forms are the provided choice.
+//! model §9. Every constant is a parameter; the paper's forms are the provided choice.
 
 /// Normal compliance with finite penetration, (2.5):
 ///

@@ -1,4 +1,4 @@
-//! The contact surface Γ3 (SPEC §6): nodal lumped weights, normals and tangents, and the
+//! The contact surface Γ3 (model §6): nodal lumped weights, normals and tangents, and the
 //! nodal kinematics u_ν, u_τ, ϕ. Contact quantities p_c, p_f, λ_c, λ_f, s live on its nodes.
 //!
 //! ```text

@@ -1,4 +1,4 @@
-use piezocontact::algorithm::{ContactModel, Settings};
+use piezocontact::algorithm::{ContactModel, Method, Settings};
 use piezocontact::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
 use piezocontact::material::{
     ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants,
@@ -157,10 +157,8 @@ pub fn paper_model(pv2: Option<(f64, f64)>, penetration: f64, units: Units) -> C
 /// The paper's settings (r = 0.25 E) with tolerances `eps` = `eps_fp`.
 pub fn paper_settings(units: Units, eps: f64) -> Settings {
     Settings {
-        r: units.stress(0.25 * 58.7102),
-        eps,
+        method: Method::Uzawa { r: units.stress(0.25 * 58.7102), eps, max_inner: 100_000 },
         eps_fp: eps,
-        max_inner: 100_000,
         max_outer: 200,
     }
 }

@@ -16,7 +16,7 @@ fn solve(problem: &Problem, model: &ContactModel, settings: &Settings) -> Contac
     solution
 }
 
-/// Checks the discrete contact and friction conditions of SPEC §10 and the force balance;
+/// Checks the discrete contact and friction conditions of model §10 and the force balance;
 /// returns the numbers of stick, slip and (PV1) contact nodes.
 fn assert_kkt(
     problem: &Problem,

@@ -1,4 +1,4 @@
-//! Manufactured solutions for the coupled piezoelectric system without contact (SPEC §10):
+//! Manufactured solutions for the coupled piezoelectric system without contact (model §10):
 //! P1 errors must fall like h² in L2 and like h in H1, for u and for ϕ.
 //!
 //! Exact fields on Ω = (0,1)², zero on ∂Ω (Γ1 = Γa = ∂Ω):

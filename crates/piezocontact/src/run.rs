@@ -1,27 +1,33 @@
-//! One contact run of a case: solve, assess, and write or print its results. Shared by
-//! `run`, `sweep` and `reproduce`.
+//! One contact run of a case: solve, assess, summarise and write its results — what
+//! `piezocontact run`, `sweep` and `reproduce` do for each case, and what a library user calls.
 
+use crate::algorithm::residual::{Balance, KktResidual, assess};
+use crate::algorithm::{ContactModel, ContactSolution, NodeStatus, solve_contact};
+use crate::assembly::x_norm_squared;
 use crate::case::Case;
-use crate::output;
+use crate::dofs::DofMap;
+use crate::error::{Error, Result};
+use crate::output::files;
+use crate::output::vtu::Field;
+use crate::problem::Problem;
 use crate::report::{self, Row};
-use anyhow::{Result, anyhow};
-use piezocontact::algorithm::residual::{Balance, KktResidual, assess};
-use piezocontact::algorithm::{ContactModel, ContactSolution, NodeStatus, solve_contact};
-use piezocontact::assembly::x_norm_squared;
-use piezocontact::dofs::DofMap;
-use piezocontact::output::vtu::Field;
-use piezocontact::problem::Problem;
 use serde_json::{Value, json};
 use std::path::Path;
 use std::time::Instant;
 
 /// A solved contact case with its assessment.
 pub struct ContactRun {
+    /// The checked problem.
     pub problem: Problem,
+    /// Its contact model.
     pub model: ContactModel,
+    /// The algorithms' result (converged or not: see `solution.failure`).
     pub solution: ContactSolution,
+    /// The residual of the discrete KKT conditions at the result.
     pub kkt: KktResidual,
+    /// The global force balance at the result.
     pub balance: Balance,
+    /// The Γ3 table, ordered along Γ3.
     pub rows: Vec<Row>,
     /// Wall time of the solve and the assessment [s].
     pub seconds: f64,
@@ -32,18 +38,17 @@ impl ContactRun {
     pub fn solve(case: &Case) -> Result<Self> {
         let start = Instant::now();
         let problem = case.problem()?;
-        let model = case
-            .contact_model(&problem)?
-            .ok_or_else(|| anyhow!("{}: the case has no [contact] table", case.path.display()))?;
+        let model = case.contact_model(&problem)?.ok_or_else(|| {
+            Error::Input(format!("{}: the case has no [contact] table", case.path.display()))
+        })?;
         if problem.boundary.contact.is_empty() {
-            anyhow::bail!(
+            return Err(Error::Input(format!(
                 "{}: [contact] is given but boundary.contact names no boundary part",
                 case.locate("boundary")
-            );
+            )));
         }
-        let settings = case.settings();
-        let solution = solve_contact(&problem, &model, &settings)
-            .map_err(|e| anyhow!("{}: {e}", case.path.display()))?;
+        let settings = case.settings()?;
+        let solution = solve_contact(&problem, &model, &settings).map_err(|e| case.context(e))?;
         let (kkt, balance) = assess(&problem, &model, &settings, &solution)?;
         let rows = report::rows(&problem, &model, &solution);
         Ok(Self {
@@ -72,7 +77,9 @@ impl ContactRun {
     pub fn distance_to(&self, reference: &ContactRun) -> Result<f64> {
         let dofs = &reference.solution.dofs;
         if self.solution.x.len() != reference.solution.x.len() {
-            anyhow::bail!("the reference run has another mesh: distances need the same mesh");
+            return Err(Error::Input(
+                "the reference run has another mesh: distances need the same mesh".into(),
+            ));
         }
         let d: Vec<f64> =
             self.solution.x.iter().zip(&reference.solution.x).map(|(a, b)| a - b).collect();
@@ -101,8 +108,10 @@ impl ContactRun {
 
     /// Writes contact.csv, summary.json and solution.vtu into `out`.
     pub fn write(&self, case: &Case, out: &Path) -> Result<()> {
-        std::fs::create_dir_all(out)
-            .map_err(|e| anyhow!("cannot create {}: {e}", out.display()))?;
+        std::fs::create_dir_all(out).map_err(|e| Error::Io {
+            what: format!("cannot create {}", out.display()),
+            cause: e.to_string(),
+        })?;
         let (problem, solution) = (&self.problem, &self.solution);
         let mut status = vec![0.0; problem.mesh.n_nodes()];
         let mut pressure = vec![0.0; problem.mesh.n_nodes()];
@@ -118,55 +127,8 @@ impl ContactRun {
             Field { name: "contact_status", components: 1, values: &status },
             Field { name: "contact_pressure", components: 1, values: &pressure },
         ];
-        output::write_atomic(&out.join("contact.csv"), report::contact_csv(&self.rows).as_bytes())?;
-        output::write_results(
-            out,
-            &self.summary(case),
-            problem,
-            &solution.dofs,
-            &solution.x,
-            &extra,
-        )
-    }
-
-    /// Prints the run's figures, each with its unit.
-    pub fn print(&self, case: &Case, out: &Path) {
-        let (units, solution, kkt) = (&case.file.units, &self.solution, &self.kkt);
-        let (sigma_nu, sigma_tau) = self.peaks();
-        let (c, st, sl) = self.zones();
-        let t = solution.timings;
-        println!(
-            "{}: {}, {} nodes, {} elements",
-            case.path.display(),
-            self.model.name(),
-            self.problem.mesh.n_nodes(),
-            self.problem.mesh.n_cells()
-        );
-        println!(
-            "  outer iterations   = {} ({})",
-            solution.outer_iterations,
-            if solution.converged { "converged" } else { "NOT converged" }
-        );
-        println!("  inner iterations   = {:?}", solution.inner_iterations);
-        println!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
-        println!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
-        println!("  contact / stick / slip measure = {c:.4} / {st:.4} / {sl:.4} {}", units.length);
-        println!(
-            "  KKT residual       = {:.3e} (equilibrium u {:.1e}, phi {:.1e}; contact {:.1e}; friction {:.1e})",
-            kkt.max, kkt.equilibrium_u, kkt.equilibrium_phi, kkt.contact, kkt.friction
-        );
-        println!("  force balance      = relative imbalance {:.1e}", self.balance.imbalance);
-        println!(
-            "  time: assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}), total {:.3} s",
-            t.assembly,
-            t.symbolic,
-            t.numeric,
-            t.numeric_count,
-            t.solve,
-            t.solve_count,
-            self.seconds
-        );
-        println!("  wrote contact.csv, summary.json, solution.vtu in {}", out.display());
+        files::write_atomic(&out.join("contact.csv"), report::contact_csv(&self.rows).as_bytes())?;
+        files::write_results(out, &self.summary(case), problem, &solution.dofs, &solution.x, &extra)
     }
 }
 

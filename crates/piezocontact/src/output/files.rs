@@ -8,11 +8,11 @@
 //!   forced) and clears our own earlier output there, so that a rerun replaces it whole. The
 //!   files written are listed in the directory's [`MARKER`] file.
 
-use anyhow::{Context, Result, bail};
-use piezocontact::dofs::DofMap;
-use piezocontact::output::vtu::{Field, to_vtu};
-use piezocontact::problem::Problem;
-use piezocontact::solver::element_fields;
+use crate::assembly::element_fields;
+use crate::dofs::DofMap;
+use crate::error::{Error, Result};
+use crate::output::vtu::{Field, to_vtu};
+use crate::problem::Problem;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -30,12 +30,17 @@ struct Claim {
 static CLAIM: Mutex<Option<Claim>> = Mutex::new(None);
 static COUNTER: AtomicUsize = AtomicUsize::new(0);
 
+/// An [`Error::Io`] for `what` from an I/O error.
+fn io(what: String) -> impl FnOnce(std::io::Error) -> Error {
+    move |e| Error::Io { what, cause: e.to_string() }
+}
+
 /// Claims `dir` for this process's output: creates it, refuses it if it holds files that
 /// piezocontact did not write (unless `force`), deletes the files of our earlier output
 /// listed in its marker, and prepares the staging directory beside it.
 fn claim(dir: &Path, force: bool) -> Result<()> {
     std::fs::create_dir_all(dir)
-        .with_context(|| format!("cannot create the output directory {}", dir.display()))?;
+        .map_err(io(format!("cannot create the output directory {}", dir.display())))?;
     let marker = dir.join(MARKER);
     let listed: Vec<PathBuf> = std::fs::read_to_string(&marker)
         .map(|t| t.lines().map(PathBuf::from).collect())
@@ -45,7 +50,7 @@ fn claim(dir: &Path, force: bool) -> Result<()> {
             || listed.iter().any(|p| p.components().next().is_some_and(|c| c.as_os_str() == name))
     };
     let mut foreign: Vec<String> = std::fs::read_dir(dir)
-        .with_context(|| format!("cannot read the output directory {}", dir.display()))?
+        .map_err(io(format!("cannot read the output directory {}", dir.display())))?
         .filter_map(|e| e.ok())
         .filter(|e| !ours(&e.file_name()))
         .map(|e| e.file_name().to_string_lossy().into_owned())
@@ -53,12 +58,12 @@ fn claim(dir: &Path, force: bool) -> Result<()> {
     foreign.sort();
     if !foreign.is_empty() && !force {
         let shown: Vec<&str> = foreign.iter().take(5).map(String::as_str).collect();
-        bail!(
+        return Err(Error::Input(format!(
             "the output directory {} holds files that piezocontact did not write ({}{}); choose another --out, or pass --force to write there anyway",
             dir.display(),
             shown.join(", "),
             if foreign.len() > 5 { ", …" } else { "" }
-        );
+        )));
     }
     for rel in &listed {
         let _ = std::fs::remove_file(dir.join(rel));
@@ -68,8 +73,9 @@ fn claim(dir: &Path, force: bool) -> Result<()> {
             parent = p.parent();
         }
     }
-    std::fs::write(&marker, "").with_context(|| format!("cannot write {}", marker.display()))?;
-    let root = std::fs::canonicalize(dir)?;
+    std::fs::write(&marker, "").map_err(io(format!("cannot write {}", marker.display())))?;
+    let root =
+        std::fs::canonicalize(dir).map_err(io(format!("cannot resolve {}", dir.display())))?;
     let name =
         root.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
     let parent = root.parent().unwrap_or(Path::new("/")).to_path_buf();
@@ -83,7 +89,7 @@ fn claim(dir: &Path, force: bool) -> Result<()> {
     }
     let staging = parent.join(format!("{prefix}{}", std::process::id()));
     std::fs::create_dir_all(&staging)
-        .with_context(|| format!("cannot create the staging directory {}", staging.display()))?;
+        .map_err(io(format!("cannot create the staging directory {}", staging.display())))?;
     *CLAIM.lock().unwrap_or_else(|e| e.into_inner()) = Some(Claim { root, staging });
     Ok(())
 }
@@ -129,15 +135,19 @@ pub fn temporary(path: &Path) -> PathBuf {
 pub fn commit(temporary: &Path, path: &Path) -> Result<()> {
     if let Err(e) = std::fs::rename(temporary, path) {
         let _ = std::fs::remove_file(temporary);
-        return Err(e).with_context(|| format!("cannot write {}", path.display()));
+        return Err(e).map_err(io(format!("cannot write {}", path.display())));
     }
     let claim = CLAIM.lock().unwrap_or_else(|e| e.into_inner());
     if let Some(c) = claim.as_ref()
         && let Ok(rel) = absolute(path).strip_prefix(&c.root)
     {
-        let mut marker =
-            std::fs::OpenOptions::new().append(true).create(true).open(c.root.join(MARKER))?;
-        writeln!(marker, "{}", rel.display())?;
+        let marker = c.root.join(MARKER);
+        std::fs::OpenOptions::new()
+            .append(true)
+            .create(true)
+            .open(&marker)
+            .and_then(|mut m| writeln!(m, "{}", rel.display()))
+            .map_err(io(format!("cannot write {}", marker.display())))?;
     }
     Ok(())
 }
@@ -158,7 +168,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     })();
     if let Err(e) = written {
         let _ = std::fs::remove_file(&tmp);
-        return Err(e).with_context(|| format!("cannot write {}", path.display()));
+        return Err(e).map_err(io(format!("cannot write {}", path.display())));
     }
     commit(&tmp, path)
 }
@@ -172,7 +182,9 @@ pub fn write_results(
     x: &[f64],
     extra: &[Field],
 ) -> Result<()> {
-    write_atomic(&out.join("summary.json"), serde_json::to_string_pretty(summary)?.as_bytes())?;
+    let json = serde_json::to_string_pretty(summary)
+        .map_err(|e| Error::Input(format!("summary.json cannot be written: {e}")))?;
+    write_atomic(&out.join("summary.json"), json.as_bytes())?;
     write_atomic(&out.join("solution.vtu"), solution_vtu(problem, dofs, x, extra)?.as_bytes())
 }
 /// The solution as a ParaView file: point data u (3 components), phi and `extra`; cell data

@@ -1,23 +1,28 @@
 //! Case files: TOML, every key documented, unknown keys rejected with their name and line.
+//! Every default lives here, once; every error names the file, the line of the key and the fix
+//! ([`Error::Input`]).
 //!
 //! [`CaseFile`] is the raw serde view of the file (ripgrep's "low args"); [`Case::problem`]
 //! turns it into a checked [`Problem`]. `--set dotted.key=value` edits the document before it
 //! is read, so an override is checked exactly like the file.
 
-use anyhow::{Context, Result, anyhow, bail};
-use piezocontact::algorithm::{ContactModel, Settings};
-use piezocontact::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
-use piezocontact::material::{
-    ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants,
-};
-use piezocontact::mesh::rectangle::{Diagonal, Rectangle, Segment};
-use piezocontact::mesh::{Mesh, gmsh};
-use piezocontact::problem::{BodyLoads, Boundary, Problem, constant_scalar, constant_vector};
+use crate::algorithm::{ContactModel, Method, Settings};
+use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
+use crate::error::{Error, Result};
+use crate::material::{ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants};
+use crate::mesh::rectangle::{Diagonal, Rectangle, Segment};
+use crate::mesh::{Mesh, gmsh};
+use crate::problem::{BodyLoads, Boundary, Problem, constant_scalar, constant_vector};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-/// The case's consistent unit system, used for labels only (SPEC §9): the numbers in the file
+/// An [`Error::Input`] with a formatted message.
+macro_rules! input {
+    ($($arg:tt)*) => { Error::Input(format!($($arg)*)) };
+}
+
+/// The case's consistent unit system, used for labels only (model §9): the numbers in the file
 /// are in these units and no conversion happens.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -195,7 +200,7 @@ pub enum ProblemKey {
     PV2,
 }
 
-/// `[contact]`: normal compliance with finite penetration, (2.5) and SPEC §9.
+/// `[contact]`: normal compliance with finite penetration, (2.5) and model §9.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSection {
@@ -268,6 +273,13 @@ pub struct ConductivitySection {
     pub truncation: f64,
 }
 
+impl Default for ConductivitySection {
+    /// k_e = 0 (no conduction) and the defaults of the other keys.
+    fn default() -> Self {
+        Self { ke: 0.0, phi0: 0.0, delta: one(), truncation: truncation() }
+    }
+}
+
 fn one() -> f64 {
     1.0
 }
@@ -281,10 +293,21 @@ fn truncation() -> f64 {
     1e3
 }
 
-/// `[solver]`: the algorithms' parameters (SPEC §7).
+/// The inner contact method in the case file.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum MethodKey {
+    /// Algorithms 2 and 4: augmented Lagrangian Uzawa block relaxation (the paper's).
+    #[default]
+    Uzawa,
+}
+
+/// `[solver]`: the algorithms' parameters (model §7). Defaults: [`SolverSection::DEFAULTS`].
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSection {
+    /// The inner method: "uzawa" (default).
+    pub method: Option<MethodKey>,
     /// r > 0: augmented Lagrangian parameter [stress/length]; default 0.25 E.
     pub r: Option<f64>,
     /// ε of the Uzawa stopping rule (6.12) [-]; default 1e−4.
@@ -295,6 +318,27 @@ pub struct SolverSection {
     pub max_inner: Option<usize>,
     /// Cap on fixed-point iterations; default 100.
     pub max_outer: Option<usize>,
+}
+
+/// The defaults of `[solver]`, in one place.
+struct SolverDefaults {
+    /// r as a multiple of Young's modulus E (the paper's 0.25 E).
+    r_per_young: f64,
+    eps: f64,
+    eps_fp: f64,
+    max_inner: usize,
+    max_outer: usize,
+}
+
+impl SolverSection {
+    /// The paper's values (r = 0.25 E, ε = ε_fp = 1e−4) and generous caps.
+    const DEFAULTS: SolverDefaults = SolverDefaults {
+        r_per_young: 0.25,
+        eps: 1e-4,
+        eps_fp: 1e-4,
+        max_inner: 10_000,
+        max_outer: 100,
+    };
 }
 
 /// A whole case file.
@@ -331,15 +375,17 @@ pub struct Case {
 impl Case {
     /// Reads `path`, applies `--set` overrides, and parses.
     pub fn load(path: &Path, overrides: &[String]) -> Result<Self> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read the case file {}", path.display()))?;
+        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
+            what: format!("cannot read the case file {}", path.display()),
+            cause: e.to_string(),
+        })?;
         Self::from_text(path, &text, overrides)
     }
 
     /// Parses a case from text (`path` names it in messages and anchors relative mesh files).
     pub fn from_text(path: &Path, text: &str, overrides: &[String]) -> Result<Self> {
         let mut doc: toml_edit::DocumentMut =
-            text.parse().map_err(|e| anyhow!("{}: {e}", path.display()))?;
+            text.parse().map_err(|e| input!("{}: {e}", path.display()))?;
         for o in overrides {
             apply_override(&mut doc, o)?;
         }
@@ -350,7 +396,7 @@ impl Case {
             } else {
                 format!(" (after --set {})", overrides.join(", --set "))
             };
-            anyhow!("{}{note}: {e}", path.display())
+            input!("{}{note}: {e}", path.display())
         })?;
         Ok(Self { path: path.to_path_buf(), source, file })
     }
@@ -363,14 +409,13 @@ impl Case {
         }
     }
 
-    /// Wraps a library error with the location of the key it names.
-    fn context(&self, e: piezocontact::Error) -> anyhow::Error {
-        match &e {
-            piezocontact::Error::InvalidParameter { name, .. } => {
-                anyhow!("{}: {e}", self.locate(name))
-            }
-            _ => anyhow!("{}: {e}", self.path.display()),
-        }
+    /// Places an error in this case: at the line of the key it names, else in the file.
+    pub fn context(&self, e: Error) -> Error {
+        let location = match &e {
+            Error::InvalidParameter { name, .. } => self.locate(name),
+            _ => self.path.display().to_string(),
+        };
+        Error::Located { location, source: Box::new(e) }
     }
 
     /// Builds the mesh: the rectangle or the Gmsh file.
@@ -385,20 +430,25 @@ impl Case {
                 ("mesh.segments", !m.segments.is_empty()),
             ] {
                 if set {
-                    bail!(
+                    return Err(input!(
                         "{}: {key} describes the built-in rectangle; remove it when mesh.file is given",
                         self.locate(key)
-                    );
+                    ));
                 }
             }
             let full = self.path.parent().unwrap_or(Path::new(".")).join(file);
-            let bytes = std::fs::read(&full).with_context(|| {
-                format!("{}: cannot read mesh.file {}", self.locate("mesh.file"), full.display())
+            let bytes = std::fs::read(&full).map_err(|e| Error::Io {
+                what: format!(
+                    "{}: cannot read mesh.file {}",
+                    self.locate("mesh.file"),
+                    full.display()
+                ),
+                cause: e.to_string(),
             })?;
-            return gmsh::read(&bytes).map_err(|e| anyhow!("{}: {e}", full.display()));
+            return gmsh::read(&bytes).map_err(|e| input!("{}: {e}", full.display()));
         }
         let need = |key: &str| {
-            anyhow!(
+            input!(
                 "{}: {key} is missing: give the rectangle (mesh.x, mesh.y, mesh.nx, mesh.ny) or mesh.file",
                 self.path.display()
             )
@@ -420,7 +470,7 @@ impl Case {
             parts.push((
                 name.clone(),
                 segments.map_err(|e| {
-                    anyhow!("{}: {e}", self.locate(&format!("mesh.segments.{name}")))
+                    input!("{}: {e}", self.locate(&format!("mesh.segments.{name}")))
                 })?,
             ));
         }
@@ -435,13 +485,13 @@ impl Case {
         let bytes = nodes * 12e3 * (nodes.log2() / 18.0).max(1.0);
         let available = available_memory();
         if bytes > available {
-            bail!(
+            return Err(input!(
                 "{}: mesh.nx × mesh.ny = {nx} × {ny} cells ({nodes:.3e} nodes, {:.3e} unknowns) would need about {:.3e} GiB, and this machine has {:.1} GiB available; reduce mesh.nx and mesh.ny",
                 self.locate("mesh.nx"),
                 3.0 * nodes,
                 bytes / 2f64.powi(30),
                 available / 2f64.powi(30)
-            );
+            ));
         }
         Ok(())
     }
@@ -456,7 +506,11 @@ impl Case {
         let elasticity =
             Elasticity::from_young_poisson(m.young, m.poisson, law).map_err(|e| self.context(e))?;
         if !(m.eps0.is_finite() && m.eps0 > 0.0) {
-            bail!("{}: material.eps0 = {} must be > 0", self.locate("material.eps0"), m.eps0);
+            return Err(input!(
+                "{}: material.eps0 = {} must be > 0",
+                self.locate("material.eps0"),
+                m.eps0
+            ));
         }
         Material::new(
             dim,
@@ -494,10 +548,10 @@ impl Case {
             }
             for (name, &mu) in &fr.mu_parts {
                 if !nonnegative(mu) {
-                    bail!(
+                    return Err(input!(
                         "{}: friction.mu_parts.{name} = {mu} is not allowed: µ ≥ 0",
                         self.locate(&format!("friction.mu_parts.{name}"))
-                    );
+                    ));
                 }
             }
         }
@@ -509,23 +563,22 @@ impl Case {
                 Rule("conductivity.L", c.truncation, positive, "L > 0"),
             ]);
         }
-        let s = &f.solver;
+        let settings = self.settings_unchecked();
+        let Method::Uzawa { r, eps, max_inner } = settings.method;
         rules.extend([
-            Rule("solver.r", s.r.unwrap_or(0.25 * f.material.young), positive, "r > 0"),
-            Rule("solver.eps", s.eps.unwrap_or(1e-4), positive, "ε > 0"),
-            Rule("solver.eps_fp", s.eps_fp.unwrap_or(1e-4), positive, "ε_fp > 0"),
-            Rule(
-                "solver.max_inner",
-                s.max_inner.unwrap_or(10_000) as f64,
-                |v| v >= 1.0,
-                "at least 1",
-            ),
-            Rule("solver.max_outer", s.max_outer.unwrap_or(100) as f64, |v| v >= 1.0, "at least 1"),
+            Rule("solver.r", r, positive, "r > 0"),
+            Rule("solver.eps", eps, positive, "ε > 0"),
+            Rule("solver.eps_fp", settings.eps_fp, positive, "ε_fp > 0"),
+            Rule("solver.max_inner", max_inner as f64, |v| v >= 1.0, "at least 1"),
+            Rule("solver.max_outer", settings.max_outer as f64, |v| v >= 1.0, "at least 1"),
         ]);
         let mut lines = Vec::new();
         for Rule(key, value, ok, requirement) in rules {
             if !ok(value) {
-                bail!("{}: {key} = {value} is not allowed: {requirement}", self.locate(key));
+                return Err(input!(
+                    "{}: {key} = {value} is not allowed: {requirement}",
+                    self.locate(key)
+                ));
             }
             lines.push((key.to_string(), value));
         }
@@ -610,16 +663,16 @@ impl Case {
                 let mut mu_parts = Vec::new();
                 for (name, &mu) in &fr.mu_parts {
                     let part = problem.mesh.part_index(name).map_err(|e| {
-                        anyhow!(
+                        input!(
                             "{}: friction.mu_parts: {e}",
                             self.locate(&format!("friction.mu_parts.{name}"))
                         )
                     })?;
                     if !problem.boundary.contact.contains(&part) {
-                        bail!(
+                        return Err(input!(
                             "{}: friction.mu_parts.{name}: part '{name}' is not a contact part (boundary.contact)",
                             self.locate(&format!("friction.mu_parts.{name}"))
-                        );
+                        ));
                     }
                     mu_parts.push((part, mu));
                 }
@@ -627,12 +680,9 @@ impl Case {
                     RegularizationKey::Identity => Regularization::Identity,
                     RegularizationKey::Mollifier => Regularization::Mollifier { radius: fr.radius },
                 };
-                let k = conduction.cloned().unwrap_or(ConductivitySection {
-                    ke: 0.0,
-                    phi0,
-                    delta: 1.0,
-                    truncation: truncation(),
-                });
+                let k = conduction
+                    .cloned()
+                    .unwrap_or(ConductivitySection { phi0, ..ConductivitySection::default() });
                 Some((
                     Friction { mu: fr.mu, mu_parts, regularization },
                     Conduction { ke: k.ke, phi0: k.phi0, delta: k.delta, truncation: k.truncation },
@@ -642,15 +692,26 @@ impl Case {
         Ok(Some(ContactModel { compliance, pv2 }))
     }
 
-    /// The algorithms' parameters, with the paper's defaults (r = 0.25 E, ε = ε_fp = 1e−4).
-    pub fn settings(&self) -> Settings {
-        let s = &self.file.solver;
+    /// The algorithms' parameters, checked, with the defaults of [`SolverSection::DEFAULTS`].
+    pub fn settings(&self) -> Result<Settings> {
+        self.contact_settings()?;
+        Ok(self.settings_unchecked())
+    }
+
+    /// The algorithms' parameters with their defaults, before the range checks.
+    fn settings_unchecked(&self) -> Settings {
+        let (s, d) = (&self.file.solver, SolverSection::DEFAULTS);
+        let method = match s.method.unwrap_or_default() {
+            MethodKey::Uzawa => Method::Uzawa {
+                r: s.r.unwrap_or(d.r_per_young * self.file.material.young),
+                eps: s.eps.unwrap_or(d.eps),
+                max_inner: s.max_inner.unwrap_or(d.max_inner),
+            },
+        };
         Settings {
-            r: s.r.unwrap_or(0.25 * self.file.material.young),
-            eps: s.eps.unwrap_or(1e-4),
-            eps_fp: s.eps_fp.unwrap_or(1e-4),
-            max_inner: s.max_inner.unwrap_or(10_000),
-            max_outer: s.max_outer.unwrap_or(100),
+            method,
+            eps_fp: s.eps_fp.unwrap_or(d.eps_fp),
+            max_outer: s.max_outer.unwrap_or(d.max_outer),
         }
     }
 
@@ -664,17 +725,15 @@ impl Case {
         let parts = |key: &str, names: &[String]| -> Result<Vec<usize>> {
             names
                 .iter()
-                .map(|n| {
-                    mesh.part_index(n).map_err(|e| anyhow!("{}: {key}: {e}", self.locate(key)))
-                })
+                .map(|n| mesh.part_index(n).map_err(|e| input!("{}: {key}: {e}", self.locate(key))))
                 .collect()
         };
         let vector = |key: &str, v: &[f64]| -> Result<Vec<f64>> {
             if v.len() != dim || v.iter().any(|x| !x.is_finite()) {
-                bail!(
+                return Err(input!(
                     "{}: {key} = {v:?} must have {dim} finite components (the mesh is {dim}D)",
                     self.locate(key)
-                );
+                ));
             }
             Ok(v.to_vec())
         };
@@ -688,11 +747,11 @@ impl Case {
         let mut charge = Vec::new();
         for c in &b.charge {
             if !c.q2.is_finite() {
-                bail!(
+                return Err(input!(
                     "{}: boundary.charge.q2 = {} must be a finite number",
                     self.locate("boundary.charge"),
                     c.q2
-                );
+                ));
             }
             for p in parts("boundary.charge.parts", &c.parts)? {
                 charge.push((p, constant_scalar(c.q2)));
@@ -717,7 +776,10 @@ impl Case {
                 .map(constant_vector),
             q0: match self.file.loads.q0 {
                 Some(q) if !q.is_finite() => {
-                    bail!("{}: loads.q0 = {q} must be a finite number", self.locate("loads.q0"))
+                    return Err(input!(
+                        "{}: loads.q0 = {q} must be a finite number",
+                        self.locate("loads.q0")
+                    ));
                 }
                 q => q.map(constant_scalar),
             },
@@ -752,11 +814,11 @@ fn nonnegative(v: f64) -> bool {
 /// (numbers, booleans, quoted strings, arrays) or else taken as a bare string.
 fn apply_override(doc: &mut toml_edit::DocumentMut, setting: &str) -> Result<()> {
     let (key, value) = setting.split_once('=').ok_or_else(|| {
-        anyhow!("--set {setting}: expected dotted.key=value, e.g. --set mesh.nx=192")
+        input!("--set {setting}: expected dotted.key=value, e.g. --set mesh.nx=192")
     })?;
     let path: Vec<&str> = key.trim().split('.').collect();
     if path.iter().any(|k| k.is_empty()) {
-        bail!("--set {setting}: '{key}' is not a dotted key such as solver.r");
+        return Err(input!("--set {setting}: '{key}' is not a dotted key such as solver.r"));
     }
     let value: toml_edit::Value =
         value.trim().parse().unwrap_or_else(|_| toml_edit::Value::from(value.trim()));
@@ -764,7 +826,7 @@ fn apply_override(doc: &mut toml_edit::DocumentMut, setting: &str) -> Result<()>
     for (depth, k) in path[..path.len() - 1].iter().enumerate() {
         let entry = table.entry(k).or_insert_with(toml_edit::table);
         table = entry.as_table_mut().ok_or_else(|| {
-            anyhow!("--set {setting}: '{}' is not a table", path[..=depth].join("."))
+            input!("--set {setting}: '{}' is not a table", path[..=depth].join("."))
         })?;
     }
     let last = path[path.len() - 1];

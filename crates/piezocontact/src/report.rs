@@ -1,9 +1,9 @@
 //! Reports of a contact run: `contact.csv` (one row per Γ3 node, ordered along Γ3) and the
 //! `summary.json` fields of Algorithms 1–4.
 
-use piezocontact::algorithm::residual::{Balance, KktResidual};
-use piezocontact::algorithm::{ContactModel, ContactSolution, NodeStatus};
-use piezocontact::problem::Problem;
+use crate::algorithm::residual::{Balance, KktResidual};
+use crate::algorithm::{ContactModel, ContactSolution, NodeStatus};
+use crate::problem::Problem;
 use serde_json::{Value, json};
 use std::fmt::Write;
 
@@ -142,7 +142,7 @@ pub fn contact_summary(
             "slip_measure": slip,
         },
         "timings_seconds": {
-            "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
+            "pattern": t.pattern, "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
             "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count,
         },
     })

@@ -1,0 +1,46 @@
+//! The terminal report of a run: every number with its unit.
+
+use piezocontact::case::Case;
+use piezocontact::run::ContactRun;
+use std::path::Path;
+
+/// Prints a contact run's figures on the terminal, each with its unit.
+pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
+    let (units, solution, kkt) = (&case.file.units, &run.solution, &run.kkt);
+    let (sigma_nu, sigma_tau) = run.peaks();
+    let (c, st, sl) = run.zones();
+    let t = solution.timings;
+    println!(
+        "{}: {}, {} nodes, {} elements",
+        case.path.display(),
+        run.model.name(),
+        run.problem.mesh.n_nodes(),
+        run.problem.mesh.n_cells()
+    );
+    println!(
+        "  outer iterations   = {} ({})",
+        solution.outer_iterations,
+        if solution.converged { "converged" } else { "NOT converged" }
+    );
+    println!("  inner iterations   = {:?}", solution.inner_iterations);
+    println!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
+    println!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
+    println!("  contact / stick / slip measure = {c:.4} / {st:.4} / {sl:.4} {}", units.length);
+    println!(
+        "  KKT residual       = {:.3e} (equilibrium u {:.1e}, phi {:.1e}; contact {:.1e}; friction {:.1e})",
+        kkt.max, kkt.equilibrium_u, kkt.equilibrium_phi, kkt.contact, kkt.friction
+    );
+    println!("  force balance      = relative imbalance {:.1e}", run.balance.imbalance);
+    println!(
+        "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}), total {:.3} s",
+        t.pattern,
+        t.assembly,
+        t.symbolic,
+        t.numeric,
+        t.numeric_count,
+        t.solve,
+        t.solve_count,
+        run.seconds
+    );
+    println!("  wrote contact.csv, summary.json, solution.vtu in {}", out.display());
+}

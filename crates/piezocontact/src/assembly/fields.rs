@@ -1,0 +1,195 @@
+//! Fields and norms of a solution, element by element: strain and ∇ϕ, the secant moduli of
+//! Hencky's law, the internal force with the true law, σ and D for output, the L2 norm of the
+//! stopping rules and the norm of the space X of [P] (3.1).
+
+use super::kernel::{element_matrix, local_dofs, simplex};
+use crate::dofs::DofMap;
+use crate::error::Result;
+use crate::material::deviator_norm_squared;
+use crate::problem::Problem;
+
+/// Strain ε(u) and ∇ϕ on cell `c` from a global vector x = (u, ϕ).
+pub fn cell_gradients<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    c: usize,
+) -> Result<([[f64; D]; D], [f64; D])> {
+    let s = simplex::<D, N>(problem, c)?;
+    let mut eps = [[0.0; D]; D];
+    let mut grad_phi = [0.0; D];
+    for (a, &node) in problem.mesh.cell(c).iter().enumerate() {
+        for i in 0..D {
+            grad_phi[i] += x[dofs.phi(node)] * s.grad[a][i];
+            for j in 0..D {
+                eps[i][j] +=
+                    0.5 * (x[dofs.u(node, i)] * s.grad[a][j] + x[dofs.u(node, j)] * s.grad[a][i]);
+            }
+        }
+    }
+    Ok((eps, grad_phi))
+}
+
+/// The internal force F_int = Σ_e K_e(g_e) x_e on the global DOFs, and the row scale
+/// Σ_e |K_e x_e| (to make residuals relative). With g_e = g(‖ε^D(u)‖²) of x itself this is
+/// the exact nonlinear internal force of (6.2): Fε is linear in ε at a fixed g.
+pub fn internal_force(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    g: &[f64],
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    with_simplex!(problem.mesh.dim(), internal_force_on(problem, dofs, x, g))
+}
+
+fn internal_force_on<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    g: &[f64],
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let m = N * (D + 1);
+    let mut force = vec![0.0; dofs.n_total()];
+    let mut scale = vec![0.0; dofs.n_total()];
+    for c in 0..problem.mesh.n_cells() {
+        let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, g[c]);
+        let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
+        for p in 0..m {
+            for q in 0..m {
+                let v = k[p][q] * x[global[q]];
+                force[global[p]] += v;
+                scale[global[p]] += v.abs();
+            }
+        }
+    }
+    Ok((force, scale))
+}
+
+/// The L2(Ω) norm of the stopping rules (6.12), (6.15): the consistent P1 mass matrix on
+/// every component of x = (u, ϕ), applied element by element with the element measures
+/// computed once.
+#[derive(Clone, Debug)]
+pub struct MassNorm {
+    /// |K| / ((d+1)(d+2)) per element.
+    scaled_measures: Vec<f64>,
+}
+
+impl MassNorm {
+    /// Computes the element measures of `problem`'s mesh.
+    pub fn new(problem: &Problem) -> Result<Self> {
+        let n = problem.mesh.dim() + 1;
+        let factor = 1.0 / ((n * (n + 1)) as f64);
+        let scaled_measures = (0..problem.mesh.n_cells())
+            .map(|c| Ok(factor * with_simplex!(problem.mesh.dim(), cell_measure(problem, c))?))
+            .collect::<Result<_>>()?;
+        Ok(Self { scaled_measures })
+    }
+
+    /// ‖x‖²_{L2(Ω)} of a global vector x, summed over the components of u and ϕ.
+    pub fn squared(&self, problem: &Problem, dofs: &DofMap, x: &[f64]) -> f64 {
+        let mesh = &problem.mesh;
+        let dim = mesh.dim();
+        let mut sum = 0.0;
+        for (c, scaled) in self.scaled_measures.iter().enumerate() {
+            let cell = mesh.cell(c);
+            for comp in 0..=dim {
+                let value = |node: usize| {
+                    if comp < dim { x[dofs.u(node, comp)] } else { x[dofs.phi(node)] }
+                };
+                // M_ab = |K| (1 + δ_ab) / ((d+1)(d+2)): Σ_ab M_ab v_a v_b = |K| f ((Σ v)² + Σ v²).
+                let (total, squares) = cell
+                    .iter()
+                    .fold((0.0, 0.0), |(t, q), &n| (t + value(n), q + value(n) * value(n)));
+                sum += scaled * (total * total + squares);
+            }
+        }
+        sum
+    }
+}
+
+/// ‖x‖²_X = ‖ε(u)‖²_{L2} + ‖∇ϕ‖²_{L2}, the norm of the product space X of [P] (3.1), in
+/// which Theorem 4.1 bounds ‖x(µ, k_e) − x‖_X.
+pub fn x_norm_squared(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<f64> {
+    let mut sum = 0.0;
+    for c in 0..problem.mesh.n_cells() {
+        sum += with_simplex!(problem.mesh.dim(), x_norm_on(problem, dofs, x, c))?;
+    }
+    Ok(sum)
+}
+
+fn x_norm_on<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    c: usize,
+) -> Result<f64> {
+    let (eps, grad_phi) = cell_gradients::<D, N>(problem, dofs, x, c)?;
+    let vol = simplex::<D, N>(problem, c)?.measure();
+    let e2: f64 = eps.iter().flatten().map(|v| v * v).sum();
+    let p2: f64 = grad_phi.iter().map(|v| v * v).sum();
+    Ok(vol * (e2 + p2))
+}
+
+/// Per-element secant moduli g(‖ε^D(u_n)‖²) [stress] at the iterate x_n (global vector).
+pub fn secant_moduli(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Vec<f64>> {
+    (0..problem.mesh.n_cells())
+        .map(|c| {
+            let t = with_simplex!(problem.mesh.dim(), deviator_at(problem, dofs, x, c))?;
+            Ok(problem.material.elasticity.g(t))
+        })
+        .collect()
+}
+
+/// Element fields of a solution, padded to 3D for output.
+#[derive(Clone, Debug, Default)]
+pub struct ElementFields {
+    /// σ per element, 3 × 3 row-major [stress], with the true law g(‖ε^D(u)‖²).
+    pub sigma: Vec<[f64; 9]>,
+    /// D per element [charge/length^(d−1)].
+    pub electric_displacement: Vec<[f64; 3]>,
+}
+
+/// σ and D on every element of the solution x (global vector).
+pub fn element_fields(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<ElementFields> {
+    let mut fields = ElementFields::default();
+    for c in 0..problem.mesh.n_cells() {
+        let (s, d) = with_simplex!(problem.mesh.dim(), fields_on(problem, dofs, x, c))?;
+        fields.sigma.push(s);
+        fields.electric_displacement.push(d);
+    }
+    Ok(fields)
+}
+
+fn fields_on<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    c: usize,
+) -> Result<([f64; 9], [f64; 3])> {
+    let material = &problem.material;
+    let (eps, grad_phi) = cell_gradients::<D, N>(problem, dofs, x, c)?;
+    let sigma = material.true_stress(&eps, &grad_phi);
+    let d = material.displacement_field(&eps, &grad_phi);
+    let mut s9 = [0.0; 9];
+    let mut d3 = [0.0; 3];
+    for i in 0..D {
+        d3[i] = d[i];
+        for j in 0..D {
+            s9[3 * i + j] = sigma[i][j];
+        }
+    }
+    Ok((s9, d3))
+}
+
+fn cell_measure<const D: usize, const N: usize>(problem: &Problem, c: usize) -> Result<f64> {
+    Ok(simplex::<D, N>(problem, c)?.measure())
+}
+
+fn deviator_at<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    c: usize,
+) -> Result<f64> {
+    Ok(deviator_norm_squared(&cell_gradients::<D, N>(problem, dofs, x, c)?.0))
+}
