@@ -6,14 +6,10 @@ use clap::{Parser, Subcommand};
 use piezocontact::case::Case;
 use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
-use piezocontact::problem::Problem;
-use piezocontact::run::{self as runner, ContactRun};
-use piezocontact::solver::solve_without_contact;
+use piezocontact::run::{ContactRun, StaticRun};
 use piezocontact_cli::{bench, print, reproduce, sweep};
-use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
 
 /// Static contact of a piezoelectric body with a foundation: P1 finite elements.
 #[derive(Parser)]
@@ -144,11 +140,11 @@ fn main() -> ExitCode {
 fn run(command: Command) -> Result<Outcome> {
     match command {
         Command::Run { case, out, set, force } => {
-            let _claim = output::Claimed::new(&out, force)?;
+            let _claim = claim(&out, force)?;
             run_case(&case, &out, &set)
         }
         Command::Sweep { case, set_list, set, reference, jobs, out, force } => {
-            let _claim = output::Claimed::new(&out, force)?;
+            let _claim = claim(&out, force)?;
             let request = sweep::SweepRequest {
                 case: &case,
                 set_list: &set_list,
@@ -160,7 +156,7 @@ fn run(command: Command) -> Result<Outcome> {
             Ok(if sweep::sweep(&request)? { Outcome::Done } else { Outcome::NotConverged })
         }
         Command::Reproduce { out, mesh, jobs, force } => {
-            let _claim = output::Claimed::new(&out, force)?;
+            let _claim = claim(&out, force)?;
             let converged =
                 reproduce::reproduce(&reproduce::Request { out: out.clone(), mesh, jobs })?;
             println!("wrote {} with its figures and tables", out.join("REPORT.md").display());
@@ -178,6 +174,16 @@ fn run(command: Command) -> Result<Outcome> {
     }
 }
 
+/// Claims the output directory; a foreign directory's error names the command's options.
+fn claim(out: &Path, force: bool) -> Result<output::Claimed> {
+    output::Claimed::new(out, force).map_err(|e| match e {
+        piezocontact::Error::ForeignOutput { .. } => {
+            anyhow::anyhow!("{e}: choose another --out, or pass --force to write there anyway")
+        }
+        e => e.into(),
+    })
+}
+
 /// How a command ended, when it did not fail outright.
 enum Outcome {
     /// Everything converged.
@@ -189,18 +195,19 @@ enum Outcome {
 }
 
 fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<Outcome> {
-    let start = Instant::now();
     let case = Case::load(path, set)?;
     if case.file.contact.is_some() {
         return run_contact(&case, out);
     }
-    let problem = case.problem()?;
-    if !problem.boundary.contact.is_empty() {
+    let run = StaticRun::solve(&case)?;
+    if !run.problem.boundary.contact.is_empty() {
         log::warn!(
             "the case has no [contact] table: Γ3 is treated as free (traction and charge free)"
         );
     }
-    run_without_contact(&case, &problem, out, start)
+    run.write(&case, out)?;
+    print::static_run(&run, &case, out);
+    Ok(Outcome::Done)
 }
 
 fn run_contact(case: &Case, out: &Path) -> Result<Outcome> {
@@ -218,56 +225,6 @@ fn run_contact(case: &Case, out: &Path) -> Result<Outcome> {
             _ => Outcome::Failed,
         });
     }
-    Ok(Outcome::Done)
-}
-
-fn run_without_contact(
-    case: &Case,
-    problem: &Problem,
-    out: &Path,
-    start: Instant,
-) -> Result<Outcome> {
-    let solution = solve_without_contact(problem).map_err(|e| case.context(e))?;
-    let dofs = &solution.dofs;
-    let units = &case.file.units;
-    let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
-    let max_u = (0..n)
-        .map(|a| (0..dim).map(|i| solution.x[dofs.u(a, i)].powi(2)).sum::<f64>().sqrt())
-        .fold(0.0, f64::max);
-    let phi: Vec<f64> = (0..n).map(|a| solution.x[dofs.phi(a)]).collect();
-    let (phi_min, phi_max) =
-        phi.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
-    let t = solution.timings;
-    let total = start.elapsed().as_secs_f64();
-    let mut summary = runner::common_summary(case, problem, dofs);
-    runner::merge(
-        &mut summary,
-        json!({
-            "problem": "coupled electro-elastic, no contact",
-            "converged": true,
-            "norms": { "max_abs_u": max_u, "min_phi": phi_min, "max_phi": phi_max, "relative_residual": solution.relative_residual },
-            "timings_seconds": {
-                "pattern": t.pattern, "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
-                "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count, "total": total,
-            },
-        }),
-    );
-    output::write_results(out, &summary, problem, dofs, &solution.x, &[])?;
-    println!(
-        "{}: {} nodes, {} elements, {} free DOFs (no contact)",
-        case.path.display(),
-        n,
-        problem.mesh.n_cells(),
-        dofs.n_free()
-    );
-    println!("  max |u|            = {max_u:.6e} {}", units.length);
-    println!("  phi range          = [{phi_min:.6e}, {phi_max:.6e}] {}", units.potential);
-    println!("  relative residual  = {:.3e}", solution.relative_residual);
-    println!(
-        "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, total {total:.3} s",
-        t.pattern, t.assembly, t.symbolic, t.numeric, t.solve
-    );
-    println!("  wrote summary.json and solution.vtu in {}", out.display());
     Ok(Outcome::Done)
 }
 

@@ -1,7 +1,7 @@
 //! The terminal report of a run: every number with its unit.
 
 use piezocontact::case::Case;
-use piezocontact::run::ContactRun;
+use piezocontact::run::{ContactRun, StaticRun};
 use std::path::Path;
 
 /// Prints a contact run's figures on the terminal, each with its unit.
@@ -43,4 +43,25 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         run.seconds
     );
     println!("  wrote contact.csv, summary.json, solution.vtu in {}", out.display());
+}
+
+/// Prints a run without contact.
+pub fn static_run(run: &StaticRun, case: &Case, out: &Path) {
+    let (units, problem, t) = (&case.file.units, &run.problem, run.solution.timings);
+    println!(
+        "{}: {} nodes, {} elements, {} free DOFs (no contact)",
+        case.path.display(),
+        problem.mesh.n_nodes(),
+        problem.mesh.n_cells(),
+        run.solution.free_dofs
+    );
+    println!("  max |u|            = {:.6e} {}", run.max_u, units.length);
+    let (lo, hi) = run.phi_range;
+    println!("  phi range          = [{lo:.6e}, {hi:.6e}] {}", units.potential);
+    println!("  relative residual  = {:.3e}", run.solution.relative_residual);
+    println!(
+        "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, total {:.3} s",
+        t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, run.seconds
+    );
+    println!("  wrote summary.json and solution.vtu in {}", out.display());
 }

@@ -6,7 +6,7 @@ use crate::plot::{self, BodyLabels, LinePlot, PALETTE, Series};
 use crate::sweep::{Job, run_jobs, threads};
 use anyhow::Result;
 use piezocontact::algorithm::NodeStatus;
-use piezocontact::case::Case;
+use piezocontact::case::{Case, Units};
 use piezocontact::output::files::write_atomic;
 use piezocontact::report::Row;
 use piezocontact::run::ContactRun;
@@ -46,16 +46,211 @@ pub struct Request {
     pub jobs: Option<usize>,
 }
 
-/// One planned run.
-struct Plan {
-    key: String,
-    text: &'static str,
-    overrides: Vec<String>,
-    write: bool,
+/// The paper's two cases.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Example {
+    /// Example 7.1 (PV1).
+    Pv1,
+    /// Example 7.2 (PV2).
+    Pv2,
 }
 
-fn plan(key: impl Into<String>, text: &'static str, overrides: &[String], write: bool) -> Plan {
-    Plan { key: key.into(), text, overrides: overrides.to_vec(), write }
+impl Example {
+    fn text(self) -> &'static str {
+        match self {
+            Self::Pv1 => PAPER_71,
+            Self::Pv2 => PAPER_72,
+        }
+    }
+
+    fn path(self) -> &'static Path {
+        Path::new(match self {
+            Self::Pv1 => "cases/paper-7.1.toml",
+            Self::Pv2 => "cases/paper-7.2.toml",
+        })
+    }
+
+    /// "7.1" or "7.2".
+    fn name(self) -> &'static str {
+        match self {
+            Self::Pv1 => "7.1",
+            Self::Pv2 => "7.2",
+        }
+    }
+}
+
+/// A planned run: its place among the jobs of one [`Planner`].
+#[derive(Clone, Copy)]
+struct RunId(usize);
+
+/// Collects the runs of every study, to run them all in one parallel batch.
+struct Planner {
+    jobs: Vec<Job>,
+    runs_dir: PathBuf,
+    /// Overrides of the base mesh times k.
+    mesh: (usize, usize),
+}
+
+impl Planner {
+    /// Plans a run of `example` on the base mesh times `k` with `overrides`; its files go to
+    /// `runs/<label>` when `write`.
+    fn add(
+        &mut self,
+        label: String,
+        example: Example,
+        k: usize,
+        overrides: Vec<String>,
+        write: bool,
+    ) -> Result<RunId> {
+        let (nx, ny) = self.mesh;
+        let mut all = vec![format!("mesh.nx={}", nx * k), format!("mesh.ny={}", ny * k)];
+        all.extend(overrides);
+        let case = Case::from_text(example.path(), example.text(), &all)?;
+        let out = write.then(|| self.runs_dir.join(label.replace('/', "-")));
+        self.jobs.push(Job { label, case, out });
+        Ok(RunId(self.jobs.len() - 1))
+    }
+}
+
+/// Examples 7.1 and 7.2 at the paper's tolerance on the base mesh (Figures 1–2).
+struct Examples {
+    pv1: RunId,
+    pv2: RunId,
+}
+
+impl Examples {
+    fn plan(p: &mut Planner) -> Result<Self> {
+        Ok(Self {
+            pv1: p.add("7.1".into(), Example::Pv1, 1, vec![], true)?,
+            pv2: p.add("7.2".into(), Example::Pv2, 1, vec![], true)?,
+        })
+    }
+
+    fn run(&self, example: Example) -> RunId {
+        match example {
+            Example::Pv1 => self.pv1,
+            Example::Pv2 => self.pv2,
+        }
+    }
+}
+
+/// Table 2 (and Figures 3–4, drawn from its runs): PV2 at each µ = k_e.
+struct Table2 {
+    /// (µ = k_e, the paper's count, the run).
+    rows: Vec<(f64, usize, RunId)>,
+}
+
+impl Table2 {
+    fn plan(p: &mut Planner) -> Result<Self> {
+        let rows = TABLE2
+            .iter()
+            .map(|&(mu, paper)| {
+                Ok((
+                    mu,
+                    paper,
+                    p.add(format!("table2/{mu:e}"), Example::Pv2, 1, pv2(mu, mu), true)?,
+                ))
+            })
+            .collect::<Result<_>>()?;
+        Ok(Self { rows })
+    }
+
+    /// The runs of Figures 3–4.
+    fn figure3(&self) -> impl Iterator<Item = (f64, RunId)> + '_ {
+        self.rows.iter().filter(|r| FIGURE3.contains(&r.0)).map(|r| (r.0, r.2))
+    }
+}
+
+/// One series of the Theorem 4.1 study: what varies, and a run per value.
+struct LimitSeries {
+    name: &'static str,
+    label: &'static str,
+    runs: Vec<(f64, RunId)>,
+}
+
+/// Theorem 4.1, solved tightly, with g_p = 0 and with an active layer g_p = [`LAYER`].
+struct Limit {
+    /// (g_p, the PV1 reference, the series).
+    layers: Vec<(f64, RunId, Vec<LimitSeries>)>,
+}
+
+impl Limit {
+    fn plan(p: &mut Planner) -> Result<Self> {
+        let mut layers = Vec::new();
+        for gp in [0.0, LAYER] {
+            let pv1 =
+                p.add(format!("limit/{gp}/pv1"), Example::Pv1, 1, tight(vec![], gp), false)?;
+            let mut series = Vec::new();
+            for (name, label) in
+                [("both", "µ = k_e"), ("mu", "µ only (k_e = 0)"), ("ke", "k_e only (µ = 0)")]
+            {
+                let mut runs = Vec::new();
+                for m in LIMIT {
+                    let (mu, ke) = match name {
+                        "both" => (m, m),
+                        "mu" => (m, 0.0),
+                        _ => (0.0, m),
+                    };
+                    let label = format!("limit/{gp}/{name}/{m:e}");
+                    runs.push((m, p.add(label, Example::Pv2, 1, tight(pv2(mu, ke), gp), false)?));
+                }
+                series.push(LimitSeries { name, label, runs });
+            }
+            layers.push((gp, pv1, series));
+        }
+        Ok(Self { layers })
+    }
+}
+
+/// The examples on the base mesh times 1, 2 and 4.
+struct MeshStudy {
+    /// (example, k, the run).
+    rows: Vec<(Example, usize, RunId)>,
+}
+
+impl MeshStudy {
+    fn plan(p: &mut Planner, examples: &Examples) -> Result<Self> {
+        let mut rows = Vec::new();
+        for example in [Example::Pv1, Example::Pv2] {
+            rows.push((example, 1, examples.run(example)));
+            for k in [2, 4] {
+                let label = format!("mesh/{}/{k}", example.name());
+                rows.push((example, k, p.add(label, example, k, vec![], false)?));
+            }
+        }
+        Ok(Self { rows })
+    }
+
+    fn run(&self, example: Example, k: usize) -> Option<RunId> {
+        self.rows.iter().find(|r| r.0 == example && r.1 == k).map(|r| r.2)
+    }
+}
+
+/// The examples at the paper's tolerance against the same runs solved tightly.
+struct StoppingStudy {
+    /// (example, at ε = 1e−4, tight).
+    rows: Vec<(Example, RunId, RunId)>,
+}
+
+impl StoppingStudy {
+    fn plan(p: &mut Planner, examples: &Examples) -> Result<Self> {
+        let mut rows = Vec::new();
+        for example in [Example::Pv1, Example::Pv2] {
+            let label = format!("tight/{}", example.name());
+            let tight_run = p.add(label, example, 1, tight(vec![], 0.0), false)?;
+            rows.push((example, examples.run(example), tight_run));
+        }
+        Ok(Self { rows })
+    }
+}
+
+/// Every study, planned.
+struct Studies {
+    examples: Examples,
+    table2: Table2,
+    limit: Limit,
+    mesh: MeshStudy,
+    stopping: StoppingStudy,
 }
 
 fn pv2(mu: f64, ke: f64) -> Vec<String> {
@@ -74,64 +269,28 @@ fn tight(mut o: Vec<String>, penetration: f64) -> Vec<String> {
 
 /// Runs everything and writes the report; returns whether every run converged.
 pub fn reproduce(request: &Request) -> Result<bool> {
-    let (nx, ny) = request.mesh;
-    let mesh = |k: usize| vec![format!("mesh.nx={}", nx * k), format!("mesh.ny={}", ny * k)];
-    let with = |mut base: Vec<String>, extra: Vec<String>| {
-        base.extend(extra);
-        base
+    let mut planner =
+        Planner { jobs: Vec::new(), runs_dir: request.out.join("runs"), mesh: request.mesh };
+    let examples = Examples::plan(&mut planner)?;
+    let studies = Studies {
+        table2: Table2::plan(&mut planner)?,
+        limit: Limit::plan(&mut planner)?,
+        mesh: MeshStudy::plan(&mut planner, &examples)?,
+        stopping: StoppingStudy::plan(&mut planner, &examples)?,
+        examples,
     };
-    let mut plans =
-        vec![plan("7.1", PAPER_71, &mesh(1), true), plan("7.2", PAPER_72, &mesh(1), true)];
-    for (mu, _) in TABLE2 {
-        plans.push(plan(format!("table2/{mu:e}"), PAPER_72, &with(mesh(1), pv2(mu, mu)), true));
-    }
-    for gp in [0.0, LAYER] {
-        plans.push(plan(
-            format!("limit/{gp}/pv1"),
-            PAPER_71,
-            &with(mesh(1), tight(vec![], gp)),
-            false,
-        ));
-        for m in LIMIT {
-            for (series, mu, ke) in [("both", m, m), ("mu", m, 0.0), ("ke", 0.0, m)] {
-                plans.push(plan(
-                    format!("limit/{gp}/{series}/{m:e}"),
-                    PAPER_72,
-                    &with(mesh(1), tight(pv2(mu, ke), gp)),
-                    false,
-                ));
-            }
-        }
-    }
-    for k in [2, 4] {
-        plans.push(plan(format!("mesh/7.1/{k}"), PAPER_71, &mesh(k), false));
-        plans.push(plan(format!("mesh/7.2/{k}"), PAPER_72, &mesh(k), false));
-    }
-    plans.push(plan("tight/7.1", PAPER_71, &with(mesh(1), tight(vec![], 0.0)), false));
-    plans.push(plan("tight/7.2", PAPER_72, &with(mesh(1), tight(vec![], 0.0)), false));
-    let runs_dir = request.out.join("runs");
-    let mut jobs = Vec::new();
-    for p in &plans {
-        let name = if p.text == PAPER_71 { "cases/paper-7.1.toml" } else { "cases/paper-7.2.toml" };
-        let case = Case::from_text(Path::new(name), p.text, &p.overrides)?;
-        let out = p.write.then(|| runs_dir.join(p.key.replace('/', "-")));
-        jobs.push(Job { label: p.key.clone(), case, out });
-    }
     std::fs::create_dir_all(&request.out)?;
-    let units = Case::from_text(Path::new("cases/paper-7.1.toml"), PAPER_71, &[])?.file.units;
-    let runs = run_jobs(jobs, threads(request.jobs))?;
-    let get = |key: &str| -> &ContactRun {
-        &runs[plans.iter().position(|p| p.key == key).expect("planned run")]
-    };
-    let report = Report { request, get: &get, units: &units };
-    report.write_all()?;
+    let units = Case::from_text(Example::Pv1.path(), PAPER_71, &[])?.file.units;
+    let runs = run_jobs(planner.jobs, threads(request.jobs))?;
+    let report = Report { request, runs: &runs, units: &units };
+    report.write_all(&studies)?;
     Ok(runs.iter().all(|r| r.solution.converged))
 }
 
 struct Report<'a> {
     request: &'a Request,
-    get: &'a dyn Fn(&str) -> &'a ContactRun,
-    units: &'a piezocontact::case::Units,
+    runs: &'a [ContactRun],
+    units: &'a Units,
 }
 
 impl Report<'_> {
@@ -139,21 +298,27 @@ impl Report<'_> {
         self.request.out.join(name)
     }
 
+    /// The result of a planned run.
+    fn run(&self, id: RunId) -> &ContactRun {
+        &self.runs[id.0]
+    }
+
     /// (x, value) along Γ3 of a run.
     fn profile(run: &ContactRun, f: fn(&Row) -> f64) -> Vec<(f64, f64)> {
         run.rows.iter().map(|r| (r.x[0], f(r))).collect()
     }
 
-    fn write_all(&self) -> Result<()> {
+    fn write_all(&self, studies: &Studies) -> Result<()> {
         let mut md = String::new();
         self.header(&mut md);
-        self.example(&mut md, "7.1", "1", "Example 7.1 (PV1)")?;
-        self.example(&mut md, "7.2", "2", "Example 7.2 (PV2, µ = 0.6, k_e = 1, ϕ0 = 32 GV)")?;
-        self.table2(&mut md)?;
-        self.figures34(&mut md)?;
-        self.limit(&mut md)?;
-        self.mesh_study(&mut md)?;
-        self.stopping_study(&mut md)?;
+        self.example(&mut md, studies, Example::Pv1, "1", "Example 7.1 (PV1)")?;
+        let title = "Example 7.2 (PV2, µ = 0.6, k_e = 1, ϕ0 = 32 GV)";
+        self.example(&mut md, studies, Example::Pv2, "2", title)?;
+        self.table2(&mut md, studies)?;
+        self.figures34(&mut md, studies)?;
+        self.limit(&mut md, &studies.limit)?;
+        self.mesh_study(&mut md, &studies.mesh)?;
+        self.stopping_study(&mut md, &studies.stopping)?;
         Ok(write_atomic(&self.path("REPORT.md"), md.as_bytes())?)
     }
 
@@ -202,8 +367,15 @@ impl Report<'_> {
         );
     }
 
-    fn example(&self, md: &mut String, key: &str, figure: &str, title: &str) -> Result<()> {
-        let run = (self.get)(key);
+    fn example(
+        &self,
+        md: &mut String,
+        studies: &Studies,
+        example: Example,
+        figure: &str,
+        title: &str,
+    ) -> Result<()> {
+        let run = self.run(studies.examples.run(example));
         let u = self.units;
         let stress = format!("[{}]", u.stress);
         plot::line_plot(
@@ -257,7 +429,7 @@ impl Report<'_> {
             "| {} | {:?} | {sn:.4} | {st:.4} | {c:.3} / {stick:.3} / {slip:.3} | {:.1e} | {} |\n",
             s.outer_iterations, s.inner_iterations, run.kkt.max, s.converged
         );
-        if key == "7.1" {
+        if example == Example::Pv1 {
             let verdict = if s.outer_iterations == 2 {
                 "stops after 2 outer iterations, as the paper says"
             } else {
@@ -289,8 +461,8 @@ impl Report<'_> {
         Ok(())
     }
 
-    fn table2(&self, md: &mut String) -> Result<()> {
-        let pv1 = (self.get)("7.1");
+    fn table2(&self, md: &mut String, studies: &Studies) -> Result<()> {
+        let pv1 = self.run(studies.examples.pv1);
         let mut csv = String::from(
             "mu,ke,paper_outer_iterations,outer_iterations,inner_iterations,converged,max_abs_sigma_nu,max_abs_sigma_tau,distance_to_pv1,wall_seconds\n",
         );
@@ -301,8 +473,8 @@ impl Report<'_> {
         );
         let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
         let mut ours = Vec::new();
-        for (mu, paper) in TABLE2 {
-            let run = (self.get)(&format!("table2/{mu:e}"));
+        for &(mu, paper, id) in &studies.table2.rows {
+            let run = self.run(id);
             let (sn, st) = run.peaks();
             let d = run.distance_to(pv1)?;
             let s = &run.solution;
@@ -323,9 +495,9 @@ impl Report<'_> {
         }
         write_atomic(&self.path("table2.csv"), csv.as_bytes())?;
         let monotone = ours.windows(2).all(|w| w[1] <= w[0]);
-        let equal = TABLE2.iter().zip(&ours).filter(|((_, p), o)| p == *o).count();
-        let within_one =
-            TABLE2.iter().zip(&ours).filter(|((_, p), o)| p.abs_diff(**o) <= 1).count();
+        let paper = studies.table2.rows.iter().map(|r| r.1);
+        let equal = paper.clone().zip(&ours).filter(|(p, o)| p == *o).count();
+        let within_one = paper.zip(&ours).filter(|(p, o)| p.abs_diff(**o) <= 1).count();
         let _ = writeln!(
             md,
             "\nOur counts {} as µ = k_e decreases and reach the paper's 2 at the small values. They equal the paper's in {equal} of 8 entries and are within one step in {within_one} of 8. The last column shows the criterion of each outer step (the first step compares with s_0 = 0, hence 1): it falls by a factor of 3 to 10 per step, so where a run's criterion lands near ε_fp = 1e−4 a small change in the data moves the stop by one step — this is where our counts differ from the paper's. The paper's count depends on details it does not give: c_ν, α_ν, n_ν, δ (which act through the small penetration of the Uzawa iterates, docs/model.md §9), its mesh, and how its Uzawa loop starts. The last column is the distance to the PV1 solution of Example 7.1; at µ = k_e ≤ 1e−5 it is the size of the stopping error of ε = 1e−4, not of µ.\n",
@@ -334,16 +506,17 @@ impl Report<'_> {
         Ok(())
     }
 
-    fn figures34(&self, md: &mut String) -> Result<()> {
+    fn figures34(&self, md: &mut String, studies: &Studies) -> Result<()> {
         let u = self.units;
-        let pv1 = (self.get)("7.1");
+        let pv1 = self.run(studies.examples.pv1);
         let series = |f: fn(&Row) -> f64| -> Vec<Series> {
-            let mut v: Vec<Series> = FIGURE3
-                .iter()
+            let mut v: Vec<Series> = studies
+                .table2
+                .figure3()
                 .enumerate()
-                .map(|(k, mu)| Series {
+                .map(|(k, (mu, id))| Series {
                     label: format!("PV2, µ = k_e = {mu:.1e}"),
-                    points: Self::profile((self.get)(&format!("table2/{mu:e}")), f),
+                    points: Self::profile(self.run(id), f),
                     color: PALETTE[k + 1],
                     markers: false,
                 })
@@ -392,8 +565,10 @@ impl Report<'_> {
             "| µ = k_e | max over Γ3 of \\|σ_ν − σ_ν(PV1)\\| | max \\|σ_τ\\| | max \\|ϕ − ϕ(PV1)\\| |"
         );
         let _ = writeln!(md, "|---|---|---|---|");
-        for mu in FIGURE3 {
-            let run = (self.get)(&format!("table2/{mu:e}"));
+        let mut smallest = None;
+        for (mu, id) in studies.table2.figure3() {
+            let run = self.run(id);
+            smallest = Some(run);
             let _ = writeln!(
                 md,
                 "| {mu:.1e} | {:.2e} | {:.2e} | {:.2e} |",
@@ -402,8 +577,7 @@ impl Report<'_> {
                 gap(|r| r.phi, run)
             );
         }
-        let small = (self.get)(&format!("table2/{:e}", FIGURE3[FIGURE3.len() - 1]));
-        let floor = gap(|r| r.sigma_nu, small);
+        let floor = smallest.map_or(0.0, |run| gap(|r| r.sigma_nu, run));
         let _ = writeln!(
             md,
             "\nThe PV2 curves close in on the PV1 curve as µ = k_e decreases, as in the paper's Figures 3–4: max |σ_τ| falls in proportion to µ, and σ_ν and ϕ on Γ3 approach those of PV1 until the differences reach {floor:.1e} {s} in σ_ν — the error of the stopping rule at ε = 1e−4 (see the last section), below which these runs cannot resolve the difference. The tightly solved runs of the next section show the convergence going on at rate 1.\n",
@@ -412,22 +586,16 @@ impl Report<'_> {
         Ok(())
     }
 
-    fn limit(&self, md: &mut String) -> Result<()> {
+    fn limit(&self, md: &mut String, study: &Limit) -> Result<()> {
         let mut series = Vec::new();
         let mut rows = String::new();
         let mut slopes = Vec::new();
-        for (g, gp) in [0.0, LAYER].into_iter().enumerate() {
-            let pv1 = (self.get)(&format!("limit/{gp}/pv1"));
-            for (k, (name, label)) in
-                [("both", "µ = k_e"), ("mu", "µ only (k_e = 0)"), ("ke", "k_e only (µ = 0)")]
-                    .into_iter()
-                    .enumerate()
-            {
-                let points: Vec<(f64, f64)> = LIMIT
+        for (g, (gp, pv1, layer)) in study.layers.iter().enumerate() {
+            let (gp, pv1) = (*gp, self.run(*pv1));
+            for (k, LimitSeries { name, label, runs }) in layer.iter().enumerate() {
+                let points: Vec<(f64, f64)> = runs
                     .iter()
-                    .map(|m| {
-                        Ok((*m, (self.get)(&format!("limit/{gp}/{name}/{m:e}")).distance_to(pv1)?))
-                    })
+                    .map(|&(m, id)| Ok((m, self.run(id).distance_to(pv1)?)))
                     .collect::<Result<_>>()?;
                 let max = points.iter().map(|p| p.1).fold(0.0, f64::max);
                 // Distances below NOISE are the tight runs' own stopping error, not a rate.
@@ -500,7 +668,7 @@ impl Report<'_> {
         Ok(())
     }
 
-    fn mesh_study(&self, md: &mut String) -> Result<()> {
+    fn mesh_study(&self, md: &mut String, study: &MeshStudy) -> Result<()> {
         let (nx, ny) = self.request.mesh;
         let mut csv = String::from(
             "example,nx,ny,outer_iterations,max_abs_sigma_nu,max_abs_sigma_tau,contact_length,stick_length\n",
@@ -510,46 +678,43 @@ impl Report<'_> {
             md,
             "| example | mesh | outer | max \\|σ_ν\\| | max \\|σ_τ\\| | contact length | stick length |\n|---|---|---|---|---|---|---|"
         );
-        for ex in ["7.1", "7.2"] {
-            for k in [1, 2, 4] {
-                let run =
-                    if k == 1 { (self.get)(ex) } else { (self.get)(&format!("mesh/{ex}/{k}")) };
-                let (sn, st) = run.peaks();
-                let (c, stick, _) = run.zones();
-                let _ = writeln!(
-                    csv,
-                    "{ex},{},{},{},{sn:e},{st:e},{c:e},{stick:e}",
-                    nx * k,
-                    ny * k,
-                    run.solution.outer_iterations
-                );
-                let _ = writeln!(
-                    md,
-                    "| {ex} | {}×{} | {} | {sn:.4} | {st:.4} | {c:.3} | {stick:.3} |",
-                    nx * k,
-                    ny * k,
-                    run.solution.outer_iterations
-                );
-            }
+        for &(example, k, id) in &study.rows {
+            let (ex, run) = (example.name(), self.run(id));
+            let (sn, st) = run.peaks();
+            let (c, stick, _) = run.zones();
+            let _ = writeln!(
+                csv,
+                "{ex},{},{},{},{sn:e},{st:e},{c:e},{stick:e}",
+                nx * k,
+                ny * k,
+                run.solution.outer_iterations
+            );
+            let _ = writeln!(
+                md,
+                "| {ex} | {}×{} | {} | {sn:.4} | {st:.4} | {c:.3} | {stick:.3} |",
+                nx * k,
+                ny * k,
+                run.solution.outer_iterations
+            );
         }
         write_atomic(&self.path("mesh_convergence.csv"), csv.as_bytes())?;
-        let change = |ex: &str, f: fn(&ContactRun) -> f64| {
-            let (a, b) =
-                (f((self.get)(&format!("mesh/{ex}/2"))), f((self.get)(&format!("mesh/{ex}/4"))));
+        let change = |example: Example, f: fn(&ContactRun) -> f64| {
+            let value = |k| study.run(example, k).map_or(0.0, |id| f(self.run(id)));
+            let (a, b) = (value(2), value(4));
             if b != 0.0 { 100.0 * (a - b).abs() / b.abs() } else { 0.0 }
         };
         let _ = writeln!(
             md,
             "\nBetween the two finest meshes the peak |σ_ν| changes by {:.2} % (7.1) and {:.2} % (7.2), the peak |σ_τ| of 7.2 by {:.2} %, and the stick length of 7.2 by {:.2} %. These runs use the paper's ε = 1e−4, whose own error in the Γ3 stresses (next section) is larger than these mesh changes: the paper's tolerance, not the mesh, limits the accuracy of its figures.\n",
-            change("7.1", |r| r.peaks().0),
-            change("7.2", |r| r.peaks().0),
-            change("7.2", |r| r.peaks().1),
-            change("7.2", |r| r.zones().1)
+            change(Example::Pv1, |r| r.peaks().0),
+            change(Example::Pv2, |r| r.peaks().0),
+            change(Example::Pv2, |r| r.peaks().1),
+            change(Example::Pv2, |r| r.zones().1)
         );
         Ok(())
     }
 
-    fn stopping_study(&self, md: &mut String) -> Result<()> {
+    fn stopping_study(&self, md: &mut String, study: &StoppingStudy) -> Result<()> {
         let mut csv = String::from(
             "example,max_rel_diff_sigma_nu,max_rel_diff_sigma_tau,rms_rel_diff_sigma_nu,rms_rel_diff_sigma_tau,kkt_residual_paper_eps,kkt_residual_tight\n",
         );
@@ -562,8 +727,8 @@ impl Report<'_> {
             md,
             "| example | Δσ_ν: max / weighted RMS, relative | Δσ_τ: max / weighted RMS, relative | KKT residual at 1e−4 | KKT residual tight |\n|---|---|---|---|---|"
         );
-        for ex in ["7.1", "7.2"] {
-            let (a, b) = ((self.get)(ex), (self.get)(&format!("tight/{ex}")));
+        for &(example, paper_eps, tight_eps) in &study.rows {
+            let (ex, a, b) = (example.name(), self.run(paper_eps), self.run(tight_eps));
             let rel = |f: fn(&Row) -> f64| {
                 let max = b.rows.iter().map(|r| f(r).abs()).fold(0.0, f64::max);
                 let d = a

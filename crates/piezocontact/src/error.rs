@@ -140,6 +140,14 @@ pub enum Error {
     #[error("{location}: {source}")]
     Located { location: String, source: Box<Error> },
 
+    /// An output directory that holds files piezocontact did not write.
+    #[error(
+        "the output directory {dir} holds files that piezocontact did not write ({}); choose \
+         another output directory, or allow writing into this one",
+        shown(files)
+    )]
+    ForeignOutput { dir: String, files: Vec<String> },
+
     /// A file that cannot be read or written.
     #[error("{what}: {cause}")]
     Io { what: String, cause: String },
@@ -147,4 +155,13 @@ pub enum Error {
     /// A vector or field of the wrong length.
     #[error("{what}: expected length {expected}, got {got}")]
     Length { what: String, expected: usize, got: usize },
+}
+
+/// The first five names, then "…".
+fn shown(names: &[String]) -> String {
+    let mut text = names.iter().take(5).cloned().collect::<Vec<_>>().join(", ");
+    if names.len() > 5 {
+        text.push_str(", …");
+    }
+    text
 }

@@ -45,6 +45,19 @@
 //! - [`report`], [`run`]: a run of a case, its Γ3 table, summary and files.
 //! - [`output`]: ParaView `.vtu`, atomic files.
 //!
+//! ## Running a case
+//!
+//! ```no_run
+//! use piezocontact::{case::Case, run::ContactRun};
+//! # fn main() -> piezocontact::Result<()> {
+//! let case = Case::load("cases/paper-7.1.toml".as_ref(), &["mesh.nx=48".into()])?;
+//! let run = ContactRun::solve(&case)?;
+//! println!("{} outer iterations, KKT residual {:.1e}", run.solution.outer_iterations, run.kkt.max);
+//! run.write(&case, "out/example".as_ref())?;
+//! # Ok(())
+//! # }
+//! ```
+//!
 //! ## Reference
 //!
 //! The model and the method are stated in `docs/model.md` of the repository; "model §n" in doc

@@ -10,8 +10,8 @@
 //!   (`piezocontact bench --lu` prints both).
 //!
 //! Work is split as the algorithms need it (model §7):
-//! - [`SymmetricPattern`]: the sparsity pattern, built once from the assembly's list of
-//!   positions, with a gather plan that sums new values into it in parallel;
+//! - [`SymmetricPattern`]: the sparsity pattern, built once, into which the assembly writes
+//!   new values;
 //! - [`LinearSolver`]: the seam between the coupled system and a factorisation —
 //!   [`LinearSolver::analyze`] (symbolic analysis with a caller-chosen [`Ordering`], once per
 //!   run), [`LinearSolver::factorize`] (whenever the values change) and
@@ -35,7 +35,6 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Conj, MatMut, Par, Side};
-use rayon::prelude::*;
 use std::time::Instant;
 
 /// Pivots below this (after diagonal scaling) count as zero.
@@ -43,71 +42,50 @@ const PIVOT_THRESHOLD: f64 = 1e-12;
 /// faer replaces a tiny or wrongly signed pivot by ±this marker, which no pivot of a scaled
 /// matrix can reach; finding it in the factor reports the failure.
 const PIVOT_MARKER: f64 = 1e300;
-/// Target slots summed by one parallel task.
-const GATHER_CHUNK: usize = 8192;
-
-/// The column of a position that goes to the vector assembled alongside the matrix (the
-/// Dirichlet lifting) instead of the matrix: `(row, VECTOR_ENTRY)`.
-pub const VECTOR_ENTRY: usize = usize::MAX;
-
-/// The lower-triangle sparsity pattern of a symmetric matrix, and the plan that sums an
-/// assembly's values — one per position, repetitions included — into its entries and into a
-/// vector of the same order.
-///
-/// The sums run in parallel over target entries, each adding its contributions in the order of
-/// the positions: the result does not depend on the number of threads, to the last bit.
+/// The lower-triangle sparsity pattern of a symmetric matrix.
 #[derive(Debug)]
 pub struct SymmetricPattern {
     symbolic: SymbolicSparseColMat<usize>,
-    /// Contributions of target slot s (matrix entries 0..nnz, then vector rows):
-    /// `slot_entries[slot_ptr[s]..slot_ptr[s + 1]]`, ascending.
-    slot_ptr: Vec<usize>,
-    slot_entries: Vec<u32>,
 }
 
 impl SymmetricPattern {
-    /// Builds the pattern of an n × n matrix from the positions at which an assembly produces
-    /// its values, in that order: `(row, column)` with row ≥ column for a matrix entry, or
-    /// `(row, VECTOR_ENTRY)` for a vector entry.
-    pub fn new(n: usize, positions: &[(usize, usize)]) -> Result<Self> {
-        if positions.len() > u32::MAX as usize {
-            return Err(Error::LinearAlgebra(format!(
-                "{} assembled values are more than this build's limit of {}",
-                positions.len(),
-                u32::MAX
-            )));
+    /// The pattern of an n × n matrix from its columns: the rows of column j are
+    /// `row_idx[col_ptr[j]..col_ptr[j + 1]]`, strictly increasing, each ≥ j and < n.
+    pub fn from_columns(n: usize, col_ptr: Vec<usize>, row_idx: Vec<usize>) -> Result<Self> {
+        let bad = |what: String| Error::LinearAlgebra(format!("sparsity pattern: {what}"));
+        if col_ptr.len() != n + 1 || col_ptr[0] != 0 || col_ptr[n] != row_idx.len() {
+            return Err(bad(format!("{} column pointers for {n} columns", col_ptr.len())));
         }
-        if let Some(&(r, c)) =
-            positions.iter().find(|&&(r, c)| r >= n || (c != VECTOR_ENTRY && (c > r)))
-        {
+        for j in 0..n {
+            if col_ptr[j] > col_ptr[j + 1] {
+                return Err(bad(format!("column {j} ends before it starts")));
+            }
+            let rows = &row_idx[col_ptr[j]..col_ptr[j + 1]];
+            if rows.iter().any(|&r| r < j || r >= n) || rows.windows(2).any(|w| w[0] >= w[1]) {
+                return Err(bad(format!("the rows of column {j} are not increasing in {j}..{n}")));
+            }
+        }
+        Ok(Self { symbolic: SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx) })
+    }
+
+    /// The pattern of the (row, column) positions, row ≥ column, repetitions allowed.
+    pub fn from_positions(n: usize, positions: &[(usize, usize)]) -> Result<Self> {
+        if let Some(&(r, c)) = positions.iter().find(|&&(r, c)| r >= n || c > r) {
             return Err(Error::LinearAlgebra(format!(
                 "position ({r}, {c}) is outside the lower triangle of a {n} × {n} matrix"
             )));
         }
-        let symbolic = lower_pattern(n, positions);
-        let nnz = symbolic.row_idx().len();
-        let slot_of = |&(r, c): &(usize, usize)| {
-            if c == VECTOR_ENTRY {
-                return nnz + r;
-            }
-            let range = symbolic.col_range(c);
-            // The row is in its column: the pattern was built from these positions.
-            let k = symbolic.row_idx()[range.clone()].binary_search(&r).unwrap_or_default();
-            range.start + k
-        };
-        let slots: Vec<usize> = positions.par_iter().map(slot_of).collect();
-        let mut slot_ptr = vec![0usize; nnz + n + 1];
-        slots.iter().for_each(|&s| slot_ptr[s + 1] += 1);
-        for s in 0..nnz + n {
-            slot_ptr[s + 1] += slot_ptr[s];
+        let mut columns = vec![Vec::new(); n];
+        positions.iter().for_each(|&(r, c)| columns[c].push(r));
+        let mut col_ptr = vec![0];
+        let mut row_idx = Vec::new();
+        for mut rows in columns {
+            rows.sort_unstable();
+            rows.dedup();
+            row_idx.extend(rows);
+            col_ptr.push(row_idx.len());
         }
-        let mut next = slot_ptr.clone();
-        let mut slot_entries = vec![0u32; positions.len()];
-        for (entry, &s) in slots.iter().enumerate() {
-            slot_entries[next[s]] = entry as u32;
-            next[s] += 1;
-        }
-        Ok(Self { symbolic, slot_ptr, slot_entries })
+        Self::from_columns(n, col_ptr, row_idx)
     }
 
     /// Order of the matrix.
@@ -115,83 +93,32 @@ impl SymmetricPattern {
         self.symbolic.nrows()
     }
 
-    /// Number of values an assembly produces (positions, repetitions included).
-    pub fn entries(&self) -> usize {
-        self.slot_entries.len()
-    }
-
     /// Stored entries of the lower triangle.
     pub fn nnz(&self) -> usize {
         self.symbolic.row_idx().len()
     }
 
-    /// Sums `values` (one per position given to [`SymmetricPattern::new`], in that order) into
-    /// the matrix and the vector.
-    pub fn assemble(&self, values: &[f64]) -> Result<(SymmetricMatrix, Vec<f64>)> {
-        if values.len() != self.entries() {
+    /// The index of entry (row, column) in the matrix's values, if the pattern has it.
+    pub fn position(&self, row: usize, col: usize) -> Option<usize> {
+        if col >= self.n() {
+            return None;
+        }
+        let range = self.symbolic.col_range(col);
+        let rows = &self.symbolic.row_idx()[range.clone()];
+        rows.binary_search(&row).ok().map(|k| range.start + k)
+    }
+
+    /// The matrix with this pattern and `values` (one per stored entry, column by column).
+    pub fn matrix(&self, values: Vec<f64>) -> Result<SymmetricMatrix> {
+        if values.len() != self.nnz() {
             return Err(Error::Length {
-                what: "assembled values".into(),
-                expected: self.entries(),
+                what: "matrix values".into(),
+                expected: self.nnz(),
                 got: values.len(),
             });
         }
-        let mut targets = vec![0.0; self.slot_ptr.len() - 1];
-        targets.par_chunks_mut(GATHER_CHUNK).enumerate().for_each(|(chunk, out)| {
-            let first = chunk * GATHER_CHUNK;
-            for (k, target) in out.iter_mut().enumerate() {
-                let s = first + k;
-                let contributions = &self.slot_entries[self.slot_ptr[s]..self.slot_ptr[s + 1]];
-                *target = contributions.iter().fold(0.0, |sum, &e| sum + values[e as usize]);
-            }
-        });
-        let vector = targets.split_off(self.nnz());
-        let lower = SparseColMat::new(self.symbolic.clone(), targets);
-        Ok((SymmetricMatrix { lower }, vector))
+        Ok(SymmetricMatrix { lower: SparseColMat::new(self.symbolic.clone(), values) })
     }
-}
-
-/// The sorted, duplicate-free lower-triangle pattern of the matrix positions.
-fn lower_pattern(n: usize, positions: &[(usize, usize)]) -> SymbolicSparseColMat<usize> {
-    let mut col_ptr = vec![0usize; n + 1];
-    let matrix = || positions.iter().filter(|p| p.1 != VECTOR_ENTRY);
-    matrix().for_each(|&(_, c)| col_ptr[c + 1] += 1);
-    for c in 0..n {
-        col_ptr[c + 1] += col_ptr[c];
-    }
-    let mut rows = vec![0usize; col_ptr[n]];
-    let mut next = col_ptr.clone();
-    for &(r, c) in matrix() {
-        rows[next[c]] = r;
-        next[c] += 1;
-    }
-    let mut columns = Vec::with_capacity(n);
-    let mut rest = rows.as_mut_slice();
-    for c in 0..n {
-        let (column, tail) = rest.split_at_mut(col_ptr[c + 1] - col_ptr[c]);
-        columns.push(column);
-        rest = tail;
-    }
-    let distinct: Vec<usize> = columns
-        .into_par_iter()
-        .map(|column| {
-            column.sort_unstable();
-            let mut kept = 0;
-            for k in 0..column.len() {
-                if k == 0 || column[k] != column[kept - 1] {
-                    column[kept] = column[k];
-                    kept += 1;
-                }
-            }
-            kept
-        })
-        .collect();
-    let mut compact_ptr = vec![0usize; n + 1];
-    let mut row_idx = Vec::with_capacity(distinct.iter().sum());
-    for c in 0..n {
-        row_idx.extend_from_slice(&rows[col_ptr[c]..col_ptr[c] + distinct[c]]);
-        compact_ptr[c + 1] = row_idx.len();
-    }
-    SymbolicSparseColMat::new_checked(n, n, compact_ptr, None, row_idx)
 }
 
 /// A symmetric sparse matrix stored by its lower triangle.
@@ -571,6 +498,28 @@ pub fn bare_ldlt_seconds(matrix: &SymmetricMatrix, rhs: &[f64]) -> Result<[f64; 
 mod tests {
     use super::*;
 
+    /// The pattern of `positions` and the matrix with `values` summed at them.
+    pub(super) fn build(
+        n: usize,
+        positions: &[(usize, usize)],
+        values: &[f64],
+    ) -> Result<(SymmetricPattern, SymmetricMatrix)> {
+        let pattern = SymmetricPattern::from_positions(n, positions)?;
+        if values.len() != positions.len() {
+            return Err(Error::Length {
+                what: "values".into(),
+                expected: positions.len(),
+                got: values.len(),
+            });
+        }
+        let mut summed = vec![0.0; pattern.nnz()];
+        for (&(r, c), v) in positions.iter().zip(values) {
+            summed[pattern.position(r, c).unwrap()] += v;
+        }
+        let matrix = pattern.matrix(summed)?;
+        Ok((pattern, matrix))
+    }
+
     fn analyzed(pattern: &SymmetricPattern, signs: &[i8], ordering: &Ordering) -> LdltSolver {
         let mut solver = LdltSolver::new();
         solver.analyze(pattern, signs, ordering).unwrap();
@@ -582,7 +531,7 @@ mod tests {
         n_u: usize,
         n_phi: usize,
         scale_phi: f64,
-    ) -> (SymmetricPattern, Vec<f64>, Vec<i8>) {
+    ) -> (SymmetricPattern, SymmetricMatrix, Vec<i8>) {
         let mut positions = Vec::new();
         let mut values = Vec::new();
         for i in 0..n_u {
@@ -605,14 +554,14 @@ mod tests {
             values.push(2.0 * scale_phi.sqrt());
         }
         let signs = (0..n_u + n_phi).map(|i| if i < n_u { 1 } else { -1 }).collect();
-        (SymmetricPattern::new(n_u + n_phi, &positions).unwrap(), values, signs)
+        let (pattern, matrix) = build(n_u + n_phi, &positions, &values).unwrap();
+        (pattern, matrix, signs)
     }
 
     #[test]
     fn ldlt_solves_a_quasi_definite_system_that_cholesky_cannot() {
         for scale in [1.0, 1e-12] {
-            let (pattern, values, signs) = quasi_definite(30, 12, scale);
-            let a = pattern.assemble(&values).unwrap().0;
+            let (pattern, a, signs) = quasi_definite(30, 12, scale);
             assert!(!a.is_positive_definite().unwrap(), "LLᵀ must fail: the matrix is indefinite");
             let mut solver = analyzed(&pattern, &signs, &Ordering::Amd);
             solver.factorize(&a).unwrap();
@@ -632,8 +581,7 @@ mod tests {
 
     #[test]
     fn factorisation_is_reused_across_solves() {
-        let (pattern, values, signs) = quasi_definite(20, 5, 1.0);
-        let a = pattern.assemble(&values).unwrap().0;
+        let (pattern, a, signs) = quasi_definite(20, 5, 1.0);
         let mut solver = analyzed(&pattern, &signs, &Ordering::Amd);
         solver.factorize(&a).unwrap();
         for k in 0..5 {
@@ -658,8 +606,7 @@ mod tests {
                 values.push(-1.0);
             }
         }
-        let pattern = SymmetricPattern::new(n, &positions).unwrap();
-        let a = pattern.assemble(&values).unwrap().0;
+        let (pattern, a) = build(n, &positions, &values).unwrap();
         let mut solver = analyzed(&pattern, &vec![1; n], &Ordering::Amd);
         let e = solver.factorize(&a).unwrap_err().to_string();
         assert!(e.contains("singular or not quasi-definite"), "{e}");
@@ -667,12 +614,12 @@ mod tests {
         // A definite matrix declared with a ϕ row: the sign check catches it.
         let mut values = values.clone();
         values[0] = 2.0;
-        let a = pattern.assemble(&values).unwrap().0;
+        let a = build(n, &positions, &values).unwrap().1;
         let mut signs = vec![1; n];
         signs[n - 1] = -1;
         let mut solver = analyzed(&pattern, &signs, &Ordering::Amd);
         assert!(solver.factorize(&a).is_err());
-        let e = pattern.assemble(&values[1..]).unwrap_err().to_string();
+        let e = pattern.matrix(values[1..].to_vec()).unwrap_err().to_string();
         assert!(e.contains("expected length"), "{e}");
     }
 }
@@ -682,20 +629,21 @@ mod seam_tests {
     use super::*;
 
     #[test]
-    fn the_gather_sums_repeated_positions_and_fills_the_vector() {
-        // 3 × 3: (0,0) twice, (2,1), (1,1), a vector entry on row 2 twice.
-        let positions =
-            [(0, 0), (2, 1), (2, VECTOR_ENTRY), (0, 0), (1, 1), (2, VECTOR_ENTRY), (2, 2)];
-        let pattern = SymmetricPattern::new(3, &positions).unwrap();
-        assert_eq!((pattern.n(), pattern.entries(), pattern.nnz()), (3, 7, 4));
-        let (a, v) = pattern.assemble(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]).unwrap();
-        let mut entries: Vec<(usize, usize, f64)> = a.lower_entries().collect();
-        entries.sort_by_key(|e| (e.0, e.1));
-        assert_eq!(entries, vec![(0, 0, 5.0), (1, 1, 5.0), (2, 1, 2.0), (2, 2, 7.0)]);
-        assert_eq!(v, vec![0.0, 0.0, 9.0]);
+    fn patterns_are_checked_and_positions_found() {
+        let pattern =
+            SymmetricPattern::from_positions(3, &[(0, 0), (2, 1), (0, 0), (2, 2)]).unwrap();
+        assert_eq!((pattern.n(), pattern.nnz()), (3, 3));
+        assert_eq!(
+            [(0, 0), (2, 1), (2, 2), (1, 1), (1, 2), (0, 3)].map(|(r, c)| pattern.position(r, c)),
+            [Some(0), Some(1), Some(2), None, None, None]
+        );
         for bad in [[(0, 1)], [(3, 0)]] {
-            let e = SymmetricPattern::new(3, &bad).unwrap_err().to_string();
+            let e = SymmetricPattern::from_positions(3, &bad).unwrap_err().to_string();
             assert!(e.contains("outside the lower triangle"), "{e}");
+        }
+        for (col_ptr, rows) in [(vec![0, 2, 2], vec![1, 0]), (vec![0, 1, 2], vec![0, 0])] {
+            let e = SymmetricPattern::from_columns(2, col_ptr, rows).unwrap_err().to_string();
+            assert!(e.contains("not increasing"), "{e}");
         }
     }
 
@@ -714,8 +662,7 @@ mod seam_tests {
             }
         }
         let signs: Vec<i8> = (0..n).map(|i| if i < 6 { 1 } else { -1 }).collect();
-        let pattern = SymmetricPattern::new(n, &positions).unwrap();
-        let a = pattern.assemble(&values).unwrap().0;
+        let (pattern, a) = super::tests::build(n, &positions, &values).unwrap();
         let b: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
         let solve = |ordering: &Ordering| {
             let mut solver = LdltSolver::new();

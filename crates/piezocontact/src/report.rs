@@ -4,6 +4,7 @@
 use crate::algorithm::residual::{Balance, KktResidual};
 use crate::algorithm::{ContactModel, ContactSolution, NodeStatus};
 use crate::problem::Problem;
+use crate::solver::Timings;
 use serde_json::{Value, json};
 use std::fmt::Write;
 
@@ -141,9 +142,14 @@ pub fn contact_summary(
             "stick_measure": stick,
             "slip_measure": slip,
         },
-        "timings_seconds": {
-            "pattern": t.pattern, "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
-            "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count,
-        },
+        "timings_seconds": timings(&t),
+    })
+}
+
+/// The `timings_seconds` object of summary.json (without the total).
+pub fn timings(t: &Timings) -> Value {
+    json!({
+        "pattern": t.pattern, "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
+        "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count,
     })
 }

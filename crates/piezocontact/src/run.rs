@@ -11,6 +11,7 @@ use crate::output::files;
 use crate::output::vtu::Field;
 use crate::problem::Problem;
 use crate::report::{self, Row};
+use crate::solver::{StaticSolution, solve_without_contact};
 use serde_json::{Value, json};
 use std::path::Path;
 use std::time::Instant;
@@ -129,6 +130,67 @@ impl ContactRun {
         ];
         files::write_atomic(&out.join("contact.csv"), report::contact_csv(&self.rows).as_bytes())?;
         files::write_results(out, &self.summary(case), problem, &solution.dofs, &solution.x, &extra)
+    }
+}
+
+/// A solved case without contact (no `[contact]` table: Γ3, if named, is free).
+pub struct StaticRun {
+    /// The checked problem.
+    pub problem: Problem,
+    /// The solution.
+    pub solution: StaticSolution,
+    /// max ‖u‖ over the nodes [length].
+    pub max_u: f64,
+    /// The smallest and the largest nodal ϕ [potential].
+    pub phi_range: (f64, f64),
+    /// Wall time [s].
+    pub seconds: f64,
+}
+
+impl StaticRun {
+    /// Solves the coupled problem of a case without contact.
+    pub fn solve(case: &Case) -> Result<Self> {
+        let start = Instant::now();
+        let problem = case.problem()?;
+        let solution = solve_without_contact(&problem).map_err(|e| case.context(e))?;
+        let (dofs, x) = (&solution.dofs, &solution.x);
+        let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
+        let max_u = (0..n)
+            .map(|a| (0..dim).map(|i| x[dofs.u(a, i)].powi(2)).sum::<f64>().sqrt())
+            .fold(0.0, f64::max);
+        let phi_range = (0..n)
+            .map(|a| x[dofs.phi(a)])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        let seconds = start.elapsed().as_secs_f64();
+        Ok(Self { problem, solution, max_u, phi_range, seconds })
+    }
+
+    /// The summary.json document.
+    pub fn summary(&self, case: &Case) -> Value {
+        let (solution, t) = (&self.solution, self.solution.timings);
+        let mut summary = common_summary(case, &self.problem, &solution.dofs);
+        merge(
+            &mut summary,
+            json!({
+                "problem": "coupled electro-elastic, no contact",
+                "converged": true,
+                "norms": {
+                    "max_abs_u": self.max_u,
+                    "min_phi": self.phi_range.0,
+                    "max_phi": self.phi_range.1,
+                    "relative_residual": solution.relative_residual,
+                },
+                "timings_seconds": report::timings(&t),
+            }),
+        );
+        summary["timings_seconds"]["total"] = json!(self.seconds);
+        summary
+    }
+
+    /// Writes summary.json and solution.vtu into `out`.
+    pub fn write(&self, case: &Case, out: &Path) -> Result<()> {
+        let (problem, solution) = (&self.problem, &self.solution);
+        files::write_results(out, &self.summary(case), problem, &solution.dofs, &solution.x, &[])
     }
 }
 

@@ -14,9 +14,9 @@
 //! - [`load`]: the right-hand side f̌;
 //! - [`fields`]: strains, secant moduli, internal forces, σ and D, norms.
 //!
-//! Parallel refills give the same matrix to the last bit whatever the number of threads: each
-//! element writes its own values, and each matrix entry sums its contributions in element order
-//! ([`SymmetricPattern`]).
+//! Parallel refills give the same matrix to the last bit whatever the number of threads: the
+//! cells are split once into groups of cells that share no node, the groups are summed one
+//! after the other, and within a group no two cells write the same entry.
 
 pub mod fields;
 pub mod kernel;
@@ -30,13 +30,15 @@ pub use load::load_vector;
 
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
-use crate::linalg::{SymmetricMatrix, SymmetricPattern, VECTOR_ENTRY};
+use crate::linalg::{SymmetricMatrix, SymmetricPattern};
+use crate::mesh::Mesh;
 use crate::problem::Problem;
 use kernel::{element_matrix, local_dofs, simplex};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Cells handled by one parallel task.
-const CELLS_PER_TASK: usize = 2048;
+/// Items handled by one parallel task.
+const PER_TASK: usize = 1024;
 
 /// A symmetric d × d nodal block, row-major in a 3 × 3 array.
 pub type NodalBlock = [[f64; 3]; 3];
@@ -49,36 +51,56 @@ pub type NodalBlock = [[f64; 3]; 3];
 pub struct Assembler {
     dofs: DofMap,
     pattern: SymmetricPattern,
-    /// Values of cell c occupy `cell_offsets[c]..cell_offsets[c + 1]`; nodal blocks follow.
+    /// Where each value of cell c goes, in [`local_pairs`] order:
+    /// `cell_slots[cell_offsets[c]..cell_offsets[c + 1]]`. A slot below nnz is a matrix entry;
+    /// nnz + r is row r of the lifting.
     cell_offsets: Vec<usize>,
-    /// Nodes that carry a nodal block.
+    cell_slots: Vec<u32>,
+    /// The cells in groups that share no node, summed one group after the other.
+    groups: Vec<Vec<usize>>,
+    /// Nodes that carry a nodal block, and the slots of their [`nodal_pairs`].
     block_nodes: Vec<usize>,
+    block_slots: Vec<usize>,
 }
 
 impl Assembler {
     /// Builds the sparsity pattern (once per run) on the DOFs of `dofs`, with room for nodal
     /// blocks on `block_nodes`.
     pub fn new(problem: &Problem, dofs: DofMap, block_nodes: &[usize]) -> Result<Self> {
-        let dim = problem.mesh.dim();
-        let counts: Vec<usize> = (0..problem.mesh.n_cells())
+        let mesh = &problem.mesh;
+        let dim = mesh.dim();
+        let pattern = lower_pattern(mesh, &dofs)?;
+        let (nnz, n_free) = (pattern.nnz(), dofs.n_free());
+        if nnz + n_free > u32::MAX as usize {
+            return Err(Error::LinearAlgebra(format!(
+                "{nnz} matrix entries are more than this build's limit of {}",
+                u32::MAX
+            )));
+        }
+        let counts: Vec<usize> = (0..mesh.n_cells())
             .into_par_iter()
             .map(|c| with_simplex!(dim, cell_pair_count(problem, &dofs, c)))
             .collect();
-        let mut cell_offsets = Vec::with_capacity(counts.len() + 1);
-        cell_offsets.push(0);
-        for count in counts {
-            cell_offsets.push(cell_offsets[cell_offsets.len() - 1] + count);
-        }
-        let mut positions = vec![(0, 0); cell_offsets[cell_offsets.len() - 1]];
-        for_cells(&cell_offsets, &mut positions, |c, out| {
-            with_simplex!(dim, cell_positions_into(problem, &dofs, c, out));
-            Ok(())
+        let cell_offsets = offsets(&counts);
+        let mut cell_slots = vec![0u32; cell_offsets[mesh.n_cells()]];
+        for_ranges(&cell_offsets, &mut cell_slots, |c, out| {
+            with_simplex!(dim, cell_slots_into(problem, &dofs, &pattern, c, out))
         })?;
+        let mut block_slots = Vec::new();
         for &node in block_nodes {
-            positions.extend(nodal_pairs(&dofs, dim, node).map(|(_, _, r, c)| (r, c)));
+            for (_, _, r, c) in nodal_pairs(&dofs, dim, node) {
+                block_slots.push(pattern.position(r, c).ok_or_else(missing(r, c))?);
+            }
         }
-        let pattern = SymmetricPattern::new(dofs.n_free(), &positions)?;
-        Ok(Self { dofs, pattern, cell_offsets, block_nodes: block_nodes.to_vec() })
+        Ok(Self {
+            dofs,
+            pattern,
+            cell_offsets,
+            cell_slots,
+            groups: node_disjoint_groups(mesh),
+            block_nodes: block_nodes.to_vec(),
+            block_slots,
+        })
     }
 
     /// The DOF map.
@@ -120,20 +142,27 @@ impl Assembler {
             });
         }
         let dim = problem.mesh.dim();
-        let mut values = vec![0.0; self.pattern.entries()];
-        let n_cell_values = self.cell_offsets[self.cell_offsets.len() - 1];
-        let (cell_values, block_values) = values.split_at_mut(n_cell_values);
-        for_cells(&self.cell_offsets, cell_values, |c, out| {
-            with_simplex!(dim, cell_values_into(problem, &self.dofs, g[c], c, out))
-        })?;
-        let block_pairs = self.block_nodes.iter().enumerate().flat_map(|(b, &node)| {
+        let sums: Vec<AtomicU64> =
+            (0..self.pattern.nnz() + self.dofs.n_free()).map(|_| AtomicU64::new(0)).collect();
+        for group in &self.groups {
+            group.par_chunks(PER_TASK).try_for_each(|cells| {
+                cells.iter().try_for_each(|&c| {
+                    let slots = &self.cell_slots[self.cell_offsets[c]..self.cell_offsets[c + 1]];
+                    with_simplex!(dim, add_cell(problem, &self.dofs, g[c], c, slots, &sums))
+                })
+            })?;
+        }
+        let block_values = self.block_nodes.iter().enumerate().flat_map(|(b, &node)| {
             nodal_pairs(&self.dofs, dim, node)
                 .map(move |(i, j, ..)| blocks.get(b).map_or(0.0, |k| k[i][j]))
         });
-        block_values.iter_mut().zip(block_pairs).for_each(|(v, k)| *v = k);
-        let (matrix, mut lifting) = self.pattern.assemble(&values)?;
-        lifting.iter_mut().for_each(|l| *l = -*l);
-        Ok((matrix, lifting))
+        for (&slot, value) in self.block_slots.iter().zip(block_values) {
+            add(&sums[slot], value);
+        }
+        let mut values: Vec<f64> =
+            sums.into_iter().map(|s| f64::from_bits(s.into_inner())).collect();
+        let lifting = values.split_off(self.pattern.nnz()).into_iter().map(|l| -l).collect();
+        Ok((self.pattern.matrix(values)?, lifting))
     }
 
     /// The entries of a global vector at the free DOFs.
@@ -149,45 +178,151 @@ impl Assembler {
     }
 }
 
-/// Runs `f(cell, values of the cell)` over all cells in parallel, the cells' values being
+/// Adds `value` to the f64 held in `sum`. Within a group of cells no other thread touches
+/// the same sum, and groups are separated by rayon's joins, so the order of the additions is
+/// fixed.
+fn add(sum: &AtomicU64, value: f64) {
+    let old = f64::from_bits(sum.load(Ordering::Relaxed));
+    sum.store((old + value).to_bits(), Ordering::Relaxed);
+}
+
+/// Running sums 0, c0, c0 + c1, … of `counts`.
+fn offsets(counts: &[usize]) -> Vec<usize> {
+    let mut offsets = Vec::with_capacity(counts.len() + 1);
+    offsets.push(0);
+    for count in counts {
+        offsets.push(offsets[offsets.len() - 1] + count);
+    }
+    offsets
+}
+
+/// Runs `f(item, values of the item)` over all items in parallel, the items' values being
 /// consecutive slices of `out` delimited by `offsets`.
-fn for_cells<T: Send>(
+fn for_ranges<T: Send>(
     offsets: &[usize],
     out: &mut [T],
     f: impl Fn(usize, &mut [T]) -> Result<()> + Sync,
 ) -> Result<()> {
-    let n_cells = offsets.len() - 1;
-    let mut tasks = Vec::with_capacity(n_cells.div_ceil(CELLS_PER_TASK));
+    let n = offsets.len() - 1;
+    let mut tasks = Vec::with_capacity(n.div_ceil(PER_TASK));
     let mut rest = out;
-    for first in (0..n_cells).step_by(CELLS_PER_TASK) {
-        let last = (first + CELLS_PER_TASK).min(n_cells);
+    for first in (0..n).step_by(PER_TASK) {
+        let last = (first + PER_TASK).min(n);
         let (head, tail) = rest.split_at_mut(offsets[last] - offsets[first]);
         tasks.push((first..last, head));
         rest = tail;
     }
-    tasks.into_par_iter().try_for_each(|(cells, slice)| {
-        let base = offsets[cells.start];
-        cells
+    tasks.into_par_iter().try_for_each(|(items, slice)| {
+        let base = offsets[items.start];
+        items
             .into_iter()
-            .try_for_each(|c| f(c, &mut slice[offsets[c] - base..offsets[c + 1] - base]))
+            .try_for_each(|k| f(k, &mut slice[offsets[k] - base..offsets[k + 1] - base]))
     })
 }
 
-/// The element matrix of cell `c` at the positions of [`local_pairs`]: K_pq, times the
-/// prescribed value of the column where it is constrained (the lifting).
-fn cell_values_into<const D: usize, const N: usize>(
-    problem: &Problem,
-    dofs: &DofMap,
-    g: f64,
-    c: usize,
-    out: &mut [f64],
-) -> Result<()> {
-    let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, g);
-    let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
-    for (value, (p, q, _, col)) in out.iter_mut().zip(local_pairs(dofs, global, N * (D + 1))) {
-        *value = if col == CONSTRAINED { k[p][q] * dofs.prescribed(global[q]) } else { k[p][q] };
+/// The error for an entry that the pattern lacks (a bug, never user input).
+fn missing(r: usize, c: usize) -> impl FnOnce() -> Error {
+    move || Error::LinearAlgebra(format!("entry ({r}, {c}) is not in the sparsity pattern"))
+}
+
+/// For every node, its neighbours (the nodes that share a cell with it, itself included),
+/// sorted: `(ptr, list)` with the neighbours of node a in `list[ptr[a]..ptr[a + 1]]`.
+fn node_neighbours(mesh: &Mesh) -> (Vec<usize>, Vec<usize>) {
+    let n = mesh.n_nodes();
+    let mut counts = vec![0usize; n];
+    for c in 0..mesh.n_cells() {
+        mesh.cell(c).iter().for_each(|&a| counts[a] += mesh.cell(c).len());
     }
-    Ok(())
+    let ptr = offsets(&counts);
+    let mut list = vec![0usize; ptr[n]];
+    let mut next = ptr.clone();
+    for c in 0..mesh.n_cells() {
+        let cell = mesh.cell(c);
+        for &a in cell {
+            list[next[a]..next[a] + cell.len()].copy_from_slice(cell);
+            next[a] += cell.len();
+        }
+    }
+    let mut kept = vec![0usize; n];
+    let mut columns = Vec::with_capacity(n);
+    let mut rest = list.as_mut_slice();
+    for a in 0..n {
+        let (head, tail) = rest.split_at_mut(ptr[a + 1] - ptr[a]);
+        columns.push(head);
+        rest = tail;
+    }
+    columns.into_par_iter().zip(kept.par_iter_mut()).for_each(|(neighbours, kept)| {
+        neighbours.sort_unstable();
+        let mut k = 0;
+        for i in 0..neighbours.len() {
+            if k == 0 || neighbours[i] != neighbours[k - 1] {
+                neighbours[k] = neighbours[i];
+                k += 1;
+            }
+        }
+        *kept = k;
+    });
+    let compact = offsets(&kept);
+    let mut sorted = Vec::with_capacity(compact[n]);
+    for a in 0..n {
+        sorted.extend_from_slice(&list[ptr[a]..ptr[a] + kept[a]]);
+    }
+    (compact, sorted)
+}
+
+/// The lower-triangle pattern of B̌ on the free DOFs: free DOFs k ≥ j of the nodes that share a
+/// cell with the node of column j. Free numbers follow global numbers, in which every u comes
+/// before every ϕ, so the rows come out sorted.
+fn lower_pattern(mesh: &Mesh, dofs: &DofMap) -> Result<SymmetricPattern> {
+    let (ptr, neighbours) = node_neighbours(mesh);
+    let (dim, n) = (mesh.dim(), dofs.n_free());
+    let mut global_of_free = vec![0usize; n];
+    for g in 0..dofs.n_total() {
+        if dofs.free_index(g) != CONSTRAINED {
+            global_of_free[dofs.free_index(g)] = g;
+        }
+    }
+    let node_of =
+        |g: usize| if g < dim * mesh.n_nodes() { g / dim } else { g - dim * mesh.n_nodes() };
+    let rows_of = |j: usize| {
+        let a = node_of(global_of_free[j]);
+        let near = &neighbours[ptr[a]..ptr[a + 1]];
+        let u = near.iter().flat_map(move |&b| (0..dim).map(move |i| dofs.u(b, i)));
+        let phi = near.iter().map(|&b| dofs.phi(b));
+        u.chain(phi).map(|g| dofs.free_index(g)).filter(move |&k| k != CONSTRAINED && k >= j)
+    };
+    let counts: Vec<usize> = (0..n).into_par_iter().map(|j| rows_of(j).count()).collect();
+    let col_ptr = offsets(&counts);
+    let mut row_idx = vec![0usize; col_ptr[n]];
+    for_ranges(&col_ptr, &mut row_idx, |j, out| {
+        out.iter_mut().zip(rows_of(j)).for_each(|(slot, k)| *slot = k);
+        Ok(())
+    })?;
+    SymmetricPattern::from_columns(n, col_ptr, row_idx)
+}
+
+/// Splits the cells into groups in which no two cells share a node (greedy colouring in cell
+/// order); a cell that finds none of 128 groups free joins a last group summed alone.
+fn node_disjoint_groups(mesh: &Mesh) -> Vec<Vec<usize>> {
+    const COLOURS: usize = 128;
+    let mut used = vec![0u128; mesh.n_nodes()];
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    let mut crowded = Vec::new();
+    for c in 0..mesh.n_cells() {
+        let taken = mesh.cell(c).iter().fold(0u128, |m, &a| m | used[a]);
+        let colour = taken.trailing_ones() as usize;
+        if colour >= COLOURS {
+            crowded.push(c);
+            continue;
+        }
+        mesh.cell(c).iter().for_each(|&a| used[a] |= 1 << colour);
+        if groups.len() <= colour {
+            groups.resize(colour + 1, Vec::new());
+        }
+        groups[colour].push(c);
+    }
+    groups.extend(crowded.into_iter().map(|c| vec![c]));
+    groups
 }
 
 /// The number of [`local_pairs`] of cell `c`.
@@ -199,18 +334,43 @@ fn cell_pair_count<const D: usize, const N: usize>(
     local_pairs(dofs, local_dofs::<D, N>(dofs, problem.mesh.cell(c)), N * (D + 1)).count()
 }
 
-/// The positions of the [`local_pairs`] of cell `c`: (row, column), or (row, VECTOR_ENTRY)
-/// for a constrained column.
-fn cell_positions_into<const D: usize, const N: usize>(
+/// The slots of the [`local_pairs`] of cell `c`.
+fn cell_slots_into<const D: usize, const N: usize>(
     problem: &Problem,
     dofs: &DofMap,
+    pattern: &SymmetricPattern,
     c: usize,
-    out: &mut [(usize, usize)],
-) {
+    out: &mut [u32],
+) -> Result<()> {
     let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
     for (slot, (_, _, r, col)) in out.iter_mut().zip(local_pairs(dofs, global, N * (D + 1))) {
-        *slot = (r, if col == CONSTRAINED { VECTOR_ENTRY } else { col });
+        let s = if col == CONSTRAINED {
+            pattern.nnz() + r
+        } else {
+            pattern.position(r, col).ok_or_else(missing(r, col))?
+        };
+        *slot = s as u32;
     }
+    Ok(())
+}
+
+/// Adds the element matrix of cell `c` at its `slots`: K_pq, times the prescribed value of the
+/// column where it is constrained (the lifting).
+fn add_cell<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    g: f64,
+    c: usize,
+    slots: &[u32],
+    sums: &[AtomicU64],
+) -> Result<()> {
+    let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, g);
+    let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
+    for (&slot, (p, q, _, col)) in slots.iter().zip(local_pairs(dofs, global, N * (D + 1))) {
+        let value = if col == CONSTRAINED { k[p][q] * dofs.prescribed(global[q]) } else { k[p][q] };
+        add(&sums[slot as usize], value);
+    }
+    Ok(())
 }
 
 /// The local pairs (p, q) of an element with `m` DOFs `global` whose row is free, with their

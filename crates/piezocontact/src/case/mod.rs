@@ -860,3 +860,153 @@ pub fn key_line(source: &str, dotted: &str) -> Option<usize> {
     }
     span.map(|s| source[..s.start].matches('\n').count() + 1)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const PAPER_71: &str = include_str!("../../../../cases/paper-7.1.toml");
+    const MINIMAL: &str = r#"
+[mesh]
+x = [0.0, 4.0]
+y = [0.0, 1.0]
+nx = 8
+ny = 2
+[mesh.segments]
+left = ["{0}x[0,1]"]
+bottom = ["[0,4]x{0}"]
+[material]
+young = 100.0
+poisson = 0.25
+e31 = -5.4
+e33 = 15.8
+e15 = 12.3
+eps0 = 8.885e-3
+beta11_rel = 916.0
+beta33_rel = 830.0
+[boundary]
+clamped = ["left"]
+grounded = ["left"]
+contact = ["bottom"]
+[contact]
+gap = 0.1
+[solver]
+"#;
+
+    fn case(text: &str, overrides: &[&str]) -> Result<Case> {
+        let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+        Case::from_text(Path::new("case.toml"), text, &overrides)
+    }
+
+    fn error(text: &str, overrides: &[&str]) -> String {
+        let checked = case(text, overrides).and_then(|c| {
+            let problem = c.problem()?;
+            c.settings()?;
+            c.contact_model(&problem)
+        });
+        checked.map(|_| String::new()).unwrap_or_else(|e| e.to_string())
+    }
+
+    #[test]
+    fn defaults_live_in_one_place_and_follow_e() {
+        let c = case(MINIMAL, &[]).unwrap();
+        let s = c.settings().unwrap();
+        let d = SolverSection::DEFAULTS;
+        assert_eq!(
+            s,
+            Settings {
+                method: Method::Uzawa { r: 0.25 * 100.0, eps: d.eps, max_inner: d.max_inner },
+                eps_fp: d.eps_fp,
+                max_outer: d.max_outer,
+            }
+        );
+        // The values `check` prints are those the solver uses.
+        let lines = c.contact_settings().unwrap();
+        let value = |key: &str| lines.iter().find(|(k, _)| k == key).map(|(_, v)| *v);
+        assert_eq!(value("solver.r"), Some(25.0));
+        assert_eq!(value("solver.max_outer"), Some(d.max_outer as f64));
+        let with = case(MINIMAL, &["solver.r=3", "solver.method=\"uzawa\""]).unwrap();
+        assert!(matches!(with.settings().unwrap().method, Method::Uzawa { r: 3.0, .. }));
+    }
+
+    #[test]
+    fn the_paper_case_gives_the_paper_model() {
+        let c = case(PAPER_71, &["mesh.nx=12", "mesh.ny=2"]).unwrap();
+        let problem = c.problem().unwrap();
+        let model = c.contact_model(&problem).unwrap().unwrap();
+        assert_eq!(c.problem_kind(), ProblemKey::PV1);
+        assert!(model.pv2.is_none());
+        assert_eq!((model.compliance.gap, model.compliance.phi0), (0.5, 32.0));
+        assert_eq!(c.settings().unwrap().method.name(), "uzawa");
+        assert_eq!(c.file.units.potential, "GV");
+        // PV2 is implied by a [friction] table; conduction then takes its defaults.
+        let pv2 = case(MINIMAL, &["friction.mu=0.3"]).unwrap();
+        let problem = pv2.problem().unwrap();
+        let (friction, conduction) = pv2.contact_model(&problem).unwrap().unwrap().pv2.unwrap();
+        assert_eq!(friction.mu, 0.3);
+        assert_eq!(conduction, {
+            let d = ConductivitySection::default();
+            Conduction { ke: 0.0, phi0: 0.0, delta: d.delta, truncation: d.truncation }
+        });
+    }
+
+    #[test]
+    fn errors_name_the_file_the_line_the_key_and_the_fix() {
+        let line = |key: &str| {
+            MINIMAL.lines().position(|l| l.starts_with(key)).map(|k| k + 1).unwrap_or(0)
+        };
+        for (overrides, pieces) in [
+            (vec!["solver.r=-1"], vec!["case.toml:", "solver.r = -1 is not allowed: r > 0"]),
+            (vec!["solver.max_inner=0"], vec!["solver.max_inner = 0", "at least 1"]),
+            (vec!["solver.method=\"simplex\""], vec!["unknown variant `simplex`", "uzawa"]),
+            (vec!["contact.alpha_nu=1"], vec!["contact.alpha_nu = 1", "α_ν > 1"]),
+            (
+                vec!["material.poisson=0.5"],
+                vec![&format!("case.toml:{}", line("poisson")), "poisson"],
+            ),
+            (
+                vec!["boundary.contact=[\"nowhere\"]"],
+                vec!["'nowhere' is not in the mesh", "bottom"],
+            ),
+            (
+                vec!["friction.mu_parts.left=0.2"],
+                vec!["friction.mu_parts.left", "not a contact part"],
+            ),
+            (vec!["mesh.file=\"x.msh\""], vec!["mesh.x describes the built-in rectangle"]),
+            (vec!["solver.nonsense=1"], vec!["unknown field `nonsense`"]),
+            (vec!["solver"], vec!["--set solver: expected dotted.key=value"]),
+            (vec!["mesh.nx.deep=1"], vec!["'mesh.nx' is not a table"]),
+            (
+                vec!["mesh.nx=2000000000", "mesh.ny=2000000000"],
+                vec!["would need about", "reduce mesh.nx"],
+            ),
+        ] {
+            let e = error(MINIMAL, &overrides);
+            for piece in pieces {
+                assert!(e.contains(piece), "{overrides:?}: '{e}' lacks '{piece}'");
+            }
+        }
+        let e = error("[mesh]\nnx = 'a'\n", &[]);
+        assert!(e.starts_with("case.toml: TOML parse error at line 2"), "{e}");
+    }
+
+    #[test]
+    fn overrides_replace_a_key_under_either_spelling() {
+        let c = case(PAPER_71, &["material.e31=-1.5", "material.beta11_rel=100"]).unwrap();
+        assert_eq!((c.file.material.e31, c.file.material.beta11_rel), (-1.5, 100.0));
+        assert_eq!(c.locate("material.e32"), "case.toml");
+        assert!(c.locate("material.e31").starts_with("case.toml:"));
+    }
+
+    #[test]
+    fn the_hypotheses_are_reported_with_their_numbers() {
+        let c = case(MINIMAL, &["material.poisson=0.05"]).unwrap();
+        let problem = c.problem().unwrap();
+        let warnings = c.hypothesis_warnings(&problem.material);
+        assert!(warnings.iter().any(|w| w.starts_with("(h1)(a) fails")), "{warnings:?}");
+        assert!(warnings.iter().any(|w| w.contains("e·t0 = 4.8929e0")), "{warnings:?}");
+        let linear = case(MINIMAL, &["material.law=\"linear\""]).unwrap();
+        assert!(linear.hypothesis_warnings(&linear.problem().unwrap().material).is_empty());
+        assert!(c.uniqueness_note().unwrap().contains("M_h·L_p + L_h·M_p"));
+    }
+}

@@ -57,13 +57,7 @@ fn claim(dir: &Path, force: bool) -> Result<()> {
         .collect();
     foreign.sort();
     if !foreign.is_empty() && !force {
-        let shown: Vec<&str> = foreign.iter().take(5).map(String::as_str).collect();
-        return Err(Error::Input(format!(
-            "the output directory {} holds files that piezocontact did not write ({}{}); choose another --out, or pass --force to write there anyway",
-            dir.display(),
-            shown.join(", "),
-            if foreign.len() > 5 { ", …" } else { "" }
-        )));
+        return Err(Error::ForeignOutput { dir: dir.display().to_string(), files: foreign });
     }
     for rel in &listed {
         let _ = std::fs::remove_file(dir.join(rel));
