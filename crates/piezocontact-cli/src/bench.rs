@@ -16,6 +16,12 @@ use piezocontact::solver::CoupledSystem;
 use std::path::Path;
 
 const PAPER_CASE: &str = include_str!("../../../cases/paper-7.1.toml");
+const PAPER_PV2: &str = include_str!("../../../cases/paper-7.2.toml");
+
+/// The default sizes of the factorisation benchmark.
+pub const SIZES: [&str; 3] = ["96x16", "384x64", "1536x256"];
+/// The default sizes of the contact benchmark.
+pub const CONTACT_SIZES: [&str; 4] = ["96x16", "192x32", "384x64", "768x128"];
 
 /// The material of the paper's case, for meshes from files.
 const MATERIAL: &str = "[material]
@@ -58,19 +64,8 @@ pub fn run(target: &Target, lu: bool) -> Result<()> {
     match target {
         Target::Sizes(sizes) => {
             for size in *sizes {
-                let (nx, ny) = size
-                    .split_once('x')
-                    .and_then(|(a, b)| Some((a.parse::<usize>().ok()?, b.parse::<usize>().ok()?)))
-                    .ok_or_else(|| anyhow!("--sizes: '{size}' is not NXxNY, e.g. 384x64"))?;
-                if nx == 0 || ny == 0 {
-                    bail!("--sizes: '{size}' needs at least one cell each way");
-                }
-                let case = Case::from_text(
-                    Path::new("cases/paper-7.1.toml"),
-                    PAPER_CASE,
-                    &[format!("mesh.nx={nx}"), format!("mesh.ny={ny}")],
-                )?;
-                measure(size, &case.problem()?, lu)?;
+                let (nx, ny) = parse_size(size)?;
+                measure(size, &paper_case(PAPER_CASE, nx, ny, &[])?.problem()?, lu)?;
             }
         }
         Target::Mesh(path) => {
@@ -148,4 +143,151 @@ fn measure(name: &str, problem: &Problem, lu: bool) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Parses "NXxNY".
+fn parse_size(size: &str) -> Result<(usize, usize)> {
+    let (nx, ny) = size
+        .split_once('x')
+        .and_then(|(a, b)| Some((a.parse::<usize>().ok()?, b.parse::<usize>().ok()?)))
+        .ok_or_else(|| anyhow!("--sizes: '{size}' is not NXxNY, e.g. 384x64"))?;
+    if nx == 0 || ny == 0 {
+        bail!("--sizes: '{size}' needs at least one cell each way");
+    }
+    Ok((nx, ny))
+}
+
+/// A paper case on an nx × ny mesh with more overrides.
+fn paper_case(text: &str, nx: usize, ny: usize, extra: &[String]) -> Result<Case> {
+    let mut overrides = vec![format!("mesh.nx={nx}"), format!("mesh.ny={ny}")];
+    overrides.extend_from_slice(extra);
+    Ok(Case::from_text(Path::new("cases/paper.toml"), text, &overrides)?)
+}
+
+/// The problems of the contact benchmark: (name, case text, overrides).
+fn contact_problems() -> [(&'static str, &'static str, Vec<String>); 3] {
+    let newton = || vec!["solver.method=\"newton\"".to_string()];
+    let pv2 = |mu: f64| {
+        let mut o = newton();
+        o.extend([format!("friction.mu={mu}"), format!("conductivity.ke={mu}")]);
+        o
+    };
+    [
+        ("PV1", PAPER_CASE, newton()),
+        ("PV2 mu=0.2", PAPER_PV2, pv2(0.2)),
+        ("PV2 mu=0.6", PAPER_PV2, pv2(0.6)),
+    ]
+}
+
+/// `bench --contact`: every measurement in a process of its own (peak memory per run).
+pub fn contact(sizes: &[String]) -> Result<()> {
+    println!(
+        "{:>10} {:>9} {:>11} {:>7} {:>12} {:>9} {:>14} {:>8} {:>9} {:>15} {:>9}",
+        "mesh",
+        "DOFs",
+        "problem",
+        "newton",
+        "kkt_residual",
+        "wall_s",
+        "factorisation_s",
+        "ratio",
+        "peak_MB",
+        "factorisation_MB",
+        "mem_ratio"
+    );
+    let exe = std::env::current_exe()?;
+    let one = |spec: String| -> Result<Vec<(String, String)>> {
+        let out = std::process::Command::new(&exe).args(["bench", "--one", &spec]).output()?;
+        if !out.status.success() {
+            bail!("{spec}: {}", String::from_utf8_lossy(&out.stderr).trim());
+        }
+        Ok(String::from_utf8_lossy(&out.stdout)
+            .split_whitespace()
+            .filter_map(|kv| kv.split_once('=').map(|(k, v)| (k.to_string(), v.to_string())))
+            .collect())
+    };
+    let get = |fields: &[(String, String)], key: &str| -> Result<f64> {
+        fields
+            .iter()
+            .find(|(k, _)| k == key)
+            .and_then(|(_, v)| v.parse().ok())
+            .ok_or_else(|| anyhow!("the measurement printed no {key}"))
+    };
+    for size in sizes {
+        parse_size(size)?;
+        let plain = one(format!("plain,{size}"))?;
+        let (plain_s, plain_mb) = (get(&plain, "seconds")?, get(&plain, "peak_mb")?);
+        for (k, (name, ..)) in contact_problems().iter().enumerate() {
+            let run = one(format!("contact{k},{size}"))?;
+            let (seconds, mb) = (get(&run, "seconds")?, get(&run, "peak_mb")?);
+            println!(
+                "{:>10} {:>9} {:>11} {:>7} {:>12.3e} {:>9.3} {:>14.3} {:>8.2} {:>9.0} {:>15.0} {:>9.2}",
+                size,
+                get(&run, "dofs")?,
+                name,
+                get(&run, "newton")?,
+                get(&run, "kkt")?,
+                seconds,
+                plain_s,
+                seconds / plain_s,
+                mb,
+                plain_mb,
+                mb / plain_mb
+            );
+        }
+    }
+    println!(
+        "wall_s: solve_contact with solver.method = \"newton\" (pattern, ordering, factorisation, \
+         Schur complement, Newton, two solves, KKT residual); factorisation_s: one plain \
+         pattern + assembly + symbolic + numeric LDLᵀ (AMD) of the same mesh; peak_MB: the \
+         process's peak resident memory; ratios: contact / factorisation"
+    );
+    Ok(())
+}
+
+/// One measurement of `bench --contact`, printed as key=value pairs: "plain,NXxNY" or
+/// "contactK,NXxNY".
+pub fn measure_one(spec: &str) -> Result<()> {
+    let (kind, size) = spec.split_once(',').ok_or_else(|| anyhow!("--one {spec}"))?;
+    let (nx, ny) = parse_size(size)?;
+    if kind == "plain" {
+        let problem = paper_case(PAPER_CASE, nx, ny, &[])?.problem()?;
+        let start = std::time::Instant::now();
+        let mut system = CoupledSystem::new(&problem, DofMap::new(&problem)?, &[])?;
+        let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
+        system.factorize(&problem, &g, &[])?;
+        let seconds = start.elapsed().as_secs_f64();
+        println!("seconds={seconds} peak_mb={}", peak_mb());
+        return Ok(());
+    }
+    let k: usize = kind.trim_start_matches("contact").parse()?;
+    let (_, text, overrides) =
+        contact_problems().into_iter().nth(k).ok_or_else(|| anyhow!("--one {spec}"))?;
+    let case = paper_case(text, nx, ny, &overrides)?;
+    let problem = case.problem()?;
+    let model = case.contact_model(&problem)?.ok_or_else(|| anyhow!("no [contact] table"))?;
+    let settings = case.settings()?;
+    let start = std::time::Instant::now();
+    let s = &piezocontact::algorithm::solve_contact(&problem, &model, &settings)?;
+    let seconds = start.elapsed().as_secs_f64();
+    println!(
+        "seconds={seconds} peak_mb={} dofs={} newton={} kkt={} converged={}",
+        peak_mb(),
+        s.dofs.n_free(),
+        s.inner_iterations.iter().sum::<usize>(),
+        s.kkt.max,
+        s.converged
+    );
+    Ok(())
+}
+
+/// Peak resident memory of this process [MB] (VmHWM of /proc/self/status; 0 elsewhere).
+fn peak_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|t| {
+            let line = t.lines().find(|l| l.starts_with("VmHWM:"))?.to_string();
+            line.split_whitespace().nth(1)?.parse::<f64>().ok()
+        })
+        .map_or(0.0, |kib| kib / 1024.0)
 }

@@ -95,16 +95,25 @@ enum Command {
     /// Time assembly, symbolic analysis, numeric factorisation and solve on the paper's
     /// rectangle at several mesh sizes, or on a Gmsh mesh, beside faer's bare LDLᵀ.
     Bench {
-        /// Mesh sizes NXxNY, comma separated.
-        #[arg(long, default_value = "96x16,384x64,1536x256", value_delimiter = ',')]
-        sizes: Vec<String>,
+        /// Mesh sizes NXxNY, comma separated (default 96x16,384x64,1536x256; with
+        /// --contact 96x16,192x32,384x64,768x128).
+        #[arg(long, value_delimiter = ',')]
+        sizes: Option<Vec<String>>,
         /// A Gmsh MSH 4.1 mesh (2D or 3D) instead of the rectangle: every boundary part is
         /// clamped and grounded.
-        #[arg(long, conflicts_with = "sizes")]
+        #[arg(long, conflicts_with_all = ["sizes", "contact"])]
         mesh: Option<PathBuf>,
         /// Also time faer's sparse LU on the same matrices, for comparison.
         #[arg(long)]
         lu: bool,
+        /// Time the exact contact solver (newton) on PV1 and PV2 (µ = k_e = 0.2, 0.6) of the
+        /// paper's bar against one plain factorisation of the same mesh, each in a process of
+        /// its own to measure its peak memory.
+        #[arg(long, conflicts_with = "lu")]
+        contact: bool,
+        /// One measurement of --contact (internal).
+        #[arg(long, hide = true)]
+        one: Option<String>,
     },
 }
 
@@ -164,7 +173,16 @@ fn run(command: Command) -> Result<Outcome> {
         }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
-        Command::Bench { sizes, mesh, lu } => {
+        Command::Bench { sizes, mesh, lu, contact, one } => {
+            if let Some(spec) = one {
+                return bench::measure_one(&spec).map(|_| Outcome::Done);
+            }
+            if contact {
+                let sizes =
+                    sizes.unwrap_or_else(|| bench::CONTACT_SIZES.map(String::from).to_vec());
+                return bench::contact(&sizes).map(|_| Outcome::Done);
+            }
+            let sizes = sizes.unwrap_or_else(|| bench::SIZES.map(String::from).to_vec());
             let target = match &mesh {
                 Some(path) => bench::Target::Mesh(path),
                 None => bench::Target::Sizes(&sizes),

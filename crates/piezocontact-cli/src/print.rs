@@ -6,7 +6,7 @@ use std::path::Path;
 
 /// Prints a contact run's figures on the terminal, each with its unit.
 pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
-    let (units, solution, kkt) = (&case.file.units, &run.solution, &run.kkt);
+    let (units, solution, kkt) = (&case.file.units, &run.solution, &run.solution.kkt);
     let (sigma_nu, sigma_tau) = run.peaks();
     let (c, st, sl) = run.zones();
     let t = solution.timings;
@@ -22,7 +22,8 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         solution.outer_iterations,
         if solution.converged { "converged" } else { "NOT converged" }
     );
-    println!("  inner iterations   = {:?}", solution.inner_iterations);
+    let inner = if run.settings.method.is_exact() { "Newton steps" } else { "inner iterations" };
+    println!("  {inner:<18} = {:?} (per outer step)", solution.inner_iterations);
     println!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
     println!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
     println!("  contact / stick / slip measure = {c:.4} / {st:.4} / {sl:.4} {}", units.length);
@@ -30,7 +31,7 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         "  KKT residual       = {:.3e} (equilibrium u {:.1e}, phi {:.1e}; contact {:.1e}; friction {:.1e})",
         kkt.max, kkt.equilibrium_u, kkt.equilibrium_phi, kkt.contact, kkt.friction
     );
-    println!("  force balance      = relative imbalance {:.1e}", run.balance.imbalance);
+    println!("  force balance      = relative imbalance {:.1e}", run.solution.balance.imbalance);
     println!(
         "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}), total {:.3} s",
         t.pattern,

@@ -427,7 +427,7 @@ impl Report<'_> {
         let _ = writeln!(
             md,
             "| {} | {:?} | {sn:.4} | {st:.4} | {c:.3} / {stick:.3} / {slip:.3} | {:.1e} | {} |\n",
-            s.outer_iterations, s.inner_iterations, run.kkt.max, s.converged
+            s.outer_iterations, s.inner_iterations, run.solution.kkt.max, s.converged
         );
         if example == Example::Pv1 {
             let verdict = if s.outer_iterations == 2 {
@@ -753,8 +753,11 @@ impl Report<'_> {
             };
             let (dn, dt) = (rel(|r| r.sigma_nu), rel(|r| r.sigma_tau));
             let (rn, rt) = (rms(|r| r.sigma_nu), rms(|r| r.sigma_tau));
-            let _ =
-                writeln!(csv, "{ex},{dn:e},{dt:e},{rn:e},{rt:e},{:e},{:e}", a.kkt.max, b.kkt.max);
+            let _ = writeln!(
+                csv,
+                "{ex},{dn:e},{dt:e},{rn:e},{rt:e},{:e},{:e}",
+                a.solution.kkt.max, b.solution.kkt.max
+            );
             let _ = writeln!(
                 md,
                 "| {ex} | {:.2} % / {:.2} % | {:.2} % / {:.2} % | {:.1e} | {:.1e} |",
@@ -762,8 +765,8 @@ impl Report<'_> {
                 100.0 * rn,
                 100.0 * dt,
                 100.0 * rt,
-                a.kkt.max,
-                b.kkt.max
+                a.solution.kkt.max,
+                b.solution.kkt.max
             );
         }
         write_atomic(&self.path("stopping_rule.csv"), csv.as_bytes())?;

@@ -52,7 +52,7 @@
 //! # fn main() -> piezocontact::Result<()> {
 //! let case = Case::load("cases/paper-7.1.toml".as_ref(), &["mesh.nx=48".into()])?;
 //! let run = ContactRun::solve(&case)?;
-//! println!("{} outer iterations, KKT residual {:.1e}", run.solution.outer_iterations, run.kkt.max);
+//! println!("{} outer iterations, KKT residual {:.1e}", run.solution.outer_iterations, run.solution.kkt.max);
 //! run.write(&case, "out/example".as_ref())?;
 //! # Ok(())
 //! # }

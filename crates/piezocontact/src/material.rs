@@ -40,6 +40,11 @@ pub struct Elasticity {
 }
 
 impl Elasticity {
+    /// Young's modulus E = 9 k0 µ1 / (3 k0 + µ1) [stress].
+    pub fn young(&self) -> f64 {
+        9.0 * self.k0 * self.mu1 / (3.0 * self.k0 + self.mu1)
+    }
+
     /// From Young's modulus E [stress] and Poisson's ratio ν, as in [P] Section 7:
     /// µ1 = E/(2 + 2ν), k0 = E/(3 − 6ν).
     pub fn from_young_poisson(young: f64, poisson: f64, law: ElasticLaw) -> Result<Self> {

@@ -1,7 +1,6 @@
 //! Reports of a contact run: `contact.csv` (one row per Γ3 node, ordered along Γ3) and the
 //! `summary.json` fields of Algorithms 1–4.
 
-use crate::algorithm::residual::{Balance, KktResidual};
 use crate::algorithm::{ContactModel, ContactSolution, NodeStatus};
 use crate::problem::Problem;
 use crate::solver::Timings;
@@ -102,16 +101,10 @@ pub fn zone_measures(solution: &ContactSolution, rows: &[Row]) -> (f64, f64, f64
 }
 
 /// The contact part of `summary.json`.
-pub fn contact_summary(
-    model: &ContactModel,
-    solution: &ContactSolution,
-    kkt: &KktResidual,
-    balance: &Balance,
-    rows: &[Row],
-) -> Value {
+pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &[Row]) -> Value {
     let max_abs = |f: &dyn Fn(&Row) -> f64| rows.iter().map(|r| f(r).abs()).fold(0.0, f64::max);
     let (contact, stick, slip) = zone_measures(solution, rows);
-    let t = solution.timings;
+    let (t, kkt, balance) = (solution.timings, &solution.kkt, &solution.balance);
     json!({
         "problem": model.name(),
         "converged": solution.converged,

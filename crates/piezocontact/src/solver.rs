@@ -6,7 +6,7 @@
 use crate::assembly::{Assembler, NodalBlock, load_vector, secant_moduli};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
-use crate::linalg::{LdltSolver, LinearSolver, Ordering, SymmetricMatrix};
+use crate::linalg::{LdltSolver, LinearSolver, Ordering, SymmetricMatrix, ordering_with_last};
 use crate::problem::Problem;
 use std::time::Instant;
 
@@ -68,17 +68,38 @@ impl CoupledSystem {
         Self::with_solver(problem, dofs, block_nodes, Box::new(LdltSolver::new()), &Ordering::Amd)
     }
 
+    /// As [`CoupledSystem::new`] without nodal blocks, with the free unknowns `last`
+    /// eliminated last (in that order) so that the factor yields their Schur complement.
+    pub fn with_last(problem: &Problem, dofs: DofMap, last: &[usize]) -> Result<Self> {
+        let t = Instant::now();
+        let assembler = Assembler::new(problem, dofs, &[])?;
+        let ordering = ordering_with_last(assembler.pattern(), last)?;
+        let pattern_seconds = t.elapsed().as_secs_f64();
+        Self::analysed(problem, assembler, Box::new(LdltSolver::new()), &ordering, pattern_seconds)
+    }
+
     /// As [`CoupledSystem::new`], with the caller's linear solver and ordering.
     pub fn with_solver(
         problem: &Problem,
         dofs: DofMap,
         block_nodes: &[usize],
-        mut solver: Box<dyn LinearSolver>,
+        solver: Box<dyn LinearSolver>,
         ordering: &Ordering,
     ) -> Result<Self> {
         let t = Instant::now();
         let assembler = Assembler::new(problem, dofs, block_nodes)?;
         let pattern_seconds = t.elapsed().as_secs_f64();
+        Self::analysed(problem, assembler, solver, ordering, pattern_seconds)
+    }
+
+    /// Assembles f̌ and runs the symbolic analysis on the assembler's pattern.
+    fn analysed(
+        problem: &Problem,
+        assembler: Assembler,
+        mut solver: Box<dyn LinearSolver>,
+        ordering: &Ordering,
+        pattern_seconds: f64,
+    ) -> Result<Self> {
         let t = Instant::now();
         let load = assembler.restrict(&load_vector(problem, assembler.dofs()));
         let assembly_seconds = t.elapsed().as_secs_f64();
@@ -138,6 +159,12 @@ impl CoupledSystem {
     /// The right-hand side f̌ + lifting on the free DOFs.
     pub fn rhs(&self) -> &[f64] {
         &self.rhs
+    }
+
+    /// The Schur complement of the last `m` unknowns of the ordering, from the current
+    /// factorisation (see [`CoupledSystem::with_last`]).
+    pub fn schur_complement(&self, m: usize) -> Result<crate::linalg::DenseMatrix> {
+        self.solver.schur_complement(m)
     }
 
     /// Number of stored values of the factor.

@@ -19,6 +19,7 @@
 //! ([`Error::Diverged`]), a singular matrix or a NaN ([`Error::NumericalFailure`]) stop the run
 //! the same way, keeping the last finite iterate.
 
+pub mod newton;
 pub mod residual;
 pub mod uzawa;
 
@@ -29,6 +30,8 @@ use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
 use crate::solver::{CoupledSystem, Timings};
+use newton::{Condensed, Newton};
+use residual::{Balance, KktResidual};
 use uzawa::Uzawa;
 
 /// The method that solves the contact problem of one outer step (model §7).
@@ -43,6 +46,17 @@ pub enum Method {
         /// Cap on Uzawa iterations per outer step.
         max_inner: usize,
     },
+    /// The exact solver: semismooth Newton on the problem condensed onto Γ3 (model §11).
+    Newton {
+        /// r > 0 [stress/length]: the constant of the KKT residual; the Newton method uses
+        /// c_i = (r/E)·S_νν,i/w_i, r scaled by the stiffness of Γ3 node i. The answer does
+        /// not depend on it.
+        c: f64,
+        /// The run stops when the KKT residual is at most this [-].
+        tol: f64,
+        /// Cap on Newton steps per outer step.
+        max_inner: usize,
+    },
 }
 
 impl Method {
@@ -50,7 +64,15 @@ impl Method {
     pub fn name(&self) -> &'static str {
         match self {
             Self::Uzawa { .. } => "uzawa",
+            Self::Newton { .. } => "newton",
         }
+    }
+
+    /// Whether the method solves the discrete problem itself — contact, friction with
+    /// s = µ|Rσ_ν(x)|, compliance and conduction at the solution, not lagged — so that the outer
+    /// loop only updates Hencky's secant moduli.
+    pub fn is_exact(&self) -> bool {
+        matches!(self, Self::Newton { .. })
     }
 
     /// The constant c > 0 of the complementarity functions λ − max(0, λ + c(u_ν − ρ)) and
@@ -59,6 +81,7 @@ impl Method {
     pub fn complementarity_constant(&self) -> f64 {
         match self {
             Self::Uzawa { r, .. } => *r,
+            Self::Newton { c, .. } => *c,
         }
     }
 }
@@ -135,26 +158,45 @@ pub struct Step<'a> {
     pub friction_bound: Option<&'a [f64]>,
     /// f_{1,n} − f̌ on the free DOFs: the lagged −j̃1(x_n) − ľ(x_n).
     pub base: &'a [f64],
+    /// µ per Γ3 node and R, with friction (PV2).
+    pub friction: Option<(&'a [f64], &'a Mollifier)>,
+    /// The conduction law, with a conductive foundation (PV2).
+    pub conduction: Option<&'a Conduction>,
+    /// The previous outer iterate x_n (global; zero at the first step).
+    pub start: &'a [f64],
 }
 
 /// The nodal blocks that `method` adds to B̌ on the Γ3 nodes.
 fn method_blocks(method: &Method, surface: &ContactSurface, friction: bool) -> Vec<NodalBlock> {
     match method {
         Method::Uzawa { r, .. } => step1_blocks(surface, *r, friction),
+        Method::Newton { .. } => Vec::new(),
     }
 }
 
 /// Runs `method` on one outer step with the factorised `system`.
-fn run_inner(method: &Method, step: &Step, system: &mut CoupledSystem) -> Result<InnerResult> {
+fn run_inner(
+    method: &Method,
+    step: &Step,
+    condensed: &Condensed,
+    system: &mut CoupledSystem,
+) -> Result<InnerResult> {
     match *method {
         Method::Uzawa { r, eps, max_inner } => Uzawa { step, r, eps, max_inner }.run(system),
+        Method::Newton { c, max_inner, .. } => {
+            let c_factor = c / step.problem.material.elasticity.young();
+            Newton { step, condensed, c_factor, max_iterations: max_inner }.run(system)
+        }
     }
 }
 
 /// The error for an inner loop that stopped without converging: the one place where stops
 /// become errors, with a hint on the method's parameters.
 fn inner_failure(method: &Method, inner: &InnerResult, pv2: bool, step: usize) -> Option<Error> {
-    let Method::Uzawa { r, eps, max_inner } = *method;
+    let (r, eps, max_inner) = match *method {
+        Method::Uzawa { r, eps, max_inner } => (r, eps, max_inner),
+        Method::Newton { max_inner, .. } => return newton_failure(inner, max_inner, step),
+    };
     let what =
         format!("the Uzawa loop (Algorithm {}) of outer step {step}", if pv2 { 2 } else { 4 });
     let r_hint = format!(
@@ -234,6 +276,40 @@ pub struct ContactSolution {
     pub inner_history: Vec<Vec<f64>>,
     /// Time spent in each phase.
     pub timings: Timings,
+    /// The residual of the discrete KKT conditions at `x` (model §10).
+    pub kkt: KktResidual,
+    /// The global force balance at `x`.
+    pub balance: Balance,
+}
+
+/// The error for a Newton solve that stopped without converging.
+fn newton_failure(inner: &InnerResult, max_inner: usize, step: usize) -> Option<Error> {
+    let what = format!("the semismooth Newton method of outer step {step}");
+    let hint = "the active set cycles or the Jacobian is singular: check that Γ3 can touch the \
+                foundation only where the body is held, and report the case if it persists";
+    match &inner.stop {
+        Stop::Converged => None,
+        Stop::Cap => Some(Error::NotConverged {
+            what,
+            iterations: inner.iterations,
+            criterion: inner.history.last().copied().unwrap_or(f64::NAN),
+            tolerance: newton::STEP_TOLERANCE,
+            history: tail(&inner.history),
+            hint: format!("raise solver.max_inner (now {max_inner}); {hint}"),
+        }),
+        Stop::Diverged => Some(Error::Diverged {
+            what,
+            iteration: inner.iterations,
+            history: tail(&inner.history),
+            hint: hint.into(),
+        }),
+        Stop::NotFinite(cause) => Some(Error::NumericalFailure {
+            what,
+            iteration: inner.iterations,
+            cause: cause.clone(),
+            hint: hint.into(),
+        }),
+    }
 }
 
 /// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it).
@@ -244,9 +320,15 @@ pub fn solve_contact(
 ) -> Result<ContactSolution> {
     let dofs = DofMap::new(problem)?;
     let surface = ContactSurface::new(problem, &dofs)?;
-    let mut system = CoupledSystem::new(problem, dofs, &surface.nodes)?;
-    let mass = MassNorm::new(problem)?;
+    let condensed = Condensed::new(&dofs, &surface, model.compliance.penetration > 0.0);
+    let exact = settings.method.is_exact();
     let blocks = method_blocks(&settings.method, &surface, model.pv2.is_some());
+    let mut system = if exact {
+        CoupledSystem::with_last(problem, dofs, &condensed.free)?
+    } else {
+        CoupledSystem::new(problem, dofs, &surface.nodes)?
+    };
+    let mass = MassNorm::new(problem)?;
     let mollifier = Mollifier::new(problem, &surface, model);
     let mu = model
         .pv2
@@ -254,6 +336,8 @@ pub fn solve_contact(
         .map_or_else(Vec::new, |(friction, _)| nodal_mu(problem, &surface, friction));
     let n3 = surface.len();
     let mut solution = ContactSolution {
+        kkt: KktResidual::default(),
+        balance: Balance::default(),
         x: vec![0.0; system.dofs().n_total()],
         dofs: DofMap::default(),
         surface: surface.clone(),
@@ -286,7 +370,11 @@ pub fn solve_contact(
             }
             factorised_with = Some(g.clone());
         }
-        let base = lagged_loads(system.dofs(), &surface, model, &solution.x);
+        let base = if exact {
+            vec![0.0; system.dofs().n_free()]
+        } else {
+            lagged_loads(system.dofs(), &surface, model, &solution.x)
+        };
         let s_n = solution.s.clone();
         let step = Step {
             problem,
@@ -295,8 +383,11 @@ pub fn solve_contact(
             compliance: &model.compliance,
             friction_bound: model.pv2.as_ref().map(|_| s_n.as_slice()),
             base: &base,
+            friction: model.pv2.as_ref().map(|_| (mu.as_slice(), &mollifier)),
+            conduction: model.pv2.as_ref().map(|(_, conduction)| conduction),
+            start: &solution.x,
         };
-        let inner = run_inner(&settings.method, &step, &mut system)?;
+        let inner = run_inner(&settings.method, &step, &condensed, &mut system)?;
         solution.inner_iterations.push(inner.iterations);
         solution.inner_history.push(inner.history.clone());
         solution.outer_iterations = n + 1;
@@ -315,12 +406,27 @@ pub fn solve_contact(
                 .collect(),
             None => vec![0.0; n3],
         };
+        if exact {
+            solution.s_used = solution.s.clone();
+        }
         if failure.is_some() {
             solution.failure = failure;
             break;
         }
         let g_next = secant_moduli(problem, dofs, &solution.x)?;
         let x_criterion = relative_change(problem, dofs, &mass, &solution.x, &x_previous);
+        if let Method::Newton { tol, .. } = settings.method {
+            // Exact inner solves: the outer loop is the secant iteration of Hencky's law,
+            // done when the moduli at the solution are those it was solved with.
+            let criterion = if g_next == g { 0.0 } else { x_criterion };
+            solution.outer_history.push(criterion);
+            g = g_next;
+            if criterion <= tol {
+                solution.converged = true;
+                break;
+            }
+            continue;
+        }
         let s_norm: f64 = (0..n3).map(|i| surface.weight[i] * solution.s[i].powi(2)).sum();
         let criterion = if model.pv2.is_some() && s_norm > 0.0 {
             let ds: f64 = (0..n3)
@@ -361,6 +467,23 @@ pub fn solve_contact(
     }
     solution.timings = system.timings();
     solution.dofs = system.into_dofs();
+    (solution.kkt, solution.balance) = residual::assess(problem, model, settings, &solution)?;
+    if let Method::Newton { tol, .. } = settings.method
+        && solution.converged
+        && (solution.kkt.max > tol || solution.kkt.max.is_nan())
+    {
+        solution.converged = false;
+        solution.failure = Some(Error::NotConverged {
+            what: "the exact solver".into(),
+            iterations: solution.outer_iterations,
+            criterion: solution.kkt.max,
+            tolerance: tol,
+            history: tail(&solution.outer_history),
+            hint: "the KKT residual stays above solver.tol: round-off of an ill-conditioned \
+                   problem, or a tolerance below what double precision reaches here"
+                .into(),
+        });
+    }
     Ok(solution)
 }
 
@@ -522,8 +645,8 @@ fn relative_change(problem: &Problem, dofs: &DofMap, mass: &MassNorm, a: &[f64],
     if norm > 0.0 { (mass.squared(problem, dofs, &difference) / norm).sqrt() } else { 0.0 }
 }
 
-/// The regularisation R as a sparse averaging operator on the Γ3 nodes.
-struct Mollifier {
+/// The regularisation R of the friction bound as a sparse averaging operator on the Γ3 nodes.
+pub struct Mollifier {
     /// For each node, (j, weight) with weights summing to 1; empty for R = identity.
     rows: Vec<Vec<(usize, f64)>>,
 }
@@ -554,10 +677,16 @@ impl Mollifier {
         Self { rows }
     }
 
-    fn apply(&self, sigma_nu: &[f64]) -> Vec<f64> {
+    /// R σ_ν on the Γ3 nodes.
+    pub fn apply(&self, sigma_nu: &[f64]) -> Vec<f64> {
         if self.rows.is_empty() {
             return sigma_nu.to_vec();
         }
         self.rows.iter().map(|row| row.iter().map(|&(j, w)| w * sigma_nu[j]).sum()).collect()
+    }
+
+    /// Row i of R: (j, R_ij).
+    pub fn row(&self, i: usize) -> Vec<(usize, f64)> {
+        self.rows.get(i).cloned().unwrap_or_else(|| vec![(i, 1.0)])
     }
 }

@@ -297,8 +297,10 @@ fn truncation() -> f64 {
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum MethodKey {
-    /// Algorithms 2 and 4: augmented Lagrangian Uzawa block relaxation (the paper's).
+    /// The exact solver: semismooth Newton on the condensed Γ3 problem (the default).
     #[default]
+    Newton,
+    /// Algorithms 2 and 4: augmented Lagrangian Uzawa block relaxation (the paper's).
     Uzawa,
 }
 
@@ -306,15 +308,18 @@ pub enum MethodKey {
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSection {
-    /// The inner method: "uzawa" (default).
+    /// The inner method: "newton" (the exact solver, default) or "uzawa" (the paper's).
     pub method: Option<MethodKey>,
-    /// r > 0: augmented Lagrangian parameter [stress/length]; default 0.25 E.
+    /// r > 0: Uzawa's augmented Lagrangian parameter, or Newton's complementarity constant c
+    /// (which does not change the answer) [stress/length]; default 0.25 E.
     pub r: Option<f64>,
-    /// ε of the Uzawa stopping rule (6.12) [-]; default 1e−4.
+    /// ε of the Uzawa stopping rule (6.12) [-]; default 1e−4 (uzawa only).
     pub eps: Option<f64>,
-    /// ε_fp of the fixed-point stopping rules (6.13), (6.15) [-]; default 1e−4.
+    /// ε_fp of the fixed-point stopping rules (6.13), (6.15) [-]; default 1e−4 (uzawa only).
     pub eps_fp: Option<f64>,
-    /// Cap on Uzawa iterations per outer step; default 10000.
+    /// The largest KKT residual accepted [-]; default 1e−10 (newton only).
+    pub tol: Option<f64>,
+    /// Cap on Uzawa iterations (default 10000) or Newton steps (default 100) per outer step.
     pub max_inner: Option<usize>,
     /// Cap on fixed-point iterations; default 100.
     pub max_outer: Option<usize>,
@@ -326,17 +331,22 @@ struct SolverDefaults {
     r_per_young: f64,
     eps: f64,
     eps_fp: f64,
-    max_inner: usize,
+    tol: f64,
+    max_uzawa: usize,
+    max_newton: usize,
     max_outer: usize,
 }
 
 impl SolverSection {
-    /// The paper's values (r = 0.25 E, ε = ε_fp = 1e−4) and generous caps.
+    /// The paper's values for Uzawa (r = 0.25 E, ε = ε_fp = 1e−4), round-off for Newton, and
+    /// generous caps.
     const DEFAULTS: SolverDefaults = SolverDefaults {
         r_per_young: 0.25,
         eps: 1e-4,
         eps_fp: 1e-4,
-        max_inner: 10_000,
+        tol: 1e-10,
+        max_uzawa: 10_000,
+        max_newton: 100,
         max_outer: 100,
     };
 }
@@ -564,14 +574,20 @@ impl Case {
             ]);
         }
         let settings = self.settings_unchecked();
-        let Method::Uzawa { r, eps, max_inner } = settings.method;
-        rules.extend([
-            Rule("solver.r", r, positive, "r > 0"),
-            Rule("solver.eps", eps, positive, "ε > 0"),
-            Rule("solver.eps_fp", settings.eps_fp, positive, "ε_fp > 0"),
-            Rule("solver.max_inner", max_inner as f64, |v| v >= 1.0, "at least 1"),
-            Rule("solver.max_outer", settings.max_outer as f64, |v| v >= 1.0, "at least 1"),
-        ]);
+        match settings.method {
+            Method::Uzawa { r, eps, max_inner } => rules.extend([
+                Rule("solver.r", r, positive, "r > 0"),
+                Rule("solver.eps", eps, positive, "ε > 0"),
+                Rule("solver.eps_fp", settings.eps_fp, positive, "ε_fp > 0"),
+                Rule("solver.max_inner", max_inner as f64, |v| v >= 1.0, "at least 1"),
+            ]),
+            Method::Newton { c, tol, max_inner } => rules.extend([
+                Rule("solver.r", c, positive, "r > 0"),
+                Rule("solver.tol", tol, positive, "a tolerance > 0"),
+                Rule("solver.max_inner", max_inner as f64, |v| v >= 1.0, "at least 1"),
+            ]),
+        }
+        rules.push(Rule("solver.max_outer", settings.max_outer as f64, |v| v >= 1.0, "at least 1"));
         let mut lines = Vec::new();
         for Rule(key, value, ok, requirement) in rules {
             if !ok(value) {
@@ -606,6 +622,27 @@ impl Case {
             ));
         }
         warnings
+    }
+
+    /// Keys of `[solver]` that the chosen method does not read, as warnings.
+    pub fn setting_warnings(&self) -> Vec<String> {
+        let s = &self.file.solver;
+        let (method, unused) = match s.method.unwrap_or_default() {
+            MethodKey::Newton => {
+                ("newton", [("eps", s.eps.is_some()), ("eps_fp", s.eps_fp.is_some())])
+            }
+            MethodKey::Uzawa => ("uzawa", [("tol", s.tol.is_some()), ("", false)]),
+        };
+        unused
+            .iter()
+            .filter(|(_, set)| *set)
+            .map(|(key, _)| {
+                format!(
+                    "{}: solver.{key} is not used by solver.method = \"{method}\" (newton stops on solver.tol, uzawa on solver.eps and solver.eps_fp)",
+                    self.locate(&format!("solver.{key}"))
+                )
+            })
+            .collect()
     }
 
     /// The bounds and Lipschitz constants of p_ν and h_ν ((h5), (h6)) and the quantity that
@@ -701,11 +738,17 @@ impl Case {
     /// The algorithms' parameters with their defaults, before the range checks.
     fn settings_unchecked(&self) -> Settings {
         let (s, d) = (&self.file.solver, SolverSection::DEFAULTS);
+        let r = s.r.unwrap_or(d.r_per_young * self.file.material.young);
         let method = match s.method.unwrap_or_default() {
             MethodKey::Uzawa => Method::Uzawa {
-                r: s.r.unwrap_or(d.r_per_young * self.file.material.young),
+                r,
                 eps: s.eps.unwrap_or(d.eps),
-                max_inner: s.max_inner.unwrap_or(d.max_inner),
+                max_inner: s.max_inner.unwrap_or(d.max_uzawa),
+            },
+            MethodKey::Newton => Method::Newton {
+                c: r,
+                tol: s.tol.unwrap_or(d.tol),
+                max_inner: s.max_inner.unwrap_or(d.max_newton),
             },
         };
         Settings {
@@ -912,14 +955,11 @@ gap = 0.1
         let c = case(MINIMAL, &[]).unwrap();
         let s = c.settings().unwrap();
         let d = SolverSection::DEFAULTS;
-        assert_eq!(
-            s,
-            Settings {
-                method: Method::Uzawa { r: 0.25 * 100.0, eps: d.eps, max_inner: d.max_inner },
-                eps_fp: d.eps_fp,
-                max_outer: d.max_outer,
-            }
-        );
+        let newton = Method::Newton { c: 0.25 * 100.0, tol: d.tol, max_inner: d.max_newton };
+        assert_eq!(s, Settings { method: newton, eps_fp: d.eps_fp, max_outer: d.max_outer });
+        let uzawa = case(MINIMAL, &["solver.method=\"uzawa\""]).unwrap().settings().unwrap();
+        let expected = Method::Uzawa { r: 25.0, eps: d.eps, max_inner: d.max_uzawa };
+        assert_eq!(uzawa.method, expected);
         // The values `check` prints are those the solver uses.
         let lines = c.contact_settings().unwrap();
         let value = |key: &str| lines.iter().find(|(k, _)| k == key).map(|(_, v)| *v);
@@ -927,6 +967,9 @@ gap = 0.1
         assert_eq!(value("solver.max_outer"), Some(d.max_outer as f64));
         let with = case(MINIMAL, &["solver.r=3", "solver.method=\"uzawa\""]).unwrap();
         assert!(matches!(with.settings().unwrap().method, Method::Uzawa { r: 3.0, .. }));
+        // Keys of the other method are reported, not silently dropped.
+        let unused = case(MINIMAL, &["solver.eps=1e-6"]).unwrap().setting_warnings();
+        assert!(unused[0].contains("solver.eps is not used by solver.method = \"newton\""));
     }
 
     #[test]
@@ -937,6 +980,7 @@ gap = 0.1
         assert_eq!(c.problem_kind(), ProblemKey::PV1);
         assert!(model.pv2.is_none());
         assert_eq!((model.compliance.gap, model.compliance.phi0), (0.5, 32.0));
+        // The paper's cases ask for the paper's algorithm.
         assert_eq!(c.settings().unwrap().method.name(), "uzawa");
         assert_eq!(c.file.units.potential, "GV");
         // PV2 is implied by a [friction] table; conduction then takes its defaults.
@@ -959,6 +1003,7 @@ gap = 0.1
             (vec!["solver.r=-1"], vec!["case.toml:", "solver.r = -1 is not allowed: r > 0"]),
             (vec!["solver.max_inner=0"], vec!["solver.max_inner = 0", "at least 1"]),
             (vec!["solver.method=\"simplex\""], vec!["unknown variant `simplex`", "uzawa"]),
+            (vec!["solver.tol=0"], vec!["solver.tol = 0 is not allowed: a tolerance > 0"]),
             (vec!["contact.alpha_nu=1"], vec!["contact.alpha_nu = 1", "α_ν > 1"]),
             (
                 vec!["material.poisson=0.5"],

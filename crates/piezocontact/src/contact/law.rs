@@ -50,6 +50,20 @@ impl NormalCompliance {
     pub fn pressure(&self, u_nu: f64, phi: f64) -> f64 {
         self.h_nu(phi - self.phi0) * self.p_nu(u_nu - self.gap)
     }
+
+    /// A generalised derivative of the pressure: (∂/∂u_ν, ∂/∂ϕ) [stress/length,
+    /// stress/potential]. The pieces' one-sided derivatives at the kinks are taken from the
+    /// side where the function is not constant.
+    pub fn pressure_derivative(&self, u_nu: f64, phi: f64) -> (f64, f64) {
+        let (s, t) = (u_nu - self.gap, phi - self.phi0);
+        let dp = if (0.0..=self.n_nu).contains(&s) { 1.0 } else { 0.0 };
+        let dh = if t.abs() <= self.h_nu_range {
+            self.c_nu * (self.alpha_nu - 1.0) / self.h_nu_range * t.signum()
+        } else {
+            0.0
+        };
+        (self.h_nu(t) * dp, dh * self.p_nu(s))
+    }
 }
 
 /// Conductive foundation, (2.7)–(2.8): D·ν = ψ(u_ν − g_a) φ_L(ϕ − ϕ0),
@@ -80,6 +94,14 @@ impl Conduction {
     /// The normal charge flux ψ(u_ν − g_a) φ_L(ϕ − ϕ0) [charge/length^(d−1)].
     pub fn flux(&self, u_nu: f64, phi: f64, gap: f64) -> f64 {
         self.psi(u_nu - gap) * self.phi_l(phi - self.phi0)
+    }
+
+    /// A generalised derivative of the flux: (∂/∂u_ν, ∂/∂ϕ).
+    pub fn flux_derivative(&self, u_nu: f64, phi: f64, gap: f64) -> (f64, f64) {
+        let (s, t) = (u_nu - gap, phi - self.phi0);
+        let dpsi = if (0.0..=1.0 / self.delta).contains(&s) { self.ke * self.delta } else { 0.0 };
+        let dphi_l = if t.abs() <= self.truncation { 1.0 } else { 0.0 };
+        (dpsi * self.phi_l(t), self.psi(s) * dphi_l)
     }
 }
 
@@ -140,6 +162,31 @@ mod tests {
         let c = Conduction { ke: 2.0, phi0: 32.0, delta: 4.0, truncation: 10.0 };
         assert_eq!((c.psi(-1.0), c.psi(0.125), c.psi(1.0)), (0.0, 1.0, 2.0));
         assert_eq!((c.phi_l(-20.0), c.phi_l(3.0), c.phi_l(20.0)), (-10.0, 3.0, 10.0));
+    }
+
+    #[test]
+    fn derivatives_match_difference_quotients_away_from_kinks() {
+        let law = NormalCompliance {
+            gap: 0.5,
+            penetration: 0.1,
+            c_nu: 2.0,
+            alpha_nu: 3.0,
+            n_nu: 0.2,
+            h_nu_range: 128.0,
+            phi0: 32.0,
+        };
+        let c = Conduction { ke: 2.0, phi0: 32.0, delta: 4.0, truncation: 10.0 };
+        let h = 1e-7;
+        for (u, phi) in [(0.55, 40.0), (0.6, 20.0), (0.3, 0.0), (0.9, 500.0), (0.52, 35.0)] {
+            let (du, dphi) = law.pressure_derivative(u, phi);
+            let fd_u = (law.pressure(u + h, phi) - law.pressure(u - h, phi)) / (2.0 * h);
+            let fd_phi = (law.pressure(u, phi + h) - law.pressure(u, phi - h)) / (2.0 * h);
+            assert!((du - fd_u).abs() < 1e-6 && (dphi - fd_phi).abs() < 1e-6, "{u}, {phi}");
+            let (du, dphi) = c.flux_derivative(u, phi, 0.5);
+            let fd_u = (c.flux(u + h, phi, 0.5) - c.flux(u - h, phi, 0.5)) / (2.0 * h);
+            let fd_phi = (c.flux(u, phi + h, 0.5) - c.flux(u, phi - h, 0.5)) / (2.0 * h);
+            assert!((du - fd_u).abs() < 1e-5 && (dphi - fd_phi).abs() < 1e-6, "{u}, {phi}");
+        }
     }
 
     #[test]

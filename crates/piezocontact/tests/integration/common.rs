@@ -96,12 +96,23 @@ impl Units {
 /// Example 7.1's bar on an nx × ny rectangle: ends clamped (Γ1 = Γb), top and bottom ends
 /// loaded by f2 = (0, −5 GPa) and grounded (Γ2 = Γa), Γ3 = [2,10]×{0}.
 pub fn paper_problem(nx: usize, ny: usize, units: Units, law: ElasticLaw) -> Problem {
+    paper_problem_with_contact(nx, ny, units, law, &[("contact", "[2,10]x{0}")])
+}
+
+/// [`paper_problem`] with Γ3 = [2,10]×{0} made of the named `contact` segments.
+pub fn paper_problem_with_contact(
+    nx: usize,
+    ny: usize,
+    units: Units,
+    law: ElasticLaw,
+    contact: &[(&str, &str)],
+) -> Problem {
     let seg = |s: &str| s.parse::<Segment>().unwrap();
-    let parts = vec![
+    let mut parts = vec![
         ("ends".to_string(), vec![seg("{0}x[0,2]"), seg("{12}x[0,2]")]),
         ("load".to_string(), vec![seg("[0,12]x{2}"), seg("[0,2]x{0}"), seg("[10,12]x{0}")]),
-        ("contact".to_string(), vec![seg("[2,10]x{0}")]),
     ];
+    parts.extend(contact.iter().map(|(name, s)| (name.to_string(), vec![seg(s)])));
     let mesh = Rectangle { x: [0.0, 12.0], y: [0.0, 2.0], nx, ny, diagonal: Diagonal::Right }
         .mesh(&parts)
         .unwrap();
@@ -118,7 +129,7 @@ pub fn paper_problem(nx: usize, ny: usize, units: Units, law: ElasticLaw) -> Pro
     let boundary = Boundary {
         clamped: vec![mesh.part_index("ends").unwrap()],
         grounded: vec![load],
-        contact: vec![mesh.part_index("contact").unwrap()],
+        contact: contact.iter().map(|(name, _)| mesh.part_index(name).unwrap()).collect(),
         traction: vec![(load, constant_vector(vec![0.0, units.stress(-5.0)]))],
         ..Boundary::default()
     };

@@ -6,6 +6,8 @@ mod common;
 mod contact;
 /// Manufactured solutions: convergence rates of the coupled system.
 mod convergence;
+/// The exact solver against tight Uzawa, r independence, Hencky active, the Schur complement.
+mod exact;
 /// Gmsh import: round trip of physical names, errors.
 mod gmsh_io;
 /// Patch tests: linear fields reproduced to round-off, 2D and 3D.

@@ -1,0 +1,508 @@
+//! The exact contact solver (model §11): a semismooth Newton method on the problem condensed
+//! onto the Γ3 unknowns.
+//!
+//! Every nonlinearity but Hencky's lives on the Γ3 nodes. With the Γ3 unknowns x_c (u and ϕ
+//! of each Γ3 node) ordered last, the trailing block of the LDLᵀ factor of B̌ is the LDLᵀ of
+//! the Schur complement S = K_cc − K_ci K_ii⁻¹ K_ic, read off the factor once per
+//! factorisation. The u unknowns of node i are turned into its local coordinates
+//! (u_ν, u_τ) = Q_i u, and S with them. One solve without contact forces gives x̂ and the
+//! condensed load g = S x̂_c; the discrete problem on Γ3 is then, with r = S x_c − g the
+//! contact forces on the Γ3 rows (r_ν = w σ_ν, r_τ = −w λ_f, r_ϕ = w ψ φ_L):
+//!
+//! ```text
+//! λ_c = −σ_ν − h_ν(ϕ − ϕ0) p_ν(u_ν − g_a)
+//! E_n = λ_c − max(0, λ_c + c_i (u_ν − ρ))                     (contact, every node)
+//! E_t = λ_f − P_{B(0,s)}(λ_f + c_i u_τ),  s = µ |R σ_ν|       (Coulomb, PV2; PV1: λ_f)
+//! E_ϕ = r_ϕ − w ψ(u_ν − g_a) φ_L(ϕ − ϕ0)                       (conduction, PV2; PV1: r_ϕ)
+//! ```
+//!
+//! All of it is semismooth in x_c. Each Newton step solves J δ = −E with a generalised
+//! Jacobian J: on a node in contact (λ_c + c(u_ν − ρ) > 0) the normal row is
+//! −c δu_ν = −E_n, on a sticking node (‖λ_f + c u_τ‖ < s) the tangential rows are
+//! −c δu_τ = −E_t; these fix their unknowns, and the dense LU runs on the others only. On
+//! slipping nodes the derivative of the projection uses λ_f / max(s, ‖λ_f‖) in place of its
+//! direction (Hüeber, Stadler and Wohlmuth's relaxation: exact at a slip solution, a descent
+//! direction elsewhere), and a backtracking line search on ‖E‖ (each equation scaled by the
+//! stiffness it sees) keeps the iteration from cycling. The constant c_i = (r/E)·S_νν,i/w_i
+//! scales the case's r by the stiffness that node i sees; the answer does not depend on it.
+//! The iteration stops when the sets no longer change and the step is at round-off; one solve
+//! with the contact forces then recovers the interior.
+
+use super::{ContactState, InnerResult, Step, Stop};
+use crate::contact::ContactSurface;
+use crate::dofs::{CONSTRAINED, DofMap};
+use crate::error::Result;
+use crate::linalg::DenseMatrix;
+use crate::solver::CoupledSystem;
+
+/// A relative Newton step below this, with unchanged sets, is round-off.
+pub const STEP_TOLERANCE: f64 = 1e-12;
+/// A relative Newton step below this ends the iteration whatever the sets do.
+const STEP_FLOOR: f64 = 1e-15;
+/// Halvings of the line search.
+const HALVINGS: usize = 8;
+
+/// The Γ3 unknowns kept by the condensation, in the order of the Schur complement.
+#[derive(Clone, Debug)]
+pub struct Condensed {
+    /// Free indices of the condensed unknowns.
+    pub free: Vec<usize>,
+    /// Global indices of the condensed unknowns.
+    global: Vec<usize>,
+    /// Per Γ3 node: the positions of its u components in the condensed vector (in local
+    /// coordinates during the iteration: normal first, then tangents).
+    u: Vec<[usize; 3]>,
+    /// Per Γ3 node: its ϕ.
+    phi: Vec<Phi>,
+}
+
+/// ϕ of a Γ3 node in the condensed problem.
+#[derive(Clone, Copy, Debug)]
+enum Phi {
+    /// An unknown, at this position of the condensed vector.
+    Unknown(usize),
+    /// Prescribed (the node is on Γa): its global index.
+    Prescribed(usize),
+    /// Not condensed: without penetration (g_p = 0) the laws that read ϕ, p_ν and ψ at
+    /// u_ν − g_a, vanish on every admissible state, and ϕ stays with the interior.
+    Interior,
+}
+
+impl Condensed {
+    /// The u of every Γ3 node, and its ϕ when `with_phi` (the laws that read ϕ can act: a
+    /// penetration g_p > 0); a prescribed ϕ (a Γ3 node on Γa) is not an unknown.
+    pub fn new(dofs: &DofMap, surface: &ContactSurface, with_phi: bool) -> Self {
+        let mut this =
+            Self { free: Vec::new(), global: Vec::new(), u: Vec::new(), phi: Vec::new() };
+        let push = |this: &mut Self, g: usize| {
+            this.free.push(dofs.free_index(g));
+            this.global.push(g);
+            this.free.len() - 1
+        };
+        for &node in &surface.nodes {
+            let mut u = [0; 3];
+            for (k, slot) in u.iter_mut().enumerate().take(surface.dim()) {
+                *slot = push(&mut this, dofs.u(node, k));
+            }
+            this.u.push(u);
+            let g = dofs.phi(node);
+            let phi = if !with_phi {
+                Phi::Interior
+            } else if dofs.free_index(g) == CONSTRAINED {
+                Phi::Prescribed(g)
+            } else {
+                Phi::Unknown(push(&mut this, g))
+            };
+            this.phi.push(phi);
+        }
+        this
+    }
+
+    /// Number of condensed unknowns.
+    pub fn len(&self) -> usize {
+        self.free.len()
+    }
+
+    /// Whether there is none.
+    pub fn is_empty(&self) -> bool {
+        self.free.is_empty()
+    }
+}
+
+/// One semismooth Newton solve of the condensed problem of an outer step.
+pub struct Newton<'a> {
+    /// The outer step.
+    pub step: &'a Step<'a>,
+    /// The Γ3 unknowns, last in the factorisation's ordering.
+    pub condensed: &'a Condensed,
+    /// r/E: the complementarity constant relative to the local stiffness [-].
+    pub c_factor: f64,
+    /// Cap on Newton steps.
+    pub max_iterations: usize,
+}
+
+/// The condensed problem in local coordinates.
+struct Local<'a> {
+    newton: &'a Newton<'a>,
+    /// Q S Qᵀ.
+    schur: DenseMatrix,
+    /// Q g.
+    load: Vec<f64>,
+    /// Per node: Q_i (rows ν, τ1, τ2).
+    frames: Vec<[[f64; 3]; 3]>,
+    /// Per node: c_i [stress/length].
+    c: Vec<f64>,
+    /// Per condensed unknown: the scale of its equation in the merit function.
+    scale: Vec<f64>,
+    /// The global vector of the solve without contact (for prescribed ϕ).
+    x_hat: Vec<f64>,
+}
+
+/// E and the sets at an iterate.
+struct Evaluation {
+    /// E, the residual of the condensed equations.
+    residual: Vec<f64>,
+    /// Per node: 0 separated, 1 in contact; + 2 when sticking.
+    sets: Vec<u8>,
+    /// Per condensed unknown: whether its equation fixes it (contact normal, stick tangent).
+    fixed: Vec<bool>,
+    /// λ_c, λ_f (local tangential components).
+    multipliers: ContactState,
+    /// r = S x_c − g in local coordinates.
+    forces: Vec<f64>,
+    /// σ_ν per node and R σ_ν.
+    sigma_nu: Vec<f64>,
+    r_sigma: Vec<f64>,
+}
+
+impl Newton<'_> {
+    /// Solves the condensed problem with the factorised `system` (ordered with the condensed
+    /// unknowns last) and recovers the whole solution.
+    pub fn run(&self, system: &mut CoupledSystem) -> Result<InnerResult> {
+        let cond = self.condensed;
+        let x_hat = system.solve(None)?;
+        let local = Local::new(self, system.schur_complement(cond.len())?, x_hat);
+        let warm = self.step.start.iter().any(|v| *v != 0.0);
+        let mut y = local.gather(if warm { self.step.start } else { &local.x_hat });
+        let mut history = Vec::new();
+        let mut previous_sets: Option<Vec<u8>> = None;
+        let (mut stop, mut iterations) = (Stop::Cap, self.max_iterations);
+        for k in 0..self.max_iterations {
+            let eval = local.evaluate(&y);
+            let delta = match local.newton_step(&y, &eval) {
+                Ok(delta) => delta,
+                Err(e) => {
+                    (stop, iterations) = (Stop::NotFinite(e.to_string()), k + 1);
+                    break;
+                }
+            };
+            let alpha = local.line_search(&y, &delta, local.merit(&eval));
+            y.iter_mut().zip(&delta).for_each(|(a, d)| *a += alpha * d);
+            let size = y.iter().fold(0.0_f64, |a, v| a.max(v.abs())).max(f64::MIN_POSITIVE);
+            let criterion = alpha * delta.iter().fold(0.0_f64, |a, v| a.max(v.abs())) / size;
+            history.push(criterion);
+            if !criterion.is_finite() {
+                (stop, iterations) =
+                    (Stop::NotFinite(format!("the Newton step is {criterion}")), k + 1);
+                break;
+            }
+            let settled = alpha == 1.0 && previous_sets.as_ref() == Some(&eval.sets);
+            previous_sets = Some(eval.sets);
+            if (settled && criterion <= STEP_TOLERANCE) || criterion <= STEP_FLOOR {
+                (stop, iterations) = (Stop::Converged, k + 1);
+                break;
+            }
+        }
+        let eval = local.evaluate(&y);
+        let mut forces = vec![0.0; system.dofs().n_free()];
+        for (k, f) in local.to_global(&eval.forces).into_iter().enumerate() {
+            forces[cond.free[k]] = f;
+        }
+        let x = system.solve(Some(&forces))?;
+        let mut state = eval.multipliers;
+        for (i, frame) in local.frames.iter().enumerate() {
+            // λ_f from local tangential components to global ones.
+            let tangential = state.lambda_f[i];
+            state.lambda_f[i] =
+                [0, 1, 2].map(|k| (1..3).map(|a| frame[a][k] * tangential[a - 1]).sum());
+        }
+        Ok(InnerResult { x, state, iterations, history, stop })
+    }
+}
+
+impl<'a> Local<'a> {
+    /// Turns S and the load into local coordinates and sets the constants.
+    fn new(newton: &'a Newton<'a>, mut schur: DenseMatrix, x_hat: Vec<f64>) -> Self {
+        let (cond, surface) = (newton.condensed, newton.step.surface);
+        let dim = surface.dim();
+        let frames: Vec<[[f64; 3]; 3]> = surface.normal.iter().map(|&nu| frame(nu, dim)).collect();
+        let m = cond.len();
+        // S ← Q S Qᵀ, node block by node block: columns, then rows.
+        for (i, q) in frames.iter().enumerate() {
+            let idx = &cond.u[i][..dim];
+            for r in 0..m {
+                let old: Vec<f64> = idx.iter().map(|&k| schur.get(r, k)).collect();
+                for (a, &k) in idx.iter().enumerate() {
+                    schur.set(r, k, (0..dim).map(|b| q[a][b] * old[b]).sum());
+                }
+            }
+            for col in 0..m {
+                let old: Vec<f64> = idx.iter().map(|&k| schur.get(k, col)).collect();
+                for (a, &k) in idx.iter().enumerate() {
+                    schur.set(k, col, (0..dim).map(|b| q[a][b] * old[b]).sum());
+                }
+            }
+        }
+        let mut this = Self {
+            newton,
+            schur,
+            load: Vec::new(),
+            frames,
+            c: Vec::new(),
+            scale: Vec::new(),
+            x_hat,
+        };
+        this.load = this.schur.mul(&this.gather(&this.x_hat));
+        this.c = (0..surface.len())
+            .map(|i| {
+                let k = cond.u[i][0];
+                newton.c_factor * this.schur.get(k, k).abs() / surface.weight[i]
+            })
+            .collect();
+        this.scale = (0..m)
+            .map(|k| 1.0 / this.schur.get(k, k).abs().sqrt().max(f64::MIN_POSITIVE))
+            .collect();
+        for (i, u) in cond.u.iter().enumerate() {
+            u[..dim].iter().for_each(|&k| this.scale[k] *= surface.weight[i]);
+        }
+        this
+    }
+
+    /// The condensed entries of a global vector, in local coordinates.
+    fn gather(&self, x: &[f64]) -> Vec<f64> {
+        let cond = self.newton.condensed;
+        let mut y: Vec<f64> = cond.global.iter().map(|&g| x[g]).collect();
+        let dim = self.newton.step.surface.dim();
+        for (i, q) in self.frames.iter().enumerate() {
+            let idx = &cond.u[i][..dim];
+            let u: Vec<f64> = idx.iter().map(|&k| y[k]).collect();
+            for (a, &k) in idx.iter().enumerate() {
+                y[k] = (0..dim).map(|b| q[a][b] * u[b]).sum();
+            }
+        }
+        y
+    }
+
+    /// A condensed vector from local to global coordinates.
+    fn to_global(&self, local: &[f64]) -> Vec<f64> {
+        let cond = self.newton.condensed;
+        let dim = self.newton.step.surface.dim();
+        let mut v = local.to_vec();
+        for (i, q) in self.frames.iter().enumerate() {
+            let idx = &cond.u[i][..dim];
+            for (b, &k) in idx.iter().enumerate() {
+                v[k] = idx.iter().enumerate().map(|(a, &l)| q[a][b] * local[l]).sum();
+            }
+        }
+        v
+    }
+
+    /// ϕ at node i, or `None` when the laws that read it are off.
+    fn phi(&self, y: &[f64], i: usize) -> Option<f64> {
+        match self.newton.condensed.phi[i] {
+            Phi::Unknown(p) => Some(y[p]),
+            Phi::Prescribed(global) => Some(self.x_hat[global]),
+            Phi::Interior => None,
+        }
+    }
+
+    /// The compliance pressure h_ν p_ν at node i (0 with the laws off).
+    fn pressure(&self, u_nu: f64, phi: Option<f64>) -> f64 {
+        phi.map_or(0.0, |phi| self.newton.step.compliance.pressure(u_nu, phi))
+    }
+
+    /// ‖scaled E‖².
+    fn merit(&self, eval: &Evaluation) -> f64 {
+        eval.residual.iter().zip(&self.scale).map(|(r, s)| (r * s).powi(2)).sum()
+    }
+
+    /// E, the sets and the multipliers at the condensed iterate y (local coordinates).
+    fn evaluate(&self, y: &[f64]) -> Evaluation {
+        let (step, cond) = (self.newton.step, self.newton.condensed);
+        let (surface, law) = (step.surface, step.compliance);
+        let (n3, dim, rho) = (surface.len(), surface.dim(), law.stop());
+        let mut forces = self.schur.mul(y);
+        forces.iter_mut().zip(&self.load).for_each(|(r, g)| *r -= g);
+        let sigma_nu: Vec<f64> =
+            (0..n3).map(|i| forces[cond.u[i][0]] / surface.weight[i]).collect();
+        let r_sigma = step.friction.map_or_else(|| sigma_nu.clone(), |(_, r)| r.apply(&sigma_nu));
+        let mut eval = Evaluation {
+            residual: vec![0.0; y.len()],
+            sets: vec![0; n3],
+            fixed: vec![false; y.len()],
+            multipliers: ContactState::cold(n3),
+            forces,
+            sigma_nu,
+            r_sigma,
+        };
+        for i in 0..n3 {
+            let (w, u, c) = (surface.weight[i], cond.u[i], self.c[i]);
+            let (u_nu, phi) = (y[u[0]], self.phi(y, i));
+            let lambda_c = -eval.sigma_nu[i] - self.pressure(u_nu, phi);
+            eval.multipliers.lambda_c[i] = lambda_c;
+            if lambda_c + c * (u_nu - rho) > 0.0 {
+                eval.residual[u[0]] = -c * (u_nu - rho);
+                eval.fixed[u[0]] = true;
+                eval.sets[i] = 1;
+            } else {
+                eval.residual[u[0]] = lambda_c;
+            }
+            let lambda_f: Vec<f64> = (1..dim).map(|a| -eval.forces[u[a]] / w).collect();
+            (0..dim - 1).for_each(|a| eval.multipliers.lambda_f[i][a] = lambda_f[a]);
+            match step.friction {
+                None => (1..dim).for_each(|a| eval.residual[u[a]] = lambda_f[a - 1]),
+                Some((mu, _)) => {
+                    let s = mu[i] * eval.r_sigma[i].abs();
+                    let z: Vec<f64> = (1..dim).map(|a| lambda_f[a - 1] + c * y[u[a]]).collect();
+                    let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    if norm < s {
+                        eval.sets[i] += 2;
+                        for a in 1..dim {
+                            eval.residual[u[a]] = -c * y[u[a]];
+                            eval.fixed[u[a]] = true;
+                        }
+                    } else {
+                        for a in 1..dim {
+                            let direction = if norm > 0.0 { z[a - 1] / norm } else { 0.0 };
+                            eval.residual[u[a]] = lambda_f[a - 1] - s * direction;
+                        }
+                    }
+                }
+            }
+            if let (Phi::Unknown(p), Some(phi)) = (cond.phi[i], phi) {
+                eval.residual[p] = eval.forces[p];
+                if let Some(conduction) = step.conduction {
+                    eval.residual[p] -= w * conduction.flux(u_nu, phi, law.gap);
+                }
+            }
+        }
+        eval
+    }
+
+    /// The Newton step δ at y: the fixed unknowns from their own rows, the others from the
+    /// dense system of the remaining rows.
+    fn newton_step(&self, y: &[f64], eval: &Evaluation) -> Result<Vec<f64>> {
+        let (step, cond) = (self.newton.step, self.newton.condensed);
+        let dim = step.surface.dim();
+        let m = y.len();
+        let mut delta = vec![0.0; m];
+        let mut node_of = vec![0; m];
+        for (i, u) in cond.u.iter().enumerate() {
+            u[..dim].iter().for_each(|&k| node_of[k] = i);
+            if let Phi::Unknown(p) = cond.phi[i] {
+                node_of[p] = i;
+            }
+            for &k in &u[..dim] {
+                if eval.fixed[k] {
+                    // −c δ = −E.
+                    delta[k] = eval.residual[k] / self.c[i];
+                }
+            }
+        }
+        let free: Vec<usize> = (0..m).filter(|&k| !eval.fixed[k]).collect();
+        let mut reduced = DenseMatrix::zeros(free.len());
+        let mut rhs = vec![0.0; free.len()];
+        let mut gradient = vec![0.0; m];
+        for (column, &k) in free.iter().enumerate() {
+            gradient.iter_mut().for_each(|g| *g = 0.0);
+            self.gradient(y, eval, node_of[k], k, &mut gradient);
+            let fixed_part: f64 =
+                (0..m).filter(|&v| eval.fixed[v]).map(|v| gradient[v] * delta[v]).sum();
+            rhs[column] = -eval.residual[k] - fixed_part;
+            let out = reduced.col_mut(column);
+            free.iter().zip(out.iter_mut()).for_each(|(&v, o)| *o = gradient[v]);
+        }
+        let solved = reduced.solve_transposed(&rhs)?;
+        free.iter().zip(solved).for_each(|(&k, d)| delta[k] = d);
+        Ok(delta)
+    }
+
+    /// The gradient of the equation of unknown k (node i) with respect to y, added to `out`.
+    fn gradient(&self, y: &[f64], eval: &Evaluation, i: usize, k: usize, out: &mut [f64]) {
+        let (step, cond) = (self.newton.step, self.newton.condensed);
+        let (surface, law) = (step.surface, step.compliance);
+        let (w, u, c, dim) = (surface.weight[i], cond.u[i], self.c[i], surface.dim());
+        let (u_nu, phi) = (y[u[0]], self.phi(y, i));
+        let phi_position = match cond.phi[i] {
+            Phi::Unknown(p) => Some(p),
+            _ => None,
+        };
+        let add = |out: &mut [f64], column: usize, factor: f64| {
+            out.iter_mut().zip(self.schur.col(column)).for_each(|(o, s)| *o += factor * s);
+        };
+        if let (true, Some(phi)) = (Some(k) == phi_position, phi) {
+            add(out, k, 1.0);
+            if let Some(conduction) = step.conduction {
+                let (d_u, d_phi) = conduction.flux_derivative(u_nu, phi, law.gap);
+                out[u[0]] -= w * d_u;
+                out[k] -= w * d_phi;
+            }
+            return;
+        }
+        if k == u[0] {
+            // Not in contact: E_n = λ_c = −σ_ν − q.
+            let (dq_du, dq_dphi) = phi.map_or((0.0, 0.0), |phi| law.pressure_derivative(u_nu, phi));
+            add(out, u[0], -1.0 / w);
+            out[u[0]] -= dq_du;
+            if let Some(p) = phi_position {
+                out[p] -= dq_dphi;
+            }
+            return;
+        }
+        // A tangential equation, component a = k's place among the tangents.
+        let a = (1..dim).find(|&a| u[a] == k).unwrap_or(1);
+        let Some((mu, mollifier)) = step.friction else {
+            add(out, k, -1.0 / w); // E_t = λ_f = −r_τ / w.
+            return;
+        };
+        // Slip: E_t = λ_f − s ẑ, ∂E_t = ∂λ_f − (s/‖z‖)(I − λ̃ẑᵀ)(∂λ_f + c ∂u_τ) − ẑ ∂s.
+        let lambda_f: Vec<f64> = (1..dim).map(|b| eval.multipliers.lambda_f[i][b - 1]).collect();
+        let z: Vec<f64> = (1..dim).map(|b| lambda_f[b - 1] + c * y[u[b]]).collect();
+        let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let s = mu[i] * eval.r_sigma[i].abs();
+        let z_hat: Vec<f64> = z.iter().map(|v| if norm > 0.0 { v / norm } else { 0.0 }).collect();
+        let lambda_norm = lambda_f.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let bound = s.max(lambda_norm).max(f64::MIN_POSITIVE);
+        let ratio = if norm > 0.0 { s / norm } else { 0.0 };
+        for b in 1..dim {
+            // Coefficient of ∂z_b in row a of (s/‖z‖)(I − λ̃ẑᵀ).
+            let identity = if a == b { 1.0 } else { 0.0 };
+            let coefficient = ratio * (identity - lambda_f[a - 1] / bound * z_hat[b - 1]);
+            // ∂λ_f,b = −S_{τb,·} / w.
+            add(out, u[b], -(identity - coefficient) / w);
+            out[u[b]] -= coefficient * c;
+        }
+        if s > 0.0 {
+            let sign = mu[i] * eval.r_sigma[i].signum() * z_hat[a - 1];
+            for (j, weight) in mollifier.row(i) {
+                // ∂σ_ν,j = S_{ν_j,·} / w_j.
+                add(out, cond.u[j][0], -sign * weight / surface.weight[j]);
+            }
+        }
+    }
+
+    /// The step length: the first of 1, ½, ¼, … (2⁻⁸ at the least) that decreases ‖scaled
+    /// E‖² enough (Armijo), else the full step.
+    fn line_search(&self, y: &[f64], delta: &[f64], current: f64) -> f64 {
+        let mut alpha = 1.0;
+        for _ in 0..=HALVINGS {
+            let trial: Vec<f64> = y.iter().zip(delta).map(|(a, d)| a + alpha * d).collect();
+            if self.merit(&self.evaluate(&trial)) <= (1.0 - 1e-4 * alpha) * current {
+                return alpha;
+            }
+            alpha *= 0.5;
+        }
+        1.0
+    }
+}
+
+/// The local frame of unit normal ν: rows ν, τ1 (and τ2 in 3D), orthonormal, with τ = ν
+/// turned by +90° in 2D as everywhere in piezocontact.
+fn frame(nu: [f64; 3], dim: usize) -> [[f64; 3]; 3] {
+    if dim == 2 {
+        return [nu, [-nu[1], nu[0], 0.0], [0.0; 3]];
+    }
+    let axis = (0..3).min_by(|&a, &b| nu[a].abs().total_cmp(&nu[b].abs())).unwrap_or(0);
+    let mut t1 = [0.0; 3];
+    t1[axis] = 1.0;
+    let dot = nu[axis];
+    (0..3).for_each(|k| t1[k] -= dot * nu[k]);
+    let norm = t1.iter().map(|v| v * v).sum::<f64>().sqrt();
+    t1.iter_mut().for_each(|v| *v /= norm);
+    let t2 = [
+        nu[1] * t1[2] - nu[2] * t1[1],
+        nu[2] * t1[0] - nu[0] * t1[2],
+        nu[0] * t1[1] - nu[1] * t1[0],
+    ];
+    [nu, t1, t2]
+}

@@ -1,0 +1,262 @@
+//! The exact solver (semismooth Newton on the condensed Γ3 problem) against the paper's
+//! Uzawa algorithm run tightly: the same discrete solution on every kind of contact the model
+//! has, a KKT residual at round-off, independence of r, Hencky's law active, and the Schur
+//! complement read off the factor.
+
+use super::common::{
+    PAPER_UNITS, paper_model, paper_problem, paper_problem_with_contact, paper_settings, pzt,
+    read_mesh,
+};
+use piezocontact::algorithm::{ContactModel, ContactSolution, Method, Settings, solve_contact};
+use piezocontact::contact::law::Regularization;
+use piezocontact::dofs::DofMap;
+use piezocontact::material::ElasticLaw;
+use piezocontact::problem::{BodyLoads, Boundary, Problem, constant_vector};
+use piezocontact::solver::CoupledSystem;
+
+/// Newton with the KKT tolerance 1e−10 and r = `r_per_young`·E.
+fn newton(r_per_young: f64) -> Settings {
+    let young = PAPER_UNITS.stress(58.7102);
+    Settings {
+        method: Method::Newton { c: r_per_young * young, tol: 1e-10, max_inner: 100 },
+        eps_fp: 1e-10,
+        max_outer: 100,
+    }
+}
+
+fn solve(problem: &Problem, model: &ContactModel, settings: &Settings) -> ContactSolution {
+    let solution = solve_contact(problem, model, settings).unwrap();
+    assert!(solution.converged, "{:?}", solution.failure);
+    solution
+}
+
+/// The largest relative differences between two solutions of one problem: u and ϕ on all
+/// nodes, σ_ν, λ_f and ϕ on Γ3, each relative to the largest value of its field.
+fn differences(problem: &Problem, a: &ContactSolution, b: &ContactSolution) -> [f64; 5] {
+    let dofs = DofMap::new(problem).unwrap();
+    let (n, dim) = (problem.mesh.n_nodes(), problem.mesh.dim());
+    let relative = |pairs: Vec<(f64, f64)>| {
+        let size = pairs.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+        let gap = pairs.iter().map(|p| (p.0 - p.1).abs()).fold(0.0, f64::max);
+        if size > 0.0 { gap / size } else { gap }
+    };
+    let u = (0..n).flat_map(|k| (0..dim).map(move |c| (k, c)));
+    let u = relative(u.map(|(k, c)| (a.x[dofs.u(k, c)], b.x[dofs.u(k, c)])).collect());
+    let phi = relative((0..n).map(|k| (a.x[dofs.phi(k)], b.x[dofs.phi(k)])).collect());
+    let sigma = relative(a.sigma_nu.iter().copied().zip(b.sigma_nu.iter().copied()).collect());
+    let lambda_f = relative(
+        a.state
+            .lambda_f
+            .iter()
+            .zip(&b.state.lambda_f)
+            .flat_map(|(p, q)| (0..3).map(move |c| (p[c], q[c])))
+            .collect(),
+    );
+    let surface = &b.surface;
+    let phi3 = relative(
+        (0..surface.len())
+            .map(|i| (surface.phi(&dofs, &a.x, i), surface.phi(&dofs, &b.x, i)))
+            .collect(),
+    );
+    [u, phi, sigma, lambda_f, phi3]
+}
+
+fn show(d: &[f64]) -> String {
+    d.iter().map(|v| format!("{v:.1e}")).collect::<Vec<_>>().join(", ")
+}
+
+/// Newton and Uzawa run to ε = ε_fp = 1e−12 agree to 1e−7 and Newton's KKT residual is at
+/// most 1e−10.
+fn assert_agree(problem: &Problem, model: &ContactModel, what: &str) {
+    let exact = solve(problem, model, &newton(0.25));
+    assert!(exact.kkt.max <= 1e-10, "{what}: {:?}", exact.kkt);
+    // Uzawa's distance to the discrete solution falls in proportion to ε (measured: 10× per
+    // decade from 1e−12 to 1e−14, λ_f of the g_p = 0.05 layer at 96×16 going 1.6e−7, 1.7e−8,
+    // 1.7e−9): ε = 1e−14 puts it well below the 1e−7 asked of the comparison.
+    let mut tight = paper_settings(PAPER_UNITS, 1e-14);
+    tight.max_outer = 400;
+    let uzawa = solve(problem, model, &tight);
+    let d = differences(problem, &exact, &uzawa);
+    println!(
+        "{what}: Newton {:?} steps, KKT {:.1e}; Uzawa KKT {:.1e}; differences u, ϕ, σ_ν, λ_f, ϕ|Γ3 {}",
+        exact.inner_iterations,
+        exact.kkt.max,
+        uzawa.kkt.max,
+        show(&d)
+    );
+    assert!(d.iter().all(|v| *v < 1e-7), "{what}: {d:?}");
+}
+
+/// PV1; PV2 with R = identity and the mollifier; an active compliance and conduction layer;
+/// µ per part.
+fn agree_on_the_bar(nx: usize, ny: usize) {
+    let problem = paper_problem(nx, ny, PAPER_UNITS, ElasticLaw::Linear);
+    let mesh = format!("{nx}x{ny}");
+    assert_agree(&problem, &paper_model(None, 0.0, PAPER_UNITS), &format!("{mesh} PV1"));
+    let pv2 = paper_model(Some((0.6, 1.0)), 0.0, PAPER_UNITS);
+    assert_agree(&problem, &pv2, &format!("{mesh} PV2, R = identity"));
+    let mut mollified = pv2.clone();
+    mollified.pv2.as_mut().unwrap().0.regularization = Regularization::Mollifier { radius: 1.0 };
+    assert_agree(&problem, &mollified, &format!("{mesh} PV2, R = mollifier"));
+    // An active compliance and conduction layer: p_ν, h_ν and ψ φ_L act at the solution.
+    let layer = paper_model(Some((0.2, 0.2)), 0.05, PAPER_UNITS);
+    assert_agree(&problem, &layer, &format!("{mesh} PV2, g_p = 0.05"));
+    // µ per part: 0.6 on [2,6]×{0}, 0.1 on [6,10]×{0}.
+    let split = paper_problem_with_contact(
+        nx,
+        ny,
+        PAPER_UNITS,
+        ElasticLaw::Linear,
+        &[("left", "[2,6]x{0}"), ("right", "[6,10]x{0}")],
+    );
+    let mut per_part = pv2.clone();
+    let part = |name: &str| split.mesh.part_index(name).unwrap();
+    per_part.pv2.as_mut().unwrap().0.mu_parts = vec![(part("left"), 0.6), (part("right"), 0.1)];
+    assert_agree(&split, &per_part, &format!("{mesh} PV2, µ per part"));
+}
+
+#[test]
+fn newton_agrees_with_tight_uzawa_on_the_paper_bar_48x8() {
+    agree_on_the_bar(48, 8);
+}
+
+#[test]
+fn newton_agrees_with_tight_uzawa_on_the_paper_bar_96x16() {
+    agree_on_the_bar(96, 16);
+}
+
+#[test]
+fn newton_agrees_with_tight_uzawa_on_a_curved_face_and_in_3d() {
+    let mesh = read_mesh("arch.msh");
+    let part = |n: &str| mesh.part_index(n).unwrap();
+    let boundary = Boundary {
+        clamped: vec![part("clamp")],
+        grounded: vec![part("top")],
+        contact: vec![part("contact")],
+        traction: vec![(part("top"), constant_vector(vec![0.0, -5.0]))],
+        ..Boundary::default()
+    };
+    let arch =
+        Problem::new(mesh, pzt(2, ElasticLaw::Linear), boundary, BodyLoads::default()).unwrap();
+    let mut model = paper_model(Some((0.3, 0.5)), 0.0, PAPER_UNITS);
+    model.compliance.gap = 0.02;
+    assert_agree(&arch, &model, "arch PV2");
+
+    // The unit cube hanging from its top face, pulled down and sideways by its weight onto a
+    // foundation 0.01 below its bottom face.
+    let mesh = read_mesh("cube.msh");
+    let part = |n: &str| mesh.part_index(n).unwrap();
+    let boundary = Boundary {
+        clamped: vec![part("top")],
+        grounded: vec![part("top")],
+        contact: vec![part("bottom")],
+        ..Boundary::default()
+    };
+    let loads = BodyLoads { f0: Some(constant_vector(vec![1.0, 0.5, -5.0])), q0: None };
+    let cube = Problem::new(mesh, pzt(3, ElasticLaw::Linear), boundary, loads).unwrap();
+    let mut model = paper_model(Some((0.3, 0.3)), 0.0, PAPER_UNITS);
+    model.compliance.gap = 0.01;
+    assert_agree(&cube, &model, "cube PV2");
+}
+
+/// r = 1e−3 E, 0.25 E and 1e3 E give one solution.
+#[test]
+fn the_exact_solution_does_not_depend_on_r() {
+    let problem = paper_problem(96, 16, PAPER_UNITS, ElasticLaw::Linear);
+    for model in [
+        paper_model(Some((0.6, 1.0)), 0.0, PAPER_UNITS),
+        paper_model(Some((0.2, 0.2)), 0.05, PAPER_UNITS),
+    ] {
+        let reference = solve(&problem, &model, &newton(0.25));
+        for r in [1e-3, 1e3] {
+            let other = solve(&problem, &model, &newton(r));
+            let d = differences(&problem, &other, &reference);
+            println!("r = {r:e} E: {:?} steps, differences {}", other.inner_iterations, show(&d));
+            assert!(d.iter().all(|v| *v < 1e-9), "r = {r} E: {d:?}");
+        }
+    }
+}
+
+/// With t0 small, Hencky's secant modulus drops below µ1 in much of the bar: the outer loop
+/// refactorises until the moduli settle, and the KKT residual with the true law reaches 1e−10.
+#[test]
+fn the_exact_solver_converges_with_hencky_active() {
+    let t0 = 1e-6;
+    let problem = paper_problem(48, 8, PAPER_UNITS, ElasticLaw::Hencky { t0 });
+    for model in
+        [paper_model(None, 0.0, PAPER_UNITS), paper_model(Some((0.2, 0.2)), 0.05, PAPER_UNITS)]
+    {
+        let solution = solve(&problem, &model, &newton(0.25));
+        let dofs = &solution.dofs;
+        let g = piezocontact::assembly::secant_moduli(&problem, dofs, &solution.x).unwrap();
+        let softened = g.iter().filter(|g| **g < 0.99 * problem.material.elasticity.mu1).count();
+        println!(
+            "{}: {softened} softened elements, {} outer steps, {} factorisations, KKT {:.1e}",
+            model.name(),
+            solution.outer_iterations,
+            solution.timings.numeric_count,
+            solution.kkt.max
+        );
+        assert!(softened > problem.mesh.n_cells() / 10, "Hencky is not active ({softened})");
+        assert!(solution.timings.numeric_count > 1);
+        assert!(solution.kkt.max <= 1e-10, "{:?}", solution.kkt);
+    }
+}
+
+/// The trailing block of the factor with the Γ3 unknowns last is the Schur complement
+/// K_cc − K_ci K_ii⁻¹ K_ic, here computed column by column with solves of the interior.
+#[test]
+fn the_schur_complement_read_off_the_factor_is_the_schur_complement() {
+    let problem = paper_problem(24, 4, PAPER_UNITS, ElasticLaw::Linear);
+    let dofs = DofMap::new(&problem).unwrap();
+    let surface = piezocontact::contact::ContactSurface::new(&problem, &dofs).unwrap();
+    let last: Vec<usize> = surface
+        .nodes
+        .iter()
+        .flat_map(|&a| [dofs.u(a, 0), dofs.u(a, 1), dofs.phi(a)])
+        .map(|g| dofs.free_index(g))
+        .filter(|&k| k != piezocontact::dofs::CONSTRAINED)
+        .collect();
+    let mut system = CoupledSystem::with_last(&problem, dofs, &last).unwrap();
+    let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
+    system.factorize(&problem, &g, &[]).unwrap();
+    let schur = system.schur_complement(last.len()).unwrap();
+    // K in dense form, then S = K_cc − K_ci K_ii⁻¹ K_ic by Gaussian elimination of the
+    // interior block.
+    let matrix = system.matrix().unwrap();
+    let n = matrix.n();
+    let mut k = vec![vec![0.0; n]; n];
+    for (i, j, v) in matrix.lower_entries() {
+        k[i][j] = v;
+        k[j][i] = v;
+    }
+    let mut order: Vec<usize> = (0..n).filter(|i| !last.contains(i)).collect();
+    order.extend(&last);
+    let mut a: Vec<Vec<f64>> =
+        order.iter().map(|&i| order.iter().map(|&j| k[i][j]).collect()).collect();
+    let interior = n - last.len();
+    for p in 0..interior {
+        let pivot = a[p][p];
+        for i in p + 1..n {
+            let factor = a[i][p] / pivot;
+            if factor != 0.0 {
+                for j in p..n {
+                    a[i][j] -= factor * a[p][j];
+                }
+            }
+        }
+    }
+    // Each entry against the geometric mean of its diagonal entries: the u and ϕ blocks
+    // differ by orders of magnitude.
+    let diagonal: Vec<f64> = (0..last.len()).map(|i| a[interior + i][interior + i].abs()).collect();
+    for i in 0..last.len() {
+        for j in 0..last.len() {
+            let expected = a[interior + i][interior + j];
+            assert!(
+                (schur.get(i, j) - expected).abs() <= 1e-10 * (diagonal[i] * diagonal[j]).sqrt(),
+                "S[{i}][{j}] = {} against {expected}",
+                schur.get(i, j)
+            );
+        }
+    }
+}
