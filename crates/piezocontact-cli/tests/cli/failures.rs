@@ -29,6 +29,35 @@ fn assert_no_null_numbers(value: &serde_json::Value, path: &str) {
     }
 }
 
+/// The exact solver's cap on Newton steps exits 3 with the last iterate written, marked
+/// unconverged; without the cap the same case converges to the KKT tolerance.
+#[test]
+fn a_newton_cap_exits_3_with_the_last_iterate_written() {
+    let out = temp_dir("newton-cap");
+    let newton = "solver.method=\"newton\"";
+    let o = run_coarse("cases/paper-7.2.toml", &out, &[newton, "solver.max_inner=1"]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(3), "{t}");
+    assert!(
+        t.contains("the semismooth Newton method of outer step 1 did not converge in 1"),
+        "{t}"
+    );
+    assert!(t.contains("raise solver.max_inner (now 1)") && t.contains("Newton steps"), "{t}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(
+        (summary["converged"].clone(), summary["method"].clone()),
+        (false.into(), "newton".into())
+    );
+    assert_no_null_numbers(&summary, "summary");
+    let o = run_coarse("cases/paper-7.2.toml", &out, &[newton]);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(summary["kkt_residual"]["max"].as_f64().unwrap() <= 1e-10, "{summary}");
+    assert_eq!(summary["timings_seconds"]["numeric_count"], 1);
+}
+
 #[test]
 fn a_diverging_fixed_point_exits_4_and_writes_its_last_finite_iterate() {
     let out = temp_dir("diverge");

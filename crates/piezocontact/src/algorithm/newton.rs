@@ -200,6 +200,10 @@ impl Newton<'_> {
         }
         let x = system.solve(Some(&forces))?;
         let mut state = eval.multipliers;
+        if self.step.friction.is_none() {
+            // Frictionless: σ_τ = 0 by the law; the tangential rows hold it to round-off.
+            state.lambda_f.iter_mut().for_each(|l| *l = [0.0; 3]);
+        }
         for (i, frame) in local.frames.iter().enumerate() {
             // λ_f from local tangential components to global ones.
             let tangential = state.lambda_f[i];
