@@ -179,7 +179,7 @@ fn a_killed_run_leaves_only_complete_files() {
     for (k, delay) in [150u64, 600, 1500].into_iter().enumerate() {
         let out = temp_dir(&format!("kill{k}"));
         let mut child = command()
-            .args(["reproduce", "--out", out.to_str().unwrap(), "--mesh", "24,4", "--jobs", "2"])
+            .args(["reproduce", "--out", out.to_str().unwrap(), "--mesh", "96,16", "--jobs", "2"])
             .stdout(Stdio::null())
             .stderr(Stdio::null())
             .spawn()

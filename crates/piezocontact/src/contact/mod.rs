@@ -36,16 +36,7 @@ impl ContactSurface {
         let mut neighbours: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
         for &p in &problem.boundary.contact {
             for facet in mesh.part_facets(p) {
-                let (measure, n) = match dim {
-                    2 => {
-                        let (m, n) = mesh.facet_geometry::<2>(facet);
-                        (m, [n[0], n[1], 0.0])
-                    }
-                    _ => {
-                        let (m, n) = mesh.facet_geometry::<3>(facet);
-                        (m, n)
-                    }
-                };
+                let (measure, n) = mesh.facet_frame(facet);
                 for &node in facet {
                     let e = acc.entry(node).or_insert((0.0, [0.0; 3]));
                     e.0 += measure / dim as f64;

@@ -80,10 +80,7 @@ impl Mesh {
             return Err(Error::NoCells { dim, what: "the mesh is empty".into() });
         }
         mesh.check_nodes()?;
-        match dim {
-            2 => mesh.check_and_orient_cells::<2, 3>()?,
-            _ => mesh.check_and_orient_cells::<3, 4>()?,
-        }
+        with_simplex!(dim, Mesh::check_and_orient_cells(&mut mesh))?;
         mesh.check_duplicates_and_unused()?;
         mesh.attach_parts()?;
         Ok(mesh)
@@ -168,14 +165,20 @@ impl Mesh {
         facet_measure_normal::<D>(&self.points::<D>(facet))
     }
 
+    /// Measure and outward unit normal of a facet, the normal with 3 components (the last 0
+    /// in 2D): the one place where facets meet the runtime dimension.
+    pub fn facet_frame(&self, facet: &[usize]) -> (f64, [f64; 3]) {
+        if self.dim == 2 {
+            let (m, n) = self.facet_geometry::<2>(facet);
+            (m, [n[0], n[1], 0.0])
+        } else {
+            self.facet_geometry::<3>(facet)
+        }
+    }
+
     /// Total measure of part `p`.
     pub fn part_measure(&self, p: usize) -> f64 {
-        self.part_facets(p)
-            .map(|f| match self.dim {
-                2 => self.facet_geometry::<2>(f).0,
-                _ => self.facet_geometry::<3>(f).0,
-            })
-            .sum()
+        self.part_facets(p).map(|f| self.facet_frame(f).0).sum()
     }
 
     /// Bounding box (min, max) of the nodes.
@@ -324,10 +327,7 @@ impl Mesh {
         let cell = self.cell(c);
         let mut facet: Vec<usize> = (0..n).filter(|&a| a != opposite).map(|a| cell[a]).collect();
         let outward = |facet: &[usize]| -> bool {
-            let (normal, first): (Vec<f64>, &[f64]) = match self.dim {
-                2 => (self.facet_geometry::<2>(facet).1.to_vec(), self.node(facet[0])),
-                _ => (self.facet_geometry::<3>(facet).1.to_vec(), self.node(facet[0])),
-            };
+            let (normal, first) = (self.facet_frame(facet).1, self.node(facet[0]));
             let apex = self.node(cell[opposite]);
             let dot: f64 = (0..self.dim).map(|i| normal[i] * (first[i] - apex[i])).sum();
             dot > 0.0
