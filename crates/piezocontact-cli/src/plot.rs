@@ -3,6 +3,7 @@
 
 use anyhow::{Result, anyhow};
 use piezocontact::algorithm::NodeStatus;
+use piezocontact::contact::Foundation;
 use piezocontact::output::files::write_atomic;
 use piezocontact::run::ContactRun;
 use plotters::coord::Shift;
@@ -233,11 +234,13 @@ fn draw_body<DB: DrawingBackend>(
         phi.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
     let span = if phi_hi > phi_lo { phi_hi - phi_lo } else { 1.0 };
     let surface = &solution.surface;
-    let rho = run.model.compliance.stop();
+    // The rigid stop along each normal; nodes that cannot touch the foundation draw none.
     let stop: Vec<(f64, f64)> = (0..surface.len())
-        .map(|i| {
-            let p = surface.position(problem, i);
-            (p[0] + rho * surface.normal[i][0], p[1] + rho * surface.normal[i][1])
+        .filter_map(|i| {
+            let (p, rho) =
+                (surface.position(problem, i), run.model.compliance.stop(surface.gap[i]));
+            rho.is_finite()
+                .then(|| (p[0] + rho * surface.normal[i][0], p[1] + rho * surface.normal[i][1]))
         })
         .collect();
     let (main, bar) = root.split_horizontally(1060);
@@ -280,18 +283,25 @@ fn draw_body<DB: DrawingBackend>(
     chart
         .draw_series(LineSeries::new(stop.clone(), BLACK.stroke_width(2)))
         .map_err(err)?
-        .label(format!("rigid stop (gap + penetration = {rho} {})", labels.length))
+        .label(match run.model.foundation {
+            Foundation::ConstantGap => format!(
+                "rigid stop (gap + penetration = {} {})",
+                run.model.compliance.stop(run.model.compliance.gap),
+                labels.length
+            ),
+            _ => "rigid stop (foundation + penetration)".to_string(),
+        })
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2)));
     // Contact force on the body, t = σ_ν ν + σ_τ, drawn from the foundation side.
-    let peak = run.rows.iter().map(|r| r.sigma_nu.abs().hypot(r.sigma_tau)).fold(0.0, f64::max);
+    let peak = run.rows.iter().map(|r| r.sigma_nu.abs().hypot(r.sigma_tau[0])).fold(0.0, f64::max);
     let arrow_length = 0.12 * (y1 - y0) / peak.max(f64::MIN_POSITIVE);
     let step = (surface.len() / 24).max(1);
     for i in (0..surface.len()).step_by(step) {
         let (row, n) = (&run.rows[i], surface.normal[i]);
         let t = surface.tangent(i);
         let force = (
-            row.sigma_nu * n[0] + row.sigma_tau * t[0],
-            row.sigma_nu * n[1] + row.sigma_tau * t[1],
+            row.sigma_nu * n[0] + row.sigma_tau[0] * t[0],
+            row.sigma_nu * n[1] + row.sigma_tau[0] * t[1],
         );
         if force.0.hypot(force.1) == 0.0 {
             continue;

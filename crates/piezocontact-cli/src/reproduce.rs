@@ -394,7 +394,7 @@ impl Report<'_> {
                     },
                     Series {
                         label: "|σ_τ|".into(),
-                        points: Self::profile(run, |r| r.sigma_tau.abs()),
+                        points: Self::profile(run, |r| r.sigma_tau[0].abs()),
                         color: PALETTE[2],
                         markers: true,
                     },
@@ -448,7 +448,7 @@ impl Report<'_> {
                 .rows
                 .iter()
                 .filter(|r| r.status == NodeStatus::Slip && r.sigma_nu != 0.0)
-                .map(|r| (r.sigma_tau / r.sigma_nu).abs())
+                .map(|r| (r.sigma_tau[0] / r.sigma_nu).abs())
                 .collect();
             let (lo, hi) =
                 ratios.iter().fold((f64::INFINITY, 0.0_f64), |(a, b), &v| (a.min(v), b.max(v)));
@@ -540,7 +540,7 @@ impl Report<'_> {
                 (|r: &Row| r.sigma_nu.abs()) as fn(&Row) -> f64,
             ),
             ("figure3b", "Figure 3(b): |σ_τ| on Γ3", format!("|σ_τ| [{}]", u.stress), |r| {
-                r.sigma_tau.abs()
+                r.sigma_tau[0].abs()
             }),
             ("figure4", "Figure 4: ϕ on Γ3", format!("ϕ [{}]", u.potential), |r| r.phi),
         ] {
@@ -753,8 +753,8 @@ impl Report<'_> {
                     .sum();
                 if norm > 0.0 { (d / norm).sqrt() } else { 0.0 }
             };
-            let (dn, dt) = (rel(|r| r.sigma_nu), rel(|r| r.sigma_tau));
-            let (rn, rt) = (rms(|r| r.sigma_nu), rms(|r| r.sigma_tau));
+            let (dn, dt) = (rel(|r| r.sigma_nu), rel(|r| r.sigma_tau[0]));
+            let (rn, rt) = (rms(|r| r.sigma_nu), rms(|r| r.sigma_tau[0]));
             let _ = writeln!(
                 csv,
                 "{ex},{dn:e},{dt:e},{rn:e},{rt:e},{:e},{:e}",

@@ -13,12 +13,17 @@ pub struct Row {
     pub x: [f64; 3],
     /// u_ν [length].
     pub u_nu: f64,
-    /// u_τ: along τ in 2D, ‖u_τ‖ in 3D [length].
-    pub u_tau: f64,
+    /// u_τ along τ1 and τ2 of [`crate::contact::ContactSurface::frame`] (τ2 = 0 in 2D) [length].
+    pub u_tau: [f64; 2],
     /// σ_ν [stress].
     pub sigma_nu: f64,
-    /// σ_τ = −λ_f: along τ in 2D, ‖σ_τ‖ in 3D [stress].
-    pub sigma_tau: f64,
+    /// σ_τ = −λ_f along τ1 and τ2 [stress].
+    pub sigma_tau: [f64; 2],
+    /// σ_τ as a vector in the global axes [stress].
+    pub friction_traction: [f64; 3],
+    /// g_a,i: the gap along ν_i; where ν_i misses the foundation (the node cannot touch it),
+    /// the shortest distance to the foundation instead [length].
+    pub gap: f64,
     /// ϕ [potential].
     pub phi: f64,
     /// s of the last outer step [stress].
@@ -31,26 +36,25 @@ pub struct Row {
 pub fn rows(problem: &Problem, model: &ContactModel, solution: &ContactSolution) -> Vec<Row> {
     let dofs = &solution.dofs;
     let surface = &solution.surface;
-    let dim = problem.mesh.dim();
     (0..surface.len())
         .map(|i| {
             let (u_nu, u_tau) = surface.split(dofs, &solution.x, i);
-            let lambda_f = solution.state.lambda_f[i];
-            let (u_tau, sigma_tau) = if dim == 2 {
-                let t = surface.tangent(i);
-                (u_tau[0] * t[0] + u_tau[1] * t[1], -(lambda_f[0] * t[0] + lambda_f[1] * t[1]))
-            } else {
-                let norm = |v: [f64; 3]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
-                (norm(u_tau), norm(lambda_f))
+            let friction_traction = solution.state.lambda_f[i].map(|l| -l);
+            let frame = surface.frame(i);
+            let along = |v: [f64; 3], a: usize| (0..3).map(|k| v[k] * frame[a][k]).sum::<f64>();
+            let x = surface.position3(problem, i);
+            let gap = match surface.gap[i] {
+                g if g.is_finite() => g,
+                _ => model.compliance.gap + model.foundation.distance(x),
             };
-            let mut x = [0.0; 3];
-            x[..dim].copy_from_slice(surface.position(problem, i));
             Row {
                 x,
                 u_nu,
-                u_tau,
+                u_tau: [along(u_tau, 1), along(u_tau, 2)],
                 sigma_nu: solution.sigma_nu[i],
-                sigma_tau,
+                sigma_tau: [along(friction_traction, 1), along(friction_traction, 2)],
+                friction_traction,
+                gap,
                 phi: surface.phi(dofs, &solution.x, i),
                 s: solution.s[i],
                 status: solution.status(i, model.pv2.is_some()),
@@ -59,23 +63,27 @@ pub fn rows(problem: &Problem, model: &ContactModel, solution: &ContactSolution)
         .collect()
 }
 
-/// `contact.csv`: columns exactly `x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status`.
-pub fn contact_csv(rows: &[Row]) -> String {
-    let mut s = String::from("x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status\n");
+/// `contact.csv`: columns exactly `x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status` in 2D
+/// (u_τ, σ_τ along τ = ν turned by +90°), and
+/// `x,y,z,u_nu,u_tau1,u_tau2,sigma_nu,sigma_tau1,sigma_tau2,phi,s,status` in 3D (along τ1,
+/// τ2 of [`crate::contact::ContactSurface::frame`]).
+pub fn contact_csv(rows: &[Row], dim: usize) -> String {
+    let mut s = String::from(if dim == 2 {
+        "x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status\n"
+    } else {
+        "x,y,z,u_nu,u_tau1,u_tau2,sigma_nu,sigma_tau1,sigma_tau2,phi,s,status\n"
+    });
     for r in rows {
-        let _ = writeln!(
-            s,
-            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
-            r.x[0],
-            r.x[1],
-            r.u_nu,
-            r.u_tau,
-            r.sigma_nu,
-            r.sigma_tau,
-            r.phi,
-            r.s,
-            r.status.name()
-        );
+        let mut fields: Vec<f64> = r.x[..dim].to_vec();
+        fields.push(r.u_nu);
+        fields.extend_from_slice(&r.u_tau[..dim - 1]);
+        fields.push(r.sigma_nu);
+        fields.extend_from_slice(&r.sigma_tau[..dim - 1]);
+        fields.extend([r.phi, r.s]);
+        for v in fields {
+            let _ = write!(s, "{v:e},");
+        }
+        let _ = writeln!(s, "{}", r.status.name());
     }
     s
 }
@@ -130,7 +138,7 @@ pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &
         "gamma3": {
             "nodes": rows.len(),
             "max_abs_sigma_nu": max_abs(&|r| r.sigma_nu),
-            "max_abs_sigma_tau": max_abs(&|r| r.sigma_tau),
+            "max_abs_sigma_tau": max_abs(&|r| r.sigma_tau[0].hypot(r.sigma_tau[1])),
             "contact_measure": contact,
             "stick_measure": stick,
             "slip_measure": slip,

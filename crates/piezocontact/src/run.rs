@@ -61,7 +61,7 @@ impl ContactRun {
     /// max |σ_ν| and max |σ_τ| on Γ3 [stress].
     pub fn peaks(&self) -> (f64, f64) {
         let max = |f: fn(&Row) -> f64| self.rows.iter().map(|r| f(r).abs()).fold(0.0, f64::max);
-        (max(|r| r.sigma_nu), max(|r| r.sigma_tau))
+        (max(|r| r.sigma_nu), max(|r| r.sigma_tau[0].hypot(r.sigma_tau[1])))
     }
 
     /// Measures of the contact, stick and slip zones.
@@ -103,8 +103,9 @@ impl ContactRun {
             cause: e.to_string(),
         })?;
         let (problem, solution) = (&self.problem, &self.solution);
-        let mut status = vec![0.0; problem.mesh.n_nodes()];
-        let mut pressure = vec![0.0; problem.mesh.n_nodes()];
+        let n = problem.mesh.n_nodes();
+        let (mut status, mut pressure, mut gap) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut traction = vec![0.0; 3 * n];
         for (row, &node) in self.rows.iter().zip(&solution.surface.nodes) {
             status[node] = match row.status {
                 NodeStatus::Separated => 1.0,
@@ -112,12 +113,17 @@ impl ContactRun {
                 NodeStatus::Slip => 3.0,
             };
             pressure[node] = -row.sigma_nu;
+            gap[node] = row.gap;
+            traction[3 * node..3 * node + 3].copy_from_slice(&row.friction_traction);
         }
         let extra = [
             Field { name: "contact_status", components: 1, values: &status },
             Field { name: "contact_pressure", components: 1, values: &pressure },
+            Field { name: "friction_traction", components: 3, values: &traction },
+            Field { name: "gap", components: 1, values: &gap },
         ];
-        files::write_atomic(&out.join("contact.csv"), report::contact_csv(&self.rows).as_bytes())?;
+        let csv = report::contact_csv(&self.rows, problem.mesh.dim());
+        files::write_atomic(&out.join("contact.csv"), csv.as_bytes())?;
         files::write_results(out, &self.summary(case), problem, &solution.dofs, &solution.x, &extra)
     }
 }

@@ -92,8 +92,15 @@ fn run_writes_a_summary_a_contact_table_and_a_vtu_that_a_reader_accepts() {
     let vtu = read_vtu(&out.join("solution.vtu"));
     assert_eq!((vtu.points, vtu.cells), (125, 192));
     let names: Vec<&str> = vtu.point_data.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(names, ["u", "phi", "contact_status", "contact_pressure"]);
+    assert_eq!(
+        names,
+        ["u", "phi", "contact_status", "contact_pressure", "friction_traction", "gap"]
+    );
     assert_eq!(vtu.cell_names, ["sigma", "D"]);
+    // The gap on Γ3 is the paper's constant 0.5 m; PV1 has no friction traction.
+    let on_gamma3 = vtu.point_data[2].1.iter().filter(|s| **s > 0.0).count();
+    assert_eq!(vtu.point_data[5].1.iter().filter(|g| **g == 0.5).count(), on_gamma3);
+    assert!(vtu.point_data[4].1.iter().all(|t| *t == 0.0));
     let pressure = vtu.point_data[3].1.iter().copied().fold(0.0, f64::max);
     assert!((pressure - max_sigma).abs() <= 1e-9 * max_sigma);
     let leftovers: Vec<_> = std::fs::read_dir(&out)

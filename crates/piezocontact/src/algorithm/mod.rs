@@ -24,8 +24,8 @@ pub mod residual;
 pub mod uzawa;
 
 use crate::assembly::{MassNorm, NodalBlock, secant_moduli};
-use crate::contact::ContactSurface;
 use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
+use crate::contact::{ContactSurface, Foundation};
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
@@ -236,6 +236,8 @@ pub struct ContactModel {
     pub compliance: NormalCompliance,
     /// `None`: PV1 (frictionless, nonconductive). `Some`: PV2.
     pub pv2: Option<(Friction, Conduction)>,
+    /// The foundation's surface, which sets the gap of every Γ3 node (model §12).
+    pub foundation: Foundation,
 }
 
 impl ContactModel {
@@ -319,7 +321,11 @@ pub fn solve_contact(
     settings: &Settings,
 ) -> Result<ContactSolution> {
     let dofs = DofMap::new(problem)?;
-    let surface = ContactSurface::new(problem, &dofs)?;
+    let surface = ContactSurface::new(problem, &dofs)?.with_gaps(
+        problem,
+        &model.foundation,
+        model.compliance.gap,
+    );
     let condensed = Condensed::new(&dofs, &surface, model.compliance.penetration > 0.0);
     let exact = settings.method.is_exact();
     let blocks = method_blocks(&settings.method, &surface, model.pv2.is_some());
@@ -605,7 +611,7 @@ fn lagged_loads(
         let (u_nu, _) = surface.split(dofs, x, i);
         let phi = surface.phi(dofs, x, i);
         let (w, node) = (surface.weight[i], surface.nodes[i]);
-        let pressure = model.compliance.pressure(u_nu, phi);
+        let pressure = model.compliance.pressure(u_nu, phi, surface.gap[i]);
         for c in 0..surface.dim() {
             let k = dofs.free_index(dofs.u(node, c));
             if k != CONSTRAINED {
@@ -615,7 +621,7 @@ fn lagged_loads(
         if let Some((_, conduction)) = &model.pv2 {
             let k = dofs.free_index(dofs.phi(node));
             if k != CONSTRAINED {
-                base[k] += w * conduction.flux(u_nu, phi, model.compliance.gap);
+                base[k] += w * conduction.flux(u_nu, phi, surface.gap[i]);
             }
         }
     }
@@ -633,7 +639,8 @@ pub fn normal_stress(
     (0..surface.len())
         .map(|i| {
             let (u_nu, _) = surface.split(dofs, x, i);
-            -(state.lambda_c[i] + model.compliance.pressure(u_nu, surface.phi(dofs, x, i)))
+            let phi = surface.phi(dofs, x, i);
+            -(state.lambda_c[i] + model.compliance.pressure(u_nu, phi, surface.gap[i]))
         })
         .collect()
 }

@@ -219,7 +219,7 @@ impl<'a> Local<'a> {
     fn new(newton: &'a Newton<'a>, mut schur: DenseMatrix, x_hat: Vec<f64>) -> Self {
         let (cond, surface) = (newton.condensed, newton.step.surface);
         let dim = surface.dim();
-        let frames: Vec<[[f64; 3]; 3]> = surface.normal.iter().map(|&nu| frame(nu, dim)).collect();
+        let frames: Vec<[[f64; 3]; 3]> = (0..surface.len()).map(|i| surface.frame(i)).collect();
         let m = cond.len();
         // S ← Q S Qᵀ, node block by node block: columns, then rows.
         for (i, q) in frames.iter().enumerate() {
@@ -301,8 +301,9 @@ impl<'a> Local<'a> {
     }
 
     /// The compliance pressure h_ν p_ν at node i (0 with the laws off).
-    fn pressure(&self, u_nu: f64, phi: Option<f64>) -> f64 {
-        phi.map_or(0.0, |phi| self.newton.step.compliance.pressure(u_nu, phi))
+    fn pressure(&self, u_nu: f64, phi: Option<f64>, i: usize) -> f64 {
+        let (step, gap) = (self.newton.step, self.newton.step.surface.gap[i]);
+        phi.map_or(0.0, |phi| step.compliance.pressure(u_nu, phi, gap))
     }
 
     /// ‖scaled E‖².
@@ -314,7 +315,7 @@ impl<'a> Local<'a> {
     fn evaluate(&self, y: &[f64]) -> Evaluation {
         let (step, cond) = (self.newton.step, self.newton.condensed);
         let (surface, law) = (step.surface, step.compliance);
-        let (n3, dim, rho) = (surface.len(), surface.dim(), law.stop());
+        let (n3, dim) = (surface.len(), surface.dim());
         let mut forces = self.schur.mul(y);
         forces.iter_mut().zip(&self.load).for_each(|(r, g)| *r -= g);
         let sigma_nu: Vec<f64> =
@@ -332,7 +333,8 @@ impl<'a> Local<'a> {
         for i in 0..n3 {
             let (w, u, c) = (surface.weight[i], cond.u[i], self.c[i]);
             let (u_nu, phi) = (y[u[0]], self.phi(y, i));
-            let lambda_c = -eval.sigma_nu[i] - self.pressure(u_nu, phi);
+            let (gap, rho) = (surface.gap[i], law.stop(surface.gap[i]));
+            let lambda_c = -eval.sigma_nu[i] - self.pressure(u_nu, phi, i);
             eval.multipliers.lambda_c[i] = lambda_c;
             if lambda_c + c * (u_nu - rho) > 0.0 {
                 eval.residual[u[0]] = -c * (u_nu - rho);
@@ -366,7 +368,7 @@ impl<'a> Local<'a> {
             if let (Phi::Unknown(p), Some(phi)) = (cond.phi[i], phi) {
                 eval.residual[p] = eval.forces[p];
                 if let Some(conduction) = step.conduction {
-                    eval.residual[p] -= w * conduction.flux(u_nu, phi, law.gap);
+                    eval.residual[p] -= w * conduction.flux(u_nu, phi, gap);
                 }
             }
         }
@@ -427,7 +429,7 @@ impl<'a> Local<'a> {
         if let (true, Some(phi)) = (Some(k) == phi_position, phi) {
             add(out, k, 1.0);
             if let Some(conduction) = step.conduction {
-                let (d_u, d_phi) = conduction.flux_derivative(u_nu, phi, law.gap);
+                let (d_u, d_phi) = conduction.flux_derivative(u_nu, phi, surface.gap[i]);
                 out[u[0]] -= w * d_u;
                 out[k] -= w * d_phi;
             }
@@ -435,7 +437,8 @@ impl<'a> Local<'a> {
         }
         if k == u[0] {
             // Not in contact: E_n = λ_c = −σ_ν − q.
-            let (dq_du, dq_dphi) = phi.map_or((0.0, 0.0), |phi| law.pressure_derivative(u_nu, phi));
+            let derivative = |phi| law.pressure_derivative(u_nu, phi, surface.gap[i]);
+            let (dq_du, dq_dphi) = phi.map_or((0.0, 0.0), derivative);
             add(out, u[0], -1.0 / w);
             out[u[0]] -= dq_du;
             if let Some(p) = phi_position {
@@ -488,25 +491,4 @@ impl<'a> Local<'a> {
         }
         1.0
     }
-}
-
-/// The local frame of unit normal ν: rows ν, τ1 (and τ2 in 3D), orthonormal, with τ = ν
-/// turned by +90° in 2D as everywhere in piezocontact.
-fn frame(nu: [f64; 3], dim: usize) -> [[f64; 3]; 3] {
-    if dim == 2 {
-        return [nu, [-nu[1], nu[0], 0.0], [0.0; 3]];
-    }
-    let axis = (0..3).min_by(|&a, &b| nu[a].abs().total_cmp(&nu[b].abs())).unwrap_or(0);
-    let mut t1 = [0.0; 3];
-    t1[axis] = 1.0;
-    let dot = nu[axis];
-    (0..3).for_each(|k| t1[k] -= dot * nu[k]);
-    let norm = t1.iter().map(|v| v * v).sum::<f64>().sqrt();
-    t1.iter_mut().for_each(|v| *v /= norm);
-    let t2 = [
-        nu[1] * t1[2] - nu[2] * t1[1],
-        nu[2] * t1[0] - nu[0] * t1[2],
-        nu[0] * t1[1] - nu[1] * t1[0],
-    ];
-    [nu, t1, t2]
 }

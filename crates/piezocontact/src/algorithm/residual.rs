@@ -67,7 +67,6 @@ pub fn assess(
     let (f_int, scale) = internal_force(problem, dofs, x, &g)?;
     let f_ext = load_vector(problem, dofs);
     let mut contact_force = vec![0.0; dofs.n_total()];
-    let rho = model.compliance.stop();
     let mut kkt = KktResidual::default();
     let max_u = (0..problem.mesh.n_nodes())
         .map(|a| (0..dim).map(|c| x[dofs.u(a, c)].powi(2)).sum::<f64>().sqrt())
@@ -81,13 +80,13 @@ pub fn assess(
             contact_force[dofs.u(node, c)] +=
                 w * (solution.sigma_nu[i] * surface.normal[i][c] - state.lambda_f[i][c]);
         }
-        let lambda_c = state.lambda_c[i];
+        let (lambda_c, rho) = (state.lambda_c[i], model.compliance.stop(surface.gap[i]));
         kkt.contact = kkt.contact.max(
             (lambda_c - (lambda_c + constant * (u_nu - rho)).max(0.0)).abs() / constant / max_u,
         );
         kkt.penetration = kkt.penetration.max(u_nu - rho);
         if let Some((_, conduction)) = &model.pv2 {
-            contact_force[dofs.phi(node)] += w * conduction.flux(u_nu, phi, model.compliance.gap);
+            contact_force[dofs.phi(node)] += w * conduction.flux(u_nu, phi, surface.gap[i]);
             let z = [0, 1, 2].map(|k| state.lambda_f[i][k] + constant * u_tau[k]);
             let p = project_ball(z, solution.s[i]);
             let defect = (0..3).map(|k| (state.lambda_f[i][k] - p[k]).powi(2)).sum::<f64>().sqrt();

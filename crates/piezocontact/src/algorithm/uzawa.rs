@@ -45,7 +45,6 @@ impl Uzawa<'_> {
     pub fn run(&self, system: &mut CoupledSystem) -> Result<InnerResult> {
         let (step, r) = (self.step, self.r);
         let surface = step.surface;
-        let rho = step.compliance.stop();
         let n3 = surface.len();
         let mut state = Iterate {
             multipliers: ContactState::cold(n3),
@@ -77,6 +76,7 @@ impl Uzawa<'_> {
                 let (u_nu, u_tau) = surface.split(dofs, &x_new, i);
                 let w = surface.weight[i];
                 let (lambda, next_lambda) = (&state.multipliers, &mut next.multipliers);
+                let rho = step.compliance.stop(surface.gap[i]);
                 next.p_c[i] = (u_nu + lambda.lambda_c[i] / r).min(rho);
                 next_lambda.lambda_c[i] = (lambda.lambda_c[i] + r * (u_nu - rho)).max(0.0);
                 if let Some(s) = step.friction_bound {

@@ -7,6 +7,7 @@
 //! is read, so an override is checked exactly like the file.
 
 use crate::algorithm::{ContactModel, Method, Settings};
+use crate::contact::Foundation;
 use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
 use crate::error::{Error, Result};
 use crate::material::{ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants};
@@ -293,6 +294,34 @@ fn truncation() -> f64 {
     1e3
 }
 
+/// The kind of foundation surface in the case file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum FoundationKind {
+    /// A rigid half-space: `point` and `normal`.
+    Plane,
+    /// A rigid ball (a disk in 2D), the body outside it: `center` and `radius`.
+    Sphere,
+}
+
+/// `[foundation]`: the foundation's surface (model §12); without it, the gap `contact.gap`
+/// is the same at every Γ3 node, as in the paper. With it, the gap of node i is the distance
+/// along ν_i to the surface, plus `contact.gap`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FoundationSection {
+    /// "plane" or "sphere".
+    pub kind: FoundationKind,
+    /// Plane: a point of it, d components [length].
+    pub point: Option<Vec<f64>>,
+    /// Plane: its normal, d components, out of the foundation toward the body (normalised).
+    pub normal: Option<Vec<f64>>,
+    /// Sphere: its centre, d components [length].
+    pub center: Option<Vec<f64>>,
+    /// Sphere: its radius [length].
+    pub radius: Option<f64>,
+}
+
 /// The inner contact method in the case file.
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
@@ -368,6 +397,7 @@ pub struct CaseFile {
     pub contact: Option<ContactSection>,
     pub friction: Option<FrictionSection>,
     pub conductivity: Option<ConductivitySection>,
+    pub foundation: Option<FoundationSection>,
     #[serde(default)]
     pub solver: SolverSection,
 }
@@ -726,7 +756,77 @@ impl Case {
                 ))
             }
         };
-        Ok(Some(ContactModel { compliance, pv2 }))
+        let foundation = self.foundation(problem.mesh.dim())?;
+        Ok(Some(ContactModel { compliance, pv2, foundation }))
+    }
+
+    /// The foundation of `[foundation]`, checked for a d-dimensional body.
+    pub fn foundation(&self, dim: usize) -> Result<Foundation> {
+        let Some(f) = &self.file.foundation else { return Ok(Foundation::ConstantGap) };
+        let vector = |key: &str, v: &Option<Vec<f64>>| -> Result<[f64; 3]> {
+            let full = format!("foundation.{key}");
+            let v = v.as_ref().ok_or_else(|| {
+                input!(
+                    "{}: {full} is missing: kind = \"{}\" needs it",
+                    self.locate("foundation"),
+                    kind_name(f.kind)
+                )
+            })?;
+            if v.len() != dim || v.iter().any(|x| !x.is_finite()) {
+                return Err(input!(
+                    "{}: {full} = {v:?} must have {dim} finite components (the mesh is {dim}D)",
+                    self.locate(&full)
+                ));
+            }
+            let mut out = [0.0; 3];
+            out[..dim].copy_from_slice(v);
+            Ok(out)
+        };
+        let misplaced = match f.kind {
+            FoundationKind::Plane => {
+                [("center", f.center.is_some()), ("radius", f.radius.is_some())]
+            }
+            FoundationKind::Sphere => {
+                [("point", f.point.is_some()), ("normal", f.normal.is_some())]
+            }
+        };
+        if let Some((key, _)) = misplaced.iter().find(|(_, set)| *set) {
+            return Err(input!(
+                "{}: foundation.{key} does not belong to kind = \"{}\"; remove it (a plane has point and normal, a sphere center and radius)",
+                self.locate(&format!("foundation.{key}")),
+                kind_name(f.kind)
+            ));
+        }
+        match f.kind {
+            FoundationKind::Plane => {
+                let (point, normal) = (vector("point", &f.point)?, vector("normal", &f.normal)?);
+                let norm = normal.iter().map(|v| v * v).sum::<f64>().sqrt();
+                if !(norm > 0.0 && norm.is_finite()) {
+                    return Err(input!(
+                        "{}: foundation.normal = {:?} is not allowed: a nonzero vector, out of the foundation toward the body",
+                        self.locate("foundation.normal"),
+                        f.normal.as_deref().unwrap_or_default()
+                    ));
+                }
+                Ok(Foundation::Plane { point, normal: normal.map(|v| v / norm) })
+            }
+            FoundationKind::Sphere => {
+                let center = vector("center", &f.center)?;
+                let radius = f.radius.ok_or_else(|| {
+                    input!(
+                        "{}: foundation.radius is missing: kind = \"sphere\" needs it",
+                        self.locate("foundation")
+                    )
+                })?;
+                if !positive(radius) {
+                    return Err(input!(
+                        "{}: foundation.radius = {radius} is not allowed: a radius > 0",
+                        self.locate("foundation.radius")
+                    ));
+                }
+                Ok(Foundation::Sphere { center, radius })
+            }
+        }
     }
 
     /// The algorithms' parameters, checked, with the defaults of [`SolverSection::DEFAULTS`].
@@ -828,6 +928,14 @@ impl Case {
             },
         };
         Problem::new(mesh, material, boundary, loads).map_err(|e| self.context(e))
+    }
+}
+
+/// The case-file name of a foundation kind.
+fn kind_name(kind: FoundationKind) -> &'static str {
+    match kind {
+        FoundationKind::Plane => "plane",
+        FoundationKind::Sphere => "sphere",
     }
 }
 

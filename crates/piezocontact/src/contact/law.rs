@@ -10,7 +10,8 @@
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NormalCompliance {
-    /// g_a: gap, where compliance and conduction start (the paper's ρ) [length].
+    /// g_a: the gap, where compliance and conduction start (the paper's ρ) [length]; with a
+    /// foundation surface, the offset added to the distance along ν_i (model §12).
     pub gap: f64,
     /// g_p ≥ 0: penetration before the rigid stop at u_ν = g_a + g_p [length].
     pub penetration: f64,
@@ -27,9 +28,10 @@ pub struct NormalCompliance {
 }
 
 impl NormalCompliance {
-    /// The rigid stop g_a + g_p (the ρ of Algorithms 2 and 4) [length].
-    pub fn stop(&self) -> f64 {
-        self.gap + self.penetration
+    /// The rigid stop g_a,i + g_p at a node of gap g_a,i (the ρ of Algorithms 2 and 4)
+    /// [length].
+    pub fn stop(&self, gap: f64) -> f64 {
+        gap + self.penetration
     }
 
     /// p_ν(s) [length].
@@ -46,16 +48,16 @@ impl NormalCompliance {
         }
     }
 
-    /// The compliance pressure h_ν(ϕ − ϕ0) p_ν(u_ν − g_a) [stress].
-    pub fn pressure(&self, u_nu: f64, phi: f64) -> f64 {
-        self.h_nu(phi - self.phi0) * self.p_nu(u_nu - self.gap)
+    /// The compliance pressure h_ν(ϕ − ϕ0) p_ν(u_ν − g_a,i) at a node of gap g_a,i [stress].
+    pub fn pressure(&self, u_nu: f64, phi: f64, gap: f64) -> f64 {
+        self.h_nu(phi - self.phi0) * self.p_nu(u_nu - gap)
     }
 
     /// A generalised derivative of the pressure: (∂/∂u_ν, ∂/∂ϕ) [stress/length,
     /// stress/potential]. The pieces' one-sided derivatives at the kinks are taken from the
     /// side where the function is not constant.
-    pub fn pressure_derivative(&self, u_nu: f64, phi: f64) -> (f64, f64) {
-        let (s, t) = (u_nu - self.gap, phi - self.phi0);
+    pub fn pressure_derivative(&self, u_nu: f64, phi: f64, gap: f64) -> (f64, f64) {
+        let (s, t) = (u_nu - gap, phi - self.phi0);
         let dp = if (0.0..=self.n_nu).contains(&s) { 1.0 } else { 0.0 };
         let dh = if t.abs() <= self.h_nu_range {
             self.c_nu * (self.alpha_nu - 1.0) / self.h_nu_range * t.signum()
@@ -152,13 +154,13 @@ mod tests {
             h_nu_range: 128.0,
             phi0: 32.0,
         };
-        assert_eq!(law.stop(), 0.6);
+        assert_eq!(law.stop(law.gap), 0.6);
         assert_eq!((law.p_nu(-1.0), law.p_nu(0.1), law.p_nu(5.0)), (0.0, 0.1, 0.2));
         assert_eq!(law.h_nu(0.0), 2.0);
         assert_eq!(law.h_nu(-64.0), 2.0 * (1.0 + 2.0 * 0.5));
         assert_eq!(law.h_nu(500.0), 6.0);
         // h_ν(0) p_ν(0.55 − 0.5) = 2 × 0.05.
-        assert!((law.pressure(0.55, 32.0) - 0.1).abs() < 1e-15);
+        assert!((law.pressure(0.55, 32.0, law.gap) - 0.1).abs() < 1e-15);
         let c = Conduction { ke: 2.0, phi0: 32.0, delta: 4.0, truncation: 10.0 };
         assert_eq!((c.psi(-1.0), c.psi(0.125), c.psi(1.0)), (0.0, 1.0, 2.0));
         assert_eq!((c.phi_l(-20.0), c.phi_l(3.0), c.phi_l(20.0)), (-10.0, 3.0, 10.0));
@@ -178,9 +180,10 @@ mod tests {
         let c = Conduction { ke: 2.0, phi0: 32.0, delta: 4.0, truncation: 10.0 };
         let h = 1e-7;
         for (u, phi) in [(0.55, 40.0), (0.6, 20.0), (0.3, 0.0), (0.9, 500.0), (0.52, 35.0)] {
-            let (du, dphi) = law.pressure_derivative(u, phi);
-            let fd_u = (law.pressure(u + h, phi) - law.pressure(u - h, phi)) / (2.0 * h);
-            let fd_phi = (law.pressure(u, phi + h) - law.pressure(u, phi - h)) / (2.0 * h);
+            let (du, dphi) = law.pressure_derivative(u, phi, 0.5);
+            let fd_u = (law.pressure(u + h, phi, 0.5) - law.pressure(u - h, phi, 0.5)) / (2.0 * h);
+            let fd_phi =
+                (law.pressure(u, phi + h, 0.5) - law.pressure(u, phi - h, 0.5)) / (2.0 * h);
             assert!((du - fd_u).abs() < 1e-6 && (dphi - fd_phi).abs() < 1e-6, "{u}, {phi}");
             let (du, dphi) = c.flux_derivative(u, phi, 0.5);
             let fd_u = (c.flux(u + h, phi, 0.5) - c.flux(u - h, phi, 0.5)) / (2.0 * h);

@@ -7,11 +7,13 @@
 //! u_ν = u·ν,  u_τ = u − u_ν ν;  in 2D τ = ν rotated by +90° (ν = (0,−1) ↦ τ = (1,0))
 //! ```
 
+pub mod foundation;
 pub mod law;
 
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
+pub use foundation::Foundation;
 use std::collections::BTreeMap;
 
 /// Γ3 with its nodal geometry. Vectors are stored with 3 components (the first d used).
@@ -24,6 +26,9 @@ pub struct ContactSurface {
     pub weight: Vec<f64>,
     /// ν_i, outward unit normals.
     pub normal: Vec<[f64; 3]>,
+    /// g_a,i: the gap at node i [length], where compliance and conduction start; the rigid stop
+    /// is at g_a,i + g_p. +∞ where the node cannot touch the foundation.
+    pub gap: Vec<f64>,
 }
 
 impl ContactSurface {
@@ -49,15 +54,34 @@ impl ContactSurface {
             }
         }
         let free = |node: usize| (0..dim).any(|i| dofs.free_index(dofs.u(node, i)) != CONSTRAINED);
-        let mut order: Vec<usize> =
-            if dim == 2 { chain_order(&neighbours) } else { acc.keys().copied().collect() };
+        let mut order: Vec<usize> = if dim == 2 {
+            chain_order(&neighbours)
+        } else {
+            // In 3D, by coordinates: x, then y, then z.
+            let mut nodes: Vec<usize> = acc.keys().copied().collect();
+            nodes.sort_by(|&a, &b| {
+                let (p, q) = (mesh.node(a), mesh.node(b));
+                p.iter()
+                    .zip(q)
+                    .map(|(u, v)| u.total_cmp(v))
+                    .find(|o| o.is_ne())
+                    .unwrap_or(a.cmp(&b))
+            });
+            nodes
+        };
         if dim == 2
             && order.len() > 1
             && mesh.node(order[0])[0] > mesh.node(order[order.len() - 1])[0]
         {
             order.reverse();
         }
-        let mut surface = Self { dim, nodes: Vec::new(), weight: Vec::new(), normal: Vec::new() };
+        let mut surface = Self {
+            dim,
+            nodes: Vec::new(),
+            weight: Vec::new(),
+            normal: Vec::new(),
+            gap: Vec::new(),
+        };
         for node in order.into_iter().filter(|&n| free(n)) {
             let (w, n) = acc[&node];
             let norm = n.iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -72,8 +96,25 @@ impl ContactSurface {
             surface.nodes.push(node);
             surface.weight.push(w);
             surface.normal.push(n.map(|v| v / norm));
+            surface.gap.push(0.0);
         }
         Ok(surface)
+    }
+
+    /// Sets the gaps: the distance along ν_i to `foundation` plus `offset` (the constant gap
+    /// g_a of the paper when the foundation is [`Foundation::ConstantGap`]).
+    pub fn with_gaps(mut self, problem: &Problem, foundation: &Foundation, offset: f64) -> Self {
+        self.gap = (0..self.len())
+            .map(|i| offset + foundation.distance_along(self.position3(problem, i), self.normal[i]))
+            .collect();
+        self
+    }
+
+    /// Node i's coordinates with 3 components.
+    pub fn position3(&self, problem: &Problem, i: usize) -> [f64; 3] {
+        let mut x = [0.0; 3];
+        x[..self.dim].copy_from_slice(self.position(problem, i));
+        x
     }
 
     /// Number of Γ3 nodes.
@@ -91,10 +132,32 @@ impl ContactSurface {
         self.dim
     }
 
-    /// τ_i = ν_i rotated by +90° (2D only; zero in 3D, where u_τ is a vector).
+    /// τ_i = ν_i rotated by +90° (2D); the first tangent τ1 of [`ContactSurface::frame`] in 3D.
     pub fn tangent(&self, i: usize) -> [f64; 3] {
-        let n = self.normal[i];
-        if self.dim == 2 { [-n[1], n[0], 0.0] } else { [0.0; 3] }
+        self.frame(i)[1]
+    }
+
+    /// The local frame of node i: rows ν, τ1, τ2, orthonormal. In 2D τ1 = ν turned by +90°
+    /// and τ2 = 0. In 3D τ1 is the coordinate axis least aligned with ν, made orthogonal to ν
+    /// and normalised, and τ2 = ν × τ1; the tangential columns of contact.csv are along them.
+    pub fn frame(&self, i: usize) -> [[f64; 3]; 3] {
+        let nu = self.normal[i];
+        if self.dim == 2 {
+            return [nu, [-nu[1], nu[0], 0.0], [0.0; 3]];
+        }
+        let axis = (0..3).min_by(|&a, &b| nu[a].abs().total_cmp(&nu[b].abs())).unwrap_or(0);
+        let mut t1 = [0.0; 3];
+        t1[axis] = 1.0;
+        let along = nu[axis];
+        (0..3).for_each(|k| t1[k] -= along * nu[k]);
+        let norm = t1.iter().map(|v| v * v).sum::<f64>().sqrt();
+        t1.iter_mut().for_each(|v| *v /= norm);
+        let t2 = [
+            nu[1] * t1[2] - nu[2] * t1[1],
+            nu[2] * t1[0] - nu[0] * t1[2],
+            nu[0] * t1[1] - nu[1] * t1[0],
+        ];
+        [nu, t1, t2]
     }
 
     /// u at Γ3 node i from a global vector.

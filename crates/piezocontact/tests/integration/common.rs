@@ -162,7 +162,7 @@ pub fn paper_model(pv2: Option<(f64, f64)>, penetration: f64, units: Units) -> C
             },
         )
     });
-    ContactModel { compliance, pv2 }
+    ContactModel { compliance, pv2, foundation: Default::default() }
 }
 
 /// The paper's settings (r = 0.25 E) with tolerances `eps` = `eps_fp`.
