@@ -7,7 +7,7 @@ use piezocontact::case::Case;
 use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
 use piezocontact::run::{ContactRun, StaticRun};
-use piezocontact_cli::{bench, print, reproduce, sweep};
+use piezocontact_cli::{bench, plot, print, reproduce, sweep};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -231,6 +231,12 @@ fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<Outcome> {
 fn run_contact(case: &Case, out: &Path) -> Result<Outcome> {
     let run = ContactRun::solve(case)?;
     run.write(case, out)?;
+    if run.problem.mesh.dim() == 3 {
+        let units = &case.file.units;
+        let title = if case.file.title.is_empty() { "Γ3" } else { case.file.title.as_str() };
+        let labels = plot::MapLabels { title, length: &units.length, stress: &units.stress };
+        plot::contact_map(&run, &labels, &out.join("contact_map"))?;
+    }
     print::contact_run(&run, case, out);
     if let Some(failure) = &run.solution.failure {
         eprintln!(

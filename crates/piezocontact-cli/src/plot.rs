@@ -395,6 +395,81 @@ fn color_bar<DB: DrawingBackend>(
     Ok(())
 }
 
+/// Labels of the Γ3 map.
+pub struct MapLabels<'a> {
+    pub title: &'a str,
+    pub length: &'a str,
+    pub stress: &'a str,
+}
+
+/// The contact face of a 3D run seen along its mean normal: the contact pressure −σ_ν (left)
+/// and the status of each Γ3 node (right: separated, stick or contact, slip).
+pub fn contact_map(run: &ContactRun, labels: &MapLabels, stem: &Path) -> Result<()> {
+    both_backends!(stem, (1300, 620), |root: &DrawingArea<_, Shift>| draw_map(root, run, labels))
+}
+
+fn draw_map<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    run: &ContactRun,
+    labels: &MapLabels,
+) -> Result<()> {
+    root.fill(&WHITE).map_err(err)?;
+    let surface = &run.solution.surface;
+    // In-plane axes: the tangents of the mean normal's frame.
+    let mut mean = [0.0; 3];
+    surface.normal.iter().for_each(|n| (0..3).for_each(|k| mean[k] += n[k]));
+    let norm = mean.iter().map(|v| v * v).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
+    let frame = piezocontact::contact::frame(mean.map(|v| v / norm), 3);
+    let axes = [frame[1], frame[2]];
+    let points: Vec<(f64, f64)> = run
+        .rows
+        .iter()
+        .map(|r| {
+            let along = |t: [f64; 3]| (0..3).map(|k| r.x[k] * t[k]).sum::<f64>();
+            (along(axes[0]), along(axes[1]))
+        })
+        .collect();
+    let (x0, x1) = range(points.iter().map(|p| p.0), 0.05);
+    let (y0, y1) = range(points.iter().map(|p| p.1), 0.05);
+    let peak = run.rows.iter().map(|r| -r.sigma_nu).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+    let (left, right) = root.split_horizontally(650);
+    let panels = [
+        (
+            left,
+            format!("{}: contact pressure −σ_ν (0 to {peak:.3e} {})", labels.title, labels.stress),
+        ),
+        (right, "status: separated (grey), stick or contact (blue), slip (red)".to_string()),
+    ];
+    for (k, (area, caption)) in panels.into_iter().enumerate() {
+        let mut chart = ChartBuilder::on(&area)
+            .caption(caption, (FONT, 16))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc(format!("τ1 [{}]", labels.length))
+            .y_desc(format!("τ2 [{}]", labels.length))
+            .label_style((FONT, 13))
+            .draw()
+            .map_err(err)?;
+        let color = |r: &piezocontact::report::Row| match (k, r.status) {
+            (0, _) => colormap(-r.sigma_nu / peak),
+            (_, NodeStatus::Separated) => RGBColor(190, 190, 190),
+            (_, NodeStatus::Slip) => PALETTE[2],
+            _ => PALETTE[1],
+        };
+        chart
+            .draw_series(
+                points.iter().zip(&run.rows).map(|(&p, r)| Circle::new(p, 3, color(r).filled())),
+            )
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -26,7 +26,11 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
     println!("  {inner:<18} = {:?} (per outer step)", solution.inner_iterations);
     println!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
     println!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
-    println!("  contact / stick / slip measure = {c:.4} / {st:.4} / {sl:.4} {}", units.length);
+    let measure = match run.problem.mesh.dim() {
+        2 => units.length.clone(),
+        _ => format!("{}^2", units.length),
+    };
+    println!("  contact / stick / slip measure = {c:.4} / {st:.4} / {sl:.4} {measure}");
     println!(
         "  KKT residual       = {:.3e} (equilibrium u {:.1e}, phi {:.1e}; contact {:.1e}; friction {:.1e})",
         kkt.max, kkt.equilibrium_u, kkt.equilibrium_phi, kkt.contact, kkt.friction
@@ -43,7 +47,8 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         t.solve_count,
         run.seconds
     );
-    println!("  wrote contact.csv, summary.json, solution.vtu in {}", out.display());
+    let map = if run.problem.mesh.dim() == 3 { ", contact_map.png/.svg" } else { "" };
+    println!("  wrote contact.csv, summary.json, solution.vtu{map} in {}", out.display());
 }
 
 /// Prints a run without contact.

@@ -136,6 +136,49 @@ fn an_iteration_cap_is_an_error_with_the_partial_result_written() {
     );
 }
 
+/// The 3D example: the 3D contact table, the VTU vectors, the contact map, and the physics
+/// of indentation — pressure under the ball, stick at the centre, slip around it, and a
+/// potential on the insulated face that the compression induces.
+#[test]
+fn the_3d_indentation_example_writes_3d_outputs() {
+    let out = temp_dir("indentation");
+    let o = piezocontact(&["run", "cases/indentation-3d.toml", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("contact / stick / slip measure") && text(&o).contains("m^2"));
+    let csv = std::fs::read_to_string(out.join("contact.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "x,y,z,u_nu,u_tau1,u_tau2,sigma_nu,sigma_tau1,sigma_tau2,phi,s,status"
+    );
+    let rows: Vec<Vec<String>> =
+        lines.map(|l| l.split(',').map(str::to_string).collect()).collect();
+    let value = |r: &Vec<String>, k: usize| r[k].parse::<f64>().unwrap();
+    // Ordered by coordinates.
+    assert!(rows.windows(2).all(|w| value(&w[0], 0) <= value(&w[1], 0)));
+    let centre = rows
+        .iter()
+        .min_by(|a, b| value(a, 0).hypot(value(a, 1)).total_cmp(&value(b, 0).hypot(value(b, 1))))
+        .unwrap();
+    assert_eq!(centre[11], "stick");
+    assert!(rows.iter().any(|r| r[11] == "slip") && rows.iter().any(|r| r[11] == "separated"));
+    let peak = rows.iter().map(|r| -value(r, 6)).fold(0.0, f64::max);
+    assert!(-value(centre, 6) > 0.9 * peak, "the pressure does not peak under the ball");
+    // On slip nodes |σ_τ| = µ|σ_ν|.
+    for r in rows.iter().filter(|r| r[11] == "slip") {
+        let tangential = value(r, 7).hypot(value(r, 8));
+        assert!((tangential - 0.3 * value(r, 6).abs()).abs() <= 1e-8 * peak, "{r:?}");
+    }
+    let vtu = read_vtu(&out.join("solution.vtu"));
+    let field = |name: &str| &vtu.point_data.iter().find(|(n, _)| n == name).unwrap().1;
+    assert_eq!(field("friction_traction").len(), 3 * vtu.points);
+    assert!(field("gap").iter().any(|g| *g < 0.0), "the ball starts inside the block");
+    assert!(field("phi").iter().any(|p| p.abs() > 0.0), "no induced potential");
+    for file in ["contact_map.png", "contact_map.svg"] {
+        assert!(std::fs::metadata(out.join(file)).unwrap().len() > 1000, "{file}");
+    }
+}
+
 #[test]
 fn a_gmsh_case_runs_and_mesh_info_describes_the_file() {
     let dir = temp_dir("gmsh");

@@ -200,6 +200,12 @@ impl Newton<'_> {
         }
         let x = system.solve(Some(&forces))?;
         let mut state = eval.multipliers;
+        // Off the active set the law is λ_c = 0, held to round-off by the Newton equations.
+        for (i, set) in eval.sets.iter().enumerate() {
+            if set & 1 == 0 {
+                state.lambda_c[i] = 0.0;
+            }
+        }
         if self.step.friction.is_none() {
             // Frictionless: σ_τ = 0 by the law; the tangential rows hold it to round-off.
             state.lambda_f.iter_mut().for_each(|l| *l = [0.0; 3]);

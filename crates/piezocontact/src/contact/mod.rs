@@ -141,23 +141,7 @@ impl ContactSurface {
     /// and τ2 = 0. In 3D τ1 is the coordinate axis least aligned with ν, made orthogonal to ν
     /// and normalised, and τ2 = ν × τ1; the tangential columns of contact.csv are along them.
     pub fn frame(&self, i: usize) -> [[f64; 3]; 3] {
-        let nu = self.normal[i];
-        if self.dim == 2 {
-            return [nu, [-nu[1], nu[0], 0.0], [0.0; 3]];
-        }
-        let axis = (0..3).min_by(|&a, &b| nu[a].abs().total_cmp(&nu[b].abs())).unwrap_or(0);
-        let mut t1 = [0.0; 3];
-        t1[axis] = 1.0;
-        let along = nu[axis];
-        (0..3).for_each(|k| t1[k] -= along * nu[k]);
-        let norm = t1.iter().map(|v| v * v).sum::<f64>().sqrt();
-        t1.iter_mut().for_each(|v| *v /= norm);
-        let t2 = [
-            nu[1] * t1[2] - nu[2] * t1[1],
-            nu[2] * t1[0] - nu[0] * t1[2],
-            nu[0] * t1[1] - nu[1] * t1[0],
-        ];
-        [nu, t1, t2]
+        frame(self.normal[i], self.dim)
     }
 
     /// u at Γ3 node i from a global vector.
@@ -183,6 +167,26 @@ impl ContactSurface {
     pub fn position<'a>(&self, problem: &'a Problem, i: usize) -> &'a [f64] {
         problem.mesh.node(self.nodes[i])
     }
+}
+
+/// The frame of unit normal ν: rows ν, τ1, τ2 (see [`ContactSurface::frame`]).
+pub fn frame(nu: [f64; 3], dim: usize) -> [[f64; 3]; 3] {
+    if dim == 2 {
+        return [nu, [-nu[1], nu[0], 0.0], [0.0; 3]];
+    }
+    let axis = (0..3).min_by(|&a, &b| nu[a].abs().total_cmp(&nu[b].abs())).unwrap_or(0);
+    let mut t1 = [0.0; 3];
+    t1[axis] = 1.0;
+    let along = nu[axis];
+    (0..3).for_each(|k| t1[k] -= along * nu[k]);
+    let norm = t1.iter().map(|v| v * v).sum::<f64>().sqrt();
+    t1.iter_mut().for_each(|v| *v /= norm);
+    let t2 = [
+        nu[1] * t1[2] - nu[2] * t1[1],
+        nu[2] * t1[0] - nu[0] * t1[2],
+        nu[0] * t1[1] - nu[1] * t1[0],
+    ];
+    [nu, t1, t2]
 }
 
 /// Orders the nodes of a chain of segments from one end to the other (a closed chain from

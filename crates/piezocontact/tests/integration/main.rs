@@ -10,6 +10,8 @@ mod convergence;
 mod exact;
 /// Gmsh import: round trip of physical names, errors.
 mod gmsh_io;
+/// Hertz contact in 2D and 3D through the foundation's sphere.
+mod hertz;
 /// Patch tests: linear fields reproduced to round-off, 2D and 3D.
 mod patch;
 /// The assembled system: symmetry, definiteness of the blocks, factorisation reuse.
