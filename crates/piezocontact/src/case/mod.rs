@@ -1144,6 +1144,71 @@ gap = 0.1
     }
 
     #[test]
+    fn the_foundation_table_is_read_and_checked() {
+        let with = |sets: &[&str]| {
+            let c = case(MINIMAL, sets)?;
+            c.foundation(2)
+        };
+        let plane = with(&[
+            "foundation.kind=\"plane\"",
+            "foundation.point=[0.0, -0.5]",
+            "foundation.normal=[0.0, 2.0]",
+        ])
+        .unwrap();
+        assert_eq!(plane, Foundation::Plane { point: [0.0, -0.5, 0.0], normal: [0.0, 1.0, 0.0] });
+        let ball = with(&[
+            "foundation.kind=\"sphere\"",
+            "foundation.center=[2.0, -1.0]",
+            "foundation.radius=0.5",
+        ])
+        .unwrap();
+        assert_eq!(ball, Foundation::Sphere { center: [2.0, -1.0, 0.0], radius: 0.5 });
+        assert_eq!(with(&[]).unwrap(), Foundation::ConstantGap);
+        for (sets, piece) in [
+            (
+                vec!["foundation.kind=\"plane\"", "foundation.point=[0.0, 0.0]"],
+                "foundation.normal is missing",
+            ),
+            (
+                vec![
+                    "foundation.kind=\"plane\"",
+                    "foundation.point=[0.0]",
+                    "foundation.normal=[0.0, 1.0]",
+                ],
+                "foundation.point = [0.0] must have 2 finite components",
+            ),
+            (
+                vec![
+                    "foundation.kind=\"plane\"",
+                    "foundation.point=[0.0, 0.0]",
+                    "foundation.normal=[0.0, 0.0]",
+                ],
+                "a nonzero vector",
+            ),
+            (
+                vec![
+                    "foundation.kind=\"sphere\"",
+                    "foundation.center=[0.0, 0.0]",
+                    "foundation.radius=-1",
+                ],
+                "foundation.radius = -1 is not allowed: a radius > 0",
+            ),
+            (
+                vec![
+                    "foundation.kind=\"sphere\"",
+                    "foundation.center=[0.0, 0.0]",
+                    "foundation.normal=[0.0, 1.0]",
+                ],
+                "foundation.normal does not belong to kind = \"sphere\"",
+            ),
+            (vec!["foundation.kind=\"cone\""], "unknown variant `cone`"),
+        ] {
+            let e = with(&sets).unwrap_err().to_string();
+            assert!(e.contains(piece) && e.starts_with("case.toml"), "{sets:?}: {e}");
+        }
+    }
+
+    #[test]
     fn overrides_replace_a_key_under_either_spelling() {
         let c = case(PAPER_71, &["material.e31=-1.5", "material.beta11_rel=100"]).unwrap();
         assert_eq!((c.file.material.e31, c.file.material.beta11_rel), (-1.5, 100.0));

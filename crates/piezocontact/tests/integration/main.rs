@@ -8,6 +8,8 @@ mod contact;
 mod convergence;
 /// The exact solver against tight Uzawa, r independence, Hencky active, the Schur complement.
 mod exact;
+/// Foundation surfaces: planes, tilted planes, negative gaps.
+mod foundation;
 /// Gmsh import: round trip of physical names, errors.
 mod gmsh_io;
 /// Hertz contact in 2D and 3D through the foundation's sphere.
