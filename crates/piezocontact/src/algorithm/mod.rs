@@ -30,6 +30,7 @@ use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
 use crate::solver::{CoupledSystem, Timings};
+use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use newton::{Condensed, Newton};
 use residual::{Balance, KktResidual};
 use uzawa::Uzawa;
@@ -335,7 +336,7 @@ pub fn solve_contact(
         CoupledSystem::new(problem, dofs, &surface.nodes)?
     };
     let mass = MassNorm::new(problem)?;
-    let mollifier = Mollifier::new(problem, &surface, model);
+    let mollifier = Mollifier::new(problem, &surface, model)?;
     let mu = model
         .pv2
         .as_ref()
@@ -659,29 +660,39 @@ pub struct Mollifier {
 }
 
 impl Mollifier {
-    fn new(problem: &Problem, surface: &ContactSurface, model: &ContactModel) -> Self {
+    fn new(problem: &Problem, surface: &ContactSurface, model: &ContactModel) -> Result<Self> {
         let Some((Friction { regularization: Regularization::Mollifier { radius }, .. }, _)) =
             &model.pv2
         else {
-            return Self { rows: Vec::new() };
+            return Ok(Self { rows: Vec::new() });
         };
-        let rows = (0..surface.len())
-            .map(|i| {
-                let xi = surface.position(problem, i);
-                let mut row: Vec<(usize, f64)> = (0..surface.len())
-                    .filter_map(|j| {
-                        let xj = surface.position(problem, j);
-                        let d2: f64 = xi.iter().zip(xj).map(|(a, b)| (a - b).powi(2)).sum();
-                        let t = d2 / (radius * radius);
+        // Neighbourhoods by radius queries in a k-d tree of the Γ3 nodes, not all pairs.
+        let points: Vec<[f64; 3]> =
+            (0..surface.len()).map(|i| surface.position3(problem, i)).collect();
+        let tree = ImmutableKdTree::new_from_slice(&points).map_err(|e| {
+            Error::Input(format!("friction.regularization: the k-d tree of the Γ3 nodes: {e:?}"))
+        })?;
+        let rows = points
+            .iter()
+            .map(|xi| {
+                let mut row: Vec<(usize, f64)> = tree
+                    .query(xi)
+                    .within::<SquaredEuclidean<f64>>(radius * radius)
+                    .unsorted()
+                    .execute()
+                    .into_iter()
+                    .filter_map(|found| {
+                        let (j, t) = (found.item as usize, found.distance / (radius * radius));
                         (t < 1.0).then(|| (j, surface.weight[j] * (1.0 - t).powi(2)))
                     })
                     .collect();
+                row.sort_by_key(|&(j, _)| j);
                 let total: f64 = row.iter().map(|(_, w)| w).sum();
                 row.iter_mut().for_each(|(_, w)| *w /= total);
                 row
             })
             .collect();
-        Self { rows }
+        Ok(Self { rows })
     }
 
     /// R σ_ν on the Γ3 nodes.
