@@ -82,3 +82,114 @@ fn negative_gaps_are_removed() {
     }
     assert!(solution.sigma_nu.iter().all(|s| *s < 0.0), "every node is pushed out");
 }
+
+/// The block [−1,1]² × [−1,0] in n × n × m cubes, each split into 5 tetrahedra in a
+/// checkerboard (the split of a cube and of its neighbours are mirror images), so that with n
+/// even the mesh is symmetric under x ↦ −x and y ↦ −y. Parts: "top" (z = 0), "bottom".
+fn symmetric_block(n: usize, m: usize) -> piezocontact::mesh::Mesh {
+    let id = |i: usize, j: usize, k: usize| (k * (n + 1) + j) * (n + 1) + i;
+    let mut coords = Vec::new();
+    for k in 0..=m {
+        for j in 0..=n {
+            for i in 0..=n {
+                let h = 2.0 / n as f64;
+                coords.extend([
+                    -1.0 + i as f64 * h,
+                    -1.0 + j as f64 * h,
+                    -1.0 + k as f64 / m as f64,
+                ]);
+            }
+        }
+    }
+    // Corner v = a + 2b + 4c of a cube; the two 5-tetrahedron splits.
+    const EVEN: [[usize; 4]; 5] =
+        [[1, 2, 4, 7], [0, 1, 2, 4], [3, 1, 2, 7], [5, 1, 4, 7], [6, 2, 4, 7]];
+    const ODD: [[usize; 4]; 5] =
+        [[0, 3, 5, 6], [1, 0, 3, 5], [2, 0, 3, 6], [4, 0, 5, 6], [7, 3, 5, 6]];
+    let mut cells = Vec::new();
+    for k in 0..m {
+        for j in 0..n {
+            for i in 0..n {
+                let corner = |v: usize| id(i + (v & 1), j + ((v >> 1) & 1), k + ((v >> 2) & 1));
+                let split = if (i + j + k) % 2 == 0 { &EVEN } else { &ODD };
+                for t in split {
+                    let mut tet = t.map(corner);
+                    // Right-handed: a positive signed volume.
+                    let x = |a: usize, k: usize| coords[3 * tet[a] + k] - coords[3 * tet[0] + k];
+                    let volume = x(1, 0) * (x(2, 1) * x(3, 2) - x(2, 2) * x(3, 1))
+                        - x(1, 1) * (x(2, 0) * x(3, 2) - x(2, 2) * x(3, 0))
+                        + x(1, 2) * (x(2, 0) * x(3, 1) - x(2, 1) * x(3, 0));
+                    if volume < 0.0 {
+                        tet.swap(2, 3);
+                    }
+                    cells.extend(tet);
+                }
+            }
+        }
+    }
+    // Boundary faces on z = 0 and z = −1: the tetrahedron faces with three nodes there.
+    let z = |a: usize| coords[3 * a + 2];
+    let (mut top, mut bottom) = (Vec::new(), Vec::new());
+    for tet in cells.chunks(4) {
+        for skip in 0..4 {
+            let face: Vec<usize> = (0..4).filter(|&q| q != skip).map(|q| tet[q]).collect();
+            if face.iter().all(|&a| z(a) == 0.0) {
+                top.extend(&face);
+            } else if face.iter().all(|&a| z(a) == -1.0) {
+                bottom.extend(&face);
+            }
+        }
+    }
+    let parts = vec![
+        piezocontact::mesh::BoundaryPart::new("top", top),
+        piezocontact::mesh::BoundaryPart::new("bottom", bottom),
+    ];
+    piezocontact::mesh::Mesh::new(3, coords, cells, parts).unwrap()
+}
+
+/// A ball pressed into the middle of a mirror-symmetric PZT block (poled along z, so the
+/// material has the mirror symmetries too), with friction: the solution is symmetric.
+#[test]
+fn a_symmetric_3d_problem_has_a_symmetric_solution() {
+    use piezocontact::problem::{BodyLoads, Boundary};
+    let mesh = symmetric_block(12, 4);
+    let part = |n: &str| mesh.part_index(n).unwrap();
+    let boundary = Boundary {
+        clamped: vec![part("bottom")],
+        grounded: vec![part("bottom")],
+        contact: vec![part("top")],
+        ..Boundary::default()
+    };
+    let material = super::common::pzt(3, ElasticLaw::Linear);
+    let problem = Problem::new(mesh, material, boundary, BodyLoads::default()).unwrap();
+    let mut model = paper_model(Some((0.3, 0.0)), 0.0, PAPER_UNITS);
+    model.compliance.gap = 0.0;
+    model.foundation = Foundation::Sphere { center: [0.0, 0.0, 0.4], radius: 0.5 };
+    let solution = solve(&problem, &model);
+    let (mesh, dofs, x) = (&problem.mesh, &solution.dofs, &solution.x);
+    let node_at = |p: [f64; 3]| {
+        (0..mesh.n_nodes())
+            .find(|&a| (0..3).all(|k| (mesh.node(a)[k] - p[k]).abs() < 1e-12))
+            .unwrap()
+    };
+    let size = x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let (mut checked, mut worst) = (0, 0.0_f64);
+    for a in 0..mesh.n_nodes() {
+        let p = mesh.node(a);
+        for (axis, sign) in [(0, [-1.0, 1.0, 1.0]), (1, [1.0, -1.0, 1.0])] {
+            let mut q = [p[0], p[1], p[2]];
+            q[axis] = -q[axis];
+            let b = node_at(q);
+            for k in 0..3 {
+                worst = worst.max((x[dofs.u(a, k)] - sign[k] * x[dofs.u(b, k)]).abs());
+            }
+            let phi_size = (0..mesh.n_nodes()).map(|c| x[dofs.phi(c)].abs()).fold(0.0, f64::max);
+            assert!((x[dofs.phi(a)] - x[dofs.phi(b)]).abs() <= 1e-10 * phi_size, "ϕ at {p:?}");
+            checked += 1;
+        }
+    }
+    assert!(worst <= 1e-10 * size, "u is not mirror-symmetric: {worst} of {size}");
+    let touching = solution.sigma_nu.iter().filter(|s| **s < 0.0).count();
+    println!("{checked} mirror pairs, {touching} Γ3 nodes touch, worst u difference {worst:.1e}");
+    assert!(touching >= 9, "the ball barely touches");
+}
