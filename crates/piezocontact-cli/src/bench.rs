@@ -17,6 +17,7 @@ use std::path::Path;
 
 const PAPER_CASE: &str = include_str!("../../../cases/paper-7.1.toml");
 const PAPER_PV2: &str = include_str!("../../../cases/paper-7.2.toml");
+const INDENTATION: &str = include_str!("../../../cases/indentation-3d.toml");
 
 /// The default sizes of the factorisation benchmark.
 pub const SIZES: [&str; 3] = ["96x16", "384x64", "1536x256"];
@@ -164,23 +165,36 @@ fn paper_case(text: &str, nx: usize, ny: usize, extra: &[String]) -> Result<Case
     Ok(Case::from_text(Path::new("cases/paper.toml"), text, &overrides)?)
 }
 
-/// The problems of the contact benchmark: (name, case text, overrides).
-fn contact_problems() -> [(&'static str, &'static str, Vec<String>); 3] {
+/// The problems of the contact benchmark on a target: the paper's bar at a size "NXxNY"
+/// (PV1, PV2 with µ = k_e = 0.2 and 0.6), or a Gmsh mesh with the parts of
+/// meshes/indent-3d.geo in the indentation case (PV1, and PV2 with its µ = 0.3).
+fn contact_problems(target: &str) -> Result<Vec<(&'static str, Case)>> {
     let newton = || vec!["solver.method=\"newton\"".to_string()];
-    let pv2 = |mu: f64| {
-        let mut o = newton();
-        o.extend([format!("friction.mu={mu}"), format!("conductivity.ke={mu}")]);
-        o
+    if let Ok((nx, ny)) = parse_size(target) {
+        let pv2 = |mu: f64| {
+            let mut o = newton();
+            o.extend([format!("friction.mu={mu}"), format!("conductivity.ke={mu}")]);
+            o
+        };
+        return Ok(vec![
+            ("PV1", paper_case(PAPER_CASE, nx, ny, &newton())?),
+            ("PV2 mu=0.2", paper_case(PAPER_PV2, nx, ny, &pv2(0.2))?),
+            ("PV2 mu=0.6", paper_case(PAPER_PV2, nx, ny, &pv2(0.6))?),
+        ]);
+    }
+    let file = std::fs::canonicalize(target).map_err(|e| anyhow!("--mesh {target}: {e}"))?;
+    let with = |extra: &[&str]| -> Result<Case> {
+        let mut overrides = newton();
+        overrides.push(format!("mesh.file={:?}", file.display().to_string()));
+        overrides.extend(extra.iter().map(|s| s.to_string()));
+        Ok(Case::from_text(Path::new("cases/indentation-3d.toml"), INDENTATION, &overrides)?)
     };
-    [
-        ("PV1", PAPER_CASE, newton()),
-        ("PV2 mu=0.2", PAPER_PV2, pv2(0.2)),
-        ("PV2 mu=0.6", PAPER_PV2, pv2(0.6)),
-    ]
+    Ok(vec![("PV1", with(&["contact.problem=\"PV1\""])?), ("PV2 mu=0.3", with(&[])?)])
 }
 
-/// `bench --contact`: every measurement in a process of its own (peak memory per run).
-pub fn contact(sizes: &[String]) -> Result<()> {
+/// `bench --contact`: every measurement in a process of its own (peak memory per run), on
+/// each target: a size "NXxNY" of the paper's bar or a Gmsh mesh.
+pub fn contact(targets: &[String]) -> Result<()> {
     println!(
         "{:>10} {:>9} {:>11} {:>7} {:>12} {:>9} {:>14} {:>8} {:>9} {:>15} {:>9}",
         "mesh",
@@ -213,12 +227,14 @@ pub fn contact(sizes: &[String]) -> Result<()> {
             .and_then(|(_, v)| v.parse().ok())
             .ok_or_else(|| anyhow!("the measurement printed no {key}"))
     };
-    for size in sizes {
-        parse_size(size)?;
-        let plain = one(format!("plain,{size}"))?;
+    for target in targets {
+        let problems = contact_problems(target)?;
+        let plain = one(format!("plain,{target}"))?;
         let (plain_s, plain_mb) = (get(&plain, "seconds")?, get(&plain, "peak_mb")?);
-        for (k, (name, ..)) in contact_problems().iter().enumerate() {
-            let run = one(format!("contact{k},{size}"))?;
+        let size =
+            Path::new(target).file_name().map_or(target.clone(), |n| n.to_string_lossy().into());
+        for (k, (name, _)) in problems.iter().enumerate() {
+            let run = one(format!("contact{k},{target}"))?;
             let (seconds, mb) = (get(&run, "seconds")?, get(&run, "peak_mb")?);
             println!(
                 "{:>10} {:>9} {:>11} {:>7} {:>12.3e} {:>9.3} {:>14.3} {:>8.2} {:>9.0} {:>15.0} {:>9.2}",
@@ -245,13 +261,13 @@ pub fn contact(sizes: &[String]) -> Result<()> {
     Ok(())
 }
 
-/// One measurement of `bench --contact`, printed as key=value pairs: "plain,NXxNY" or
-/// "contactK,NXxNY".
+/// One measurement of `bench --contact`, printed as key=value pairs: "plain,TARGET" or
+/// "contactK,TARGET".
 pub fn measure_one(spec: &str) -> Result<()> {
-    let (kind, size) = spec.split_once(',').ok_or_else(|| anyhow!("--one {spec}"))?;
-    let (nx, ny) = parse_size(size)?;
+    let (kind, target) = spec.split_once(',').ok_or_else(|| anyhow!("--one {spec}"))?;
+    let mut problems = contact_problems(target)?;
     if kind == "plain" {
-        let problem = paper_case(PAPER_CASE, nx, ny, &[])?.problem()?;
+        let problem = problems.swap_remove(0).1.problem()?;
         let start = std::time::Instant::now();
         let mut system = CoupledSystem::new(&problem, DofMap::new(&problem)?, &[])?;
         let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
@@ -261,9 +277,7 @@ pub fn measure_one(spec: &str) -> Result<()> {
         return Ok(());
     }
     let k: usize = kind.trim_start_matches("contact").parse()?;
-    let (_, text, overrides) =
-        contact_problems().into_iter().nth(k).ok_or_else(|| anyhow!("--one {spec}"))?;
-    let case = paper_case(text, nx, ny, &overrides)?;
+    let (_, case) = problems.into_iter().nth(k).ok_or_else(|| anyhow!("--one {spec}"))?;
     let problem = case.problem()?;
     let model = case.contact_model(&problem)?.ok_or_else(|| anyhow!("no [contact] table"))?;
     let settings = case.settings()?;

@@ -100,8 +100,9 @@ enum Command {
         #[arg(long, value_delimiter = ',')]
         sizes: Option<Vec<String>>,
         /// A Gmsh MSH 4.1 mesh (2D or 3D) instead of the rectangle: every boundary part is
-        /// clamped and grounded.
-        #[arg(long, conflicts_with_all = ["sizes", "contact"])]
+        /// clamped and grounded; with --contact, a mesh with the parts of
+        /// meshes/indent-3d.geo, run as cases/indentation-3d.toml.
+        #[arg(long, conflicts_with = "sizes")]
         mesh: Option<PathBuf>,
         /// Also time faer's sparse LU on the same matrices, for comparison.
         #[arg(long)]
@@ -178,9 +179,12 @@ fn run(command: Command) -> Result<Outcome> {
                 return bench::measure_one(&spec).map(|_| Outcome::Done);
             }
             if contact {
-                let sizes =
-                    sizes.unwrap_or_else(|| bench::CONTACT_SIZES.map(String::from).to_vec());
-                return bench::contact(&sizes).map(|_| Outcome::Done);
+                let targets = match (&mesh, sizes) {
+                    (Some(path), _) => vec![path.display().to_string()],
+                    (None, Some(sizes)) => sizes,
+                    (None, None) => bench::CONTACT_SIZES.map(String::from).to_vec(),
+                };
+                return bench::contact(&targets).map(|_| Outcome::Done);
             }
             let sizes = sizes.unwrap_or_else(|| bench::SIZES.map(String::from).to_vec());
             let target = match &mesh {

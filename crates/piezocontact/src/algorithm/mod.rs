@@ -194,39 +194,43 @@ fn run_inner(
 /// The error for an inner loop that stopped without converging: the one place where stops
 /// become errors, with a hint on the method's parameters.
 fn inner_failure(method: &Method, inner: &InnerResult, pv2: bool, step: usize) -> Option<Error> {
-    let (r, eps, max_inner) = match *method {
-        Method::Uzawa { r, eps, max_inner } => (r, eps, max_inner),
-        Method::Newton { max_inner, .. } => return newton_failure(inner, max_inner, step),
+    let (what, tolerance, cap_hint, hint) = match *method {
+        Method::Uzawa { r, eps, max_inner } => {
+            let algorithm = if pv2 { 2 } else { 4 };
+            let hint = format!(
+                "r too small or too large for this problem: try solver.r = {:.4e} or {:.4e} (now {r:.4e}; the paper uses 0.25 E)",
+                2.0 * r,
+                0.5 * r,
+            );
+            let what = format!("the Uzawa loop (Algorithm {algorithm}) of outer step {step}");
+            (what, eps, format!("raise solver.max_inner (now {max_inner}), or {hint}"), hint)
+        }
+        Method::Newton { max_inner, .. } => {
+            let hint = "the active set cycles or the Jacobian is singular: check that Γ3 can \
+                        touch the foundation only where the body is held, and report the case \
+                        if it persists"
+                .to_string();
+            let what = format!("the semismooth Newton method of outer step {step}");
+            let cap = format!("raise solver.max_inner (now {max_inner}); {hint}");
+            (what, newton::STEP_TOLERANCE, cap, hint)
+        }
     };
-    let what =
-        format!("the Uzawa loop (Algorithm {}) of outer step {step}", if pv2 { 2 } else { 4 });
-    let r_hint = format!(
-        "r too small or too large for this problem: try solver.r = {:.4e} or {:.4e} (now {r:.4e}; the paper uses 0.25 E)",
-        2.0 * r,
-        0.5 * r,
-    );
+    let history = tail(&inner.history);
+    let iteration = inner.iterations;
     match &inner.stop {
         Stop::Converged => None,
         Stop::Cap => Some(Error::NotConverged {
             what,
-            iterations: inner.iterations,
+            iterations: iteration,
             criterion: inner.history.last().copied().unwrap_or(f64::NAN),
-            tolerance: eps,
-            history: tail(&inner.history),
-            hint: format!("raise solver.max_inner (now {max_inner}), or {r_hint}"),
+            tolerance,
+            history,
+            hint: cap_hint,
         }),
-        Stop::Diverged => Some(Error::Diverged {
-            what,
-            iteration: inner.iterations,
-            history: tail(&inner.history),
-            hint: r_hint,
-        }),
-        Stop::NotFinite(cause) => Some(Error::NumericalFailure {
-            what,
-            iteration: inner.iterations,
-            cause: cause.clone(),
-            hint: r_hint,
-        }),
+        Stop::Diverged => Some(Error::Diverged { what, iteration, history, hint }),
+        Stop::NotFinite(cause) => {
+            Some(Error::NumericalFailure { what, iteration, cause: cause.clone(), hint })
+        }
     }
 }
 
@@ -285,35 +289,6 @@ pub struct ContactSolution {
     pub balance: Balance,
 }
 
-/// The error for a Newton solve that stopped without converging.
-fn newton_failure(inner: &InnerResult, max_inner: usize, step: usize) -> Option<Error> {
-    let what = format!("the semismooth Newton method of outer step {step}");
-    let hint = "the active set cycles or the Jacobian is singular: check that Γ3 can touch the \
-                foundation only where the body is held, and report the case if it persists";
-    match &inner.stop {
-        Stop::Converged => None,
-        Stop::Cap => Some(Error::NotConverged {
-            what,
-            iterations: inner.iterations,
-            criterion: inner.history.last().copied().unwrap_or(f64::NAN),
-            tolerance: newton::STEP_TOLERANCE,
-            history: tail(&inner.history),
-            hint: format!("raise solver.max_inner (now {max_inner}); {hint}"),
-        }),
-        Stop::Diverged => Some(Error::Diverged {
-            what,
-            iteration: inner.iterations,
-            history: tail(&inner.history),
-            hint: hint.into(),
-        }),
-        Stop::NotFinite(cause) => Some(Error::NumericalFailure {
-            what,
-            iteration: inner.iterations,
-            cause: cause.clone(),
-            hint: hint.into(),
-        }),
-    }
-}
 
 /// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it).
 pub fn solve_contact(

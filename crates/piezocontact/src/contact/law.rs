@@ -143,9 +143,9 @@ pub fn project_ball<const D: usize>(z: [f64; D], s: f64) -> [f64; D] {
 mod tests {
     use super::*;
 
-    #[test]
-    fn paper_functions() {
-        let law = NormalCompliance {
+    /// A compliance law with every constant set.
+    fn law() -> NormalCompliance {
+        NormalCompliance {
             gap: 0.5,
             penetration: 0.1,
             c_nu: 2.0,
@@ -153,7 +153,12 @@ mod tests {
             n_nu: 0.2,
             h_nu_range: 128.0,
             phi0: 32.0,
-        };
+        }
+    }
+
+    #[test]
+    fn paper_functions() {
+        let law = law();
         assert_eq!(law.stop(law.gap), 0.6);
         assert_eq!((law.p_nu(-1.0), law.p_nu(0.1), law.p_nu(5.0)), (0.0, 0.1, 0.2));
         assert_eq!(law.h_nu(0.0), 2.0);
@@ -168,15 +173,7 @@ mod tests {
 
     #[test]
     fn derivatives_match_difference_quotients_away_from_kinks() {
-        let law = NormalCompliance {
-            gap: 0.5,
-            penetration: 0.1,
-            c_nu: 2.0,
-            alpha_nu: 3.0,
-            n_nu: 0.2,
-            h_nu_range: 128.0,
-            phi0: 32.0,
-        };
+        let law = law();
         let c = Conduction { ke: 2.0, phi0: 32.0, delta: 4.0, truncation: 10.0 };
         let h = 1e-7;
         for (u, phi) in [(0.55, 40.0), (0.6, 20.0), (0.3, 0.0), (0.9, 500.0), (0.52, 35.0)] {

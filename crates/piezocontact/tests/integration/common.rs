@@ -173,3 +173,18 @@ pub fn paper_settings(units: Units, eps: f64) -> Settings {
         max_outer: 200,
     }
 }
+
+/// The arch of `meshes/arch.msh`: a block on a curved contact face (Γ3), clamped at its
+/// sides, grounded and loaded by f2 = (0, −5) on its top.
+pub fn arch_problem() -> Problem {
+    let mesh = read_mesh("arch.msh");
+    let part = |n: &str| mesh.part_index(n).unwrap();
+    let boundary = Boundary {
+        clamped: vec![part("clamp")],
+        grounded: vec![part("top")],
+        contact: vec![part("contact")],
+        traction: vec![(part("top"), constant_vector(vec![0.0, -5.0]))],
+        ..Boundary::default()
+    };
+    Problem::new(mesh, pzt(2, ElasticLaw::Linear), boundary, BodyLoads::default()).unwrap()
+}

@@ -102,19 +102,7 @@ fn kkt_conditions_and_force_balance_hold_on_the_paper_cases() {
 
 #[test]
 fn kkt_conditions_hold_on_a_curved_contact_face() {
-    use super::common::read_mesh;
-    use piezocontact::problem::{BodyLoads, Boundary, constant_vector};
-    let mesh = read_mesh("arch.msh");
-    let part = |n: &str| mesh.part_index(n).unwrap();
-    let boundary = Boundary {
-        clamped: vec![part("clamp")],
-        grounded: vec![part("top")],
-        contact: vec![part("contact")],
-        traction: vec![(part("top"), constant_vector(vec![0.0, -5.0]))],
-        ..Boundary::default()
-    };
-    let material = super::common::pzt(2, ElasticLaw::Linear);
-    let problem = Problem::new(mesh, material, boundary, BodyLoads::default()).unwrap();
+    let problem = super::common::arch_problem();
     let mut model = paper_model(Some((0.3, 0.5)), 0.0, PAPER_UNITS);
     model.compliance.gap = 0.02;
     let settings = paper_settings(PAPER_UNITS, 1e-9);

@@ -4,8 +4,8 @@
 //! complement read off the factor.
 
 use super::common::{
-    PAPER_UNITS, paper_model, paper_problem, paper_problem_with_contact, paper_settings, pzt,
-    read_mesh,
+    PAPER_UNITS, arch_problem, paper_model, paper_problem, paper_problem_with_contact,
+    paper_settings, pzt, read_mesh,
 };
 use piezocontact::algorithm::{ContactModel, ContactSolution, Method, Settings, solve_contact};
 use piezocontact::contact::law::Regularization;
@@ -127,17 +127,7 @@ fn newton_agrees_with_tight_uzawa_on_the_paper_bar_96x16() {
 
 #[test]
 fn newton_agrees_with_tight_uzawa_on_a_curved_face_and_in_3d() {
-    let mesh = read_mesh("arch.msh");
-    let part = |n: &str| mesh.part_index(n).unwrap();
-    let boundary = Boundary {
-        clamped: vec![part("clamp")],
-        grounded: vec![part("top")],
-        contact: vec![part("contact")],
-        traction: vec![(part("top"), constant_vector(vec![0.0, -5.0]))],
-        ..Boundary::default()
-    };
-    let arch =
-        Problem::new(mesh, pzt(2, ElasticLaw::Linear), boundary, BodyLoads::default()).unwrap();
+    let arch = arch_problem();
     let mut model = paper_model(Some((0.3, 0.5)), 0.0, PAPER_UNITS);
     model.compliance.gap = 0.02;
     assert_agree(&arch, &model, "arch PV2");
