@@ -289,7 +289,6 @@ pub struct ContactSolution {
     pub balance: Balance,
 }
 
-
 /// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it).
 pub fn solve_contact(
     problem: &Problem,
