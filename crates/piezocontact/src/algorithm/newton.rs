@@ -54,6 +54,9 @@ pub struct Condensed {
     u: Vec<[usize; 3]>,
     /// Per Γ3 node: its ϕ.
     phi: Vec<Phi>,
+    /// Per Γ3 node: whether it is condensed. A node whose normal misses the foundation (an
+    /// infinite gap) cannot touch it, and stays with the interior.
+    kept: Vec<bool>,
 }
 
 /// ϕ of a Γ3 node in the condensed problem.
@@ -72,14 +75,26 @@ impl Condensed {
     /// The u of every Γ3 node, and its ϕ when `with_phi` (the laws that read ϕ can act: a
     /// penetration g_p > 0); a prescribed ϕ (a Γ3 node on Γa) is not an unknown.
     pub fn new(dofs: &DofMap, surface: &ContactSurface, with_phi: bool) -> Self {
-        let mut this =
-            Self { free: Vec::new(), global: Vec::new(), u: Vec::new(), phi: Vec::new() };
+        let mut this = Self {
+            free: Vec::new(),
+            global: Vec::new(),
+            u: Vec::new(),
+            phi: Vec::new(),
+            kept: Vec::new(),
+        };
         let push = |this: &mut Self, g: usize| {
             this.free.push(dofs.free_index(g));
             this.global.push(g);
             this.free.len() - 1
         };
-        for &node in &surface.nodes {
+        for (i, &node) in surface.nodes.iter().enumerate() {
+            let kept = surface.gap[i].is_finite();
+            this.kept.push(kept);
+            if !kept {
+                this.u.push([usize::MAX; 3]);
+                this.phi.push(Phi::Interior);
+                continue;
+            }
             let mut u = [0; 3];
             for (k, slot) in u.iter_mut().enumerate().take(surface.dim()) {
                 *slot = push(&mut this, dofs.u(node, k));
@@ -202,7 +217,7 @@ impl Newton<'_> {
         let mut state = eval.multipliers;
         // Off the active set the law is λ_c = 0, held to round-off by the Newton equations.
         for (i, set) in eval.sets.iter().enumerate() {
-            if set & 1 == 0 {
+            if set & 1 == 0 || !cond.kept[i] {
                 state.lambda_c[i] = 0.0;
             }
         }
@@ -228,7 +243,7 @@ impl<'a> Local<'a> {
         let frames: Vec<[[f64; 3]; 3]> = (0..surface.len()).map(|i| surface.frame(i)).collect();
         let m = cond.len();
         // S ← Q S Qᵀ, node block by node block: columns, then rows.
-        for (i, q) in frames.iter().enumerate() {
+        for (i, q) in frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
             let idx = &cond.u[i][..dim];
             for r in 0..m {
                 let old: Vec<f64> = idx.iter().map(|&k| schur.get(r, k)).collect();
@@ -256,13 +271,16 @@ impl<'a> Local<'a> {
         this.c = (0..surface.len())
             .map(|i| {
                 let k = cond.u[i][0];
+                if !cond.kept[i] {
+                    return 0.0;
+                }
                 newton.c_factor * this.schur.get(k, k).abs() / surface.weight[i]
             })
             .collect();
         this.scale = (0..m)
             .map(|k| 1.0 / this.schur.get(k, k).abs().sqrt().max(f64::MIN_POSITIVE))
             .collect();
-        for (i, u) in cond.u.iter().enumerate() {
+        for (i, u) in cond.u.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
             u[..dim].iter().for_each(|&k| this.scale[k] *= surface.weight[i]);
         }
         this
@@ -273,7 +291,7 @@ impl<'a> Local<'a> {
         let cond = self.newton.condensed;
         let mut y: Vec<f64> = cond.global.iter().map(|&g| x[g]).collect();
         let dim = self.newton.step.surface.dim();
-        for (i, q) in self.frames.iter().enumerate() {
+        for (i, q) in self.frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
             let idx = &cond.u[i][..dim];
             let u: Vec<f64> = idx.iter().map(|&k| y[k]).collect();
             for (a, &k) in idx.iter().enumerate() {
@@ -288,7 +306,7 @@ impl<'a> Local<'a> {
         let cond = self.newton.condensed;
         let dim = self.newton.step.surface.dim();
         let mut v = local.to_vec();
-        for (i, q) in self.frames.iter().enumerate() {
+        for (i, q) in self.frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
             let idx = &cond.u[i][..dim];
             for (b, &k) in idx.iter().enumerate() {
                 v[k] = idx.iter().enumerate().map(|(a, &l)| q[a][b] * local[l]).sum();
@@ -324,8 +342,9 @@ impl<'a> Local<'a> {
         let (n3, dim) = (surface.len(), surface.dim());
         let mut forces = self.schur.mul(y);
         forces.iter_mut().zip(&self.load).for_each(|(r, g)| *r -= g);
-        let sigma_nu: Vec<f64> =
-            (0..n3).map(|i| forces[cond.u[i][0]] / surface.weight[i]).collect();
+        let sigma_nu: Vec<f64> = (0..n3)
+            .map(|i| if cond.kept[i] { forces[cond.u[i][0]] / surface.weight[i] } else { 0.0 })
+            .collect();
         let r_sigma = step.friction.map_or_else(|| sigma_nu.clone(), |(_, r)| r.apply(&sigma_nu));
         let mut eval = Evaluation {
             residual: vec![0.0; y.len()],
@@ -336,7 +355,7 @@ impl<'a> Local<'a> {
             sigma_nu,
             r_sigma,
         };
-        for i in 0..n3 {
+        for i in (0..n3).filter(|&i| cond.kept[i]) {
             let (w, u, c) = (surface.weight[i], cond.u[i], self.c[i]);
             let (u_nu, phi) = (y[u[0]], self.phi(y, i));
             let (gap, rho) = (surface.gap[i], law.stop(surface.gap[i]));
@@ -389,7 +408,7 @@ impl<'a> Local<'a> {
         let m = y.len();
         let mut delta = vec![0.0; m];
         let mut node_of = vec![0; m];
-        for (i, u) in cond.u.iter().enumerate() {
+        for (i, u) in cond.u.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
             u[..dim].iter().for_each(|&k| node_of[k] = i);
             if let Phi::Unknown(p) = cond.phi[i] {
                 node_of[p] = i;
@@ -477,7 +496,7 @@ impl<'a> Local<'a> {
         }
         if s > 0.0 {
             let sign = mu[i] * eval.r_sigma[i].signum() * z_hat[a - 1];
-            for (j, weight) in mollifier.row(i) {
+            for (j, weight) in mollifier.row(i).into_iter().filter(|(j, _)| cond.kept[*j]) {
                 // ∂σ_ν,j = S_{ν_j,·} / w_j.
                 add(out, cond.u[j][0], -sign * weight / surface.weight[j]);
             }

@@ -193,3 +193,25 @@ fn a_symmetric_3d_problem_has_a_symmetric_solution() {
     println!("{checked} mirror pairs, {touching} Γ3 nodes touch, worst u difference {worst:.1e}");
     assert!(touching >= 9, "the ball barely touches");
 }
+
+/// A disk under the middle of the bar: most Γ3 normals miss it (infinite gaps). The exact
+/// solver leaves those nodes out of its condensed problem; the paper's Uzawa algorithm,
+/// run tightly, keeps every node, and both give one solution.
+#[test]
+fn nodes_that_cannot_touch_change_nothing() {
+    let problem = paper_problem(48, 8, PAPER_UNITS, ElasticLaw::Linear);
+    let mut model = paper_model(Some((0.3, 0.0)), 0.0, PAPER_UNITS);
+    model.compliance.gap = 0.0;
+    model.foundation = Foundation::Sphere { center: [6.0, -1.3, 0.0], radius: 1.0 };
+    let exact = solve(&problem, &model);
+    let surface = &exact.surface;
+    let misses = surface.gap.iter().filter(|g| g.is_infinite()).count();
+    assert!(2 * misses > surface.len(), "{misses} of {} miss the disk", surface.len());
+    assert!(exact.sigma_nu.iter().filter(|s| **s < 0.0).count() >= 3, "no contact");
+    let tight = super::common::paper_settings(PAPER_UNITS, 1e-13);
+    let uzawa = solve_contact(&problem, &model, &tight).unwrap();
+    assert!(uzawa.converged, "{:?}", uzawa.failure);
+    let size = exact.x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let gap = exact.x.iter().zip(&uzawa.x).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+    assert!(gap <= 1e-7 * size, "{gap} of {size}");
+}
