@@ -83,6 +83,7 @@ pub mod contact;
 pub mod dofs;
 pub mod element;
 pub mod error;
+pub mod limits;
 pub mod linalg;
 pub mod material;
 pub mod mesh;

@@ -303,6 +303,9 @@ pub fn solve_contact(
     );
     let condensed = Condensed::new(&dofs, &surface, model.compliance.penetration > 0.0);
     let exact = settings.method.is_exact();
+    if exact {
+        condensed.check_memory(crate::limits::available_memory())?;
+    }
     let blocks = method_blocks(&settings.method, &surface, model.pv2.is_some());
     let mut system = if exact {
         CoupledSystem::with_last(problem, dofs, &condensed.free)?

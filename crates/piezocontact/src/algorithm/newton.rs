@@ -31,7 +31,7 @@
 use super::{ContactState, InnerResult, Step, Stop};
 use crate::contact::ContactSurface;
 use crate::dofs::{CONSTRAINED, DofMap};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::linalg::DenseMatrix;
 use crate::solver::CoupledSystem;
 
@@ -111,6 +111,23 @@ impl Condensed {
             this.phi.push(phi);
         }
         this
+    }
+
+    /// Checks that the dense work of the condensation — the Schur complement, its factor
+    /// block and the Newton systems, about 5 dense m × m matrices — fits in `available`
+    /// bytes.
+    pub fn check_memory(&self, available: f64) -> Result<()> {
+        let m = self.len() as f64;
+        let bytes = 5.0 * 8.0 * m * m;
+        if bytes > available {
+            return Err(Error::Input(format!(
+                "the exact solver condenses {} unknowns of Γ3 into dense matrices of about {:.1} GiB, more than the {:.1} GiB available; use solver.method = \"uzawa\", or name a smaller contact part (boundary.contact)",
+                self.len(),
+                bytes / 2f64.powi(30),
+                available / 2f64.powi(30)
+            )));
+        }
+        Ok(())
     }
 
     /// Number of condensed unknowns.
@@ -515,5 +532,27 @@ impl<'a> Local<'a> {
             alpha *= 0.5;
         }
         1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_condensed_problem_too_large_for_memory_is_refused() {
+        let many = Condensed {
+            free: vec![0; 30_000],
+            global: Vec::new(),
+            u: Vec::new(),
+            phi: Vec::new(),
+            kept: Vec::new(),
+        };
+        assert!(many.check_memory(64.0 * 2f64.powi(30)).is_ok());
+        let e = many.check_memory(16.0 * 2f64.powi(30)).unwrap_err().to_string();
+        assert!(
+            e.contains("30000 unknowns") && e.contains("33.5 GiB") && e.contains("uzawa"),
+            "{e}"
+        );
     }
 }

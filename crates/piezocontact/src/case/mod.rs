@@ -523,7 +523,7 @@ impl Case {
     fn check_memory(&self, nx: usize, ny: usize) -> Result<()> {
         let nodes = (nx as f64 + 1.0) * (ny as f64 + 1.0);
         let bytes = nodes * 12e3 * (nodes.log2() / 18.0).max(1.0);
-        let available = available_memory();
+        let available = crate::limits::available_memory();
         if bytes > available {
             return Err(input!(
                 "{}: mesh.nx × mesh.ny = {nx} × {ny} cells ({nodes:.3e} nodes, {:.3e} unknowns) would need about {:.3e} GiB, and this machine has {:.1} GiB available; reduce mesh.nx and mesh.ny",
@@ -937,17 +937,6 @@ fn kind_name(kind: FoundationKind) -> &'static str {
         FoundationKind::Plane => "plane",
         FoundationKind::Sphere => "sphere",
     }
-}
-
-/// Memory available to this process [bytes]: MemAvailable of /proc/meminfo, else 24 GiB.
-fn available_memory() -> f64 {
-    std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|t| {
-            let line = t.lines().find(|l| l.starts_with("MemAvailable:"))?.to_string();
-            line.split_whitespace().nth(1)?.parse::<f64>().ok()
-        })
-        .map_or(24.0 * 2f64.powi(30), |kib| kib * 1024.0)
 }
 
 /// A range rule: key, value, test, and the requirement stated in the error.
