@@ -52,7 +52,7 @@ pub enum Method {
         /// r > 0 [stress/length]: the constant of the KKT residual; the Newton method uses
         /// c_i = (r/E)·S_νν,i/w_i, r scaled by the stiffness of Γ3 node i. The answer does
         /// not depend on it.
-        c: f64,
+        r: f64,
         /// The run stops when the KKT residual is at most this [-].
         tol: f64,
         /// Cap on Newton steps per outer step.
@@ -82,7 +82,7 @@ impl Method {
     pub fn complementarity_constant(&self) -> f64 {
         match self {
             Self::Uzawa { r, .. } => *r,
-            Self::Newton { c, .. } => *c,
+            Self::Newton { r, .. } => *r,
         }
     }
 }
@@ -184,8 +184,8 @@ fn run_inner(
 ) -> Result<InnerResult> {
     match *method {
         Method::Uzawa { r, eps, max_inner } => Uzawa { step, r, eps, max_inner }.run(system),
-        Method::Newton { c, max_inner, .. } => {
-            let c_factor = c / step.problem.material.elasticity.young();
+        Method::Newton { r, max_inner, .. } => {
+            let c_factor = r / step.problem.material.elasticity.young();
             Newton { step, condensed, c_factor, max_iterations: max_inner }.run(system)
         }
     }

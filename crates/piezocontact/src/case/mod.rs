@@ -611,8 +611,8 @@ impl Case {
                 Rule("solver.eps_fp", settings.eps_fp, positive, "ε_fp > 0"),
                 Rule("solver.max_inner", max_inner as f64, |v| v >= 1.0, "at least 1"),
             ]),
-            Method::Newton { c, tol, max_inner } => rules.extend([
-                Rule("solver.r", c, positive, "r > 0"),
+            Method::Newton { r, tol, max_inner } => rules.extend([
+                Rule("solver.r", r, positive, "r > 0"),
                 Rule("solver.tol", tol, positive, "a tolerance > 0"),
                 Rule("solver.max_inner", max_inner as f64, |v| v >= 1.0, "at least 1"),
             ]),
@@ -846,7 +846,7 @@ impl Case {
                 max_inner: s.max_inner.unwrap_or(d.max_uzawa),
             },
             MethodKey::Newton => Method::Newton {
-                c: r,
+                r,
                 tol: s.tol.unwrap_or(d.tol),
                 max_inner: s.max_inner.unwrap_or(d.max_newton),
             },
@@ -1052,7 +1052,7 @@ gap = 0.1
         let c = case(MINIMAL, &[]).unwrap();
         let s = c.settings().unwrap();
         let d = SolverSection::DEFAULTS;
-        let newton = Method::Newton { c: 0.25 * 100.0, tol: d.tol, max_inner: d.max_newton };
+        let newton = Method::Newton { r: 0.25 * 100.0, tol: d.tol, max_inner: d.max_newton };
         assert_eq!(s, Settings { method: newton, eps_fp: d.eps_fp, max_outer: d.max_outer });
         let uzawa = case(MINIMAL, &["solver.method=\"uzawa\""]).unwrap().settings().unwrap();
         let expected = Method::Uzawa { r: 25.0, eps: d.eps, max_inner: d.max_uzawa };

@@ -18,7 +18,7 @@ use piezocontact::solver::CoupledSystem;
 fn newton(r_per_young: f64) -> Settings {
     let young = PAPER_UNITS.stress(58.7102);
     Settings {
-        method: Method::Newton { c: r_per_young * young, tol: 1e-10, max_inner: 100 },
+        method: Method::Newton { r: r_per_young * young, tol: 1e-10, max_inner: 100 },
         eps_fp: 1e-10,
         max_outer: 100,
     }

@@ -11,7 +11,7 @@ use piezocontact::problem::Problem;
 fn newton() -> Settings {
     let young = PAPER_UNITS.stress(58.7102);
     Settings {
-        method: Method::Newton { c: 0.25 * young, tol: 1e-10, max_inner: 100 },
+        method: Method::Newton { r: 0.25 * young, tol: 1e-10, max_inner: 100 },
         eps_fp: 1e-10,
         max_outer: 10,
     }
@@ -207,6 +207,9 @@ fn nodes_that_cannot_touch_change_nothing() {
     let surface = &exact.surface;
     let misses = surface.gap.iter().filter(|g| g.is_infinite()).count();
     assert!(2 * misses > surface.len(), "{misses} of {} miss the disk", surface.len());
+    // Only the nodes that can touch are condensed: u_x and u_y of each (g_p = 0: no ϕ).
+    let condensed = piezocontact::algorithm::newton::Condensed::new(&exact.dofs, surface, false);
+    assert_eq!(condensed.len(), 2 * (surface.len() - misses));
     assert!(exact.sigma_nu.iter().filter(|s| **s < 0.0).count() >= 3, "no contact");
     let tight = super::common::paper_settings(PAPER_UNITS, 1e-13);
     let uzawa = solve_contact(&problem, &model, &tight).unwrap();
