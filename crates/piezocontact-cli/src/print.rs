@@ -24,6 +24,10 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
     );
     let inner = if run.settings.method.is_exact() { "Newton steps" } else { "inner iterations" };
     println!("  {inner:<18} = {:?} (per outer step)", solution.inner_iterations);
+    if run.settings.method.is_exact() {
+        let n3 = solution.surface.len();
+        println!("  condensed nodes    = {} of {n3} Γ3 nodes", solution.condensed_nodes);
+    }
     println!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
     println!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
     let measure = match run.problem.mesh.dim() {

@@ -137,6 +137,7 @@ pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &
         },
         "gamma3": {
             "nodes": rows.len(),
+            "condensed_nodes": solution.condensed_nodes,
             "max_abs_sigma_nu": max_abs(&|r| r.sigma_nu),
             "max_abs_sigma_tau": max_abs(&|r| r.sigma_tau[0].hypot(r.sigma_tau[1])),
             "contact_measure": contact,

@@ -115,6 +115,16 @@ impl CoupledSystem {
         })
     }
 
+    /// Orders the free unknowns `last` last (in that order) and runs the symbolic analysis
+    /// again; the next [`CoupledSystem::factorize`] uses it.
+    pub fn put_last(&mut self, last: &[usize]) -> Result<()> {
+        let t = Instant::now();
+        let ordering = ordering_with_last(self.assembler.pattern(), last)?;
+        self.pattern_seconds += t.elapsed().as_secs_f64();
+        self.matrix = None;
+        self.solver.analyze(self.assembler.pattern(), &self.assembler.dofs().signs(), &ordering)
+    }
+
     /// Assembles B̌ with the secant moduli `g` (one per element) plus the nodal `blocks`, and
     /// factorises.
     pub fn factorize(&mut self, problem: &Problem, g: &[f64], blocks: &[NodalBlock]) -> Result<()> {

@@ -31,7 +31,7 @@ use crate::error::{Error, Result};
 use crate::problem::Problem;
 use crate::solver::{CoupledSystem, Timings};
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
-use newton::{Condensed, Newton};
+use newton::Condensed;
 use residual::{Balance, KktResidual};
 use uzawa::Uzawa;
 
@@ -57,6 +57,10 @@ pub enum Method {
         tol: f64,
         /// Cap on Newton steps per outer step.
         max_inner: usize,
+        /// The most Γ3 nodes condensed into the dense problem. A Γ3 with more nodes within
+        /// the foundation's reach starts from the nodes nearest to it, and trades clear
+        /// nodes for left-out nodes that turn out to touch (model §11).
+        max_condensed: usize,
     },
 }
 
@@ -175,18 +179,21 @@ fn method_blocks(method: &Method, surface: &ContactSurface, friction: bool) -> V
     }
 }
 
-/// Runs `method` on one outer step with the factorised `system`.
+/// Runs `method` on one outer step with the `system` factorised with the moduli `g`.
 fn run_inner(
     method: &Method,
     step: &Step,
-    condensed: &Condensed,
+    condensed: &mut Condensed,
     system: &mut CoupledSystem,
+    g: &[f64],
 ) -> Result<InnerResult> {
     match *method {
         Method::Uzawa { r, eps, max_inner } => Uzawa { step, r, eps, max_inner }.run(system),
-        Method::Newton { r, max_inner, .. } => {
+        Method::Newton { r, max_inner, max_condensed, .. } => {
             let c_factor = r / step.problem.material.elasticity.young();
-            Newton { step, condensed, c_factor, max_iterations: max_inner }.run(system)
+            let parameters =
+                newton::Parameters { c_factor, max_iterations: max_inner, max_condensed };
+            newton::solve(step, parameters, condensed, system, g)
         }
     }
 }
@@ -283,6 +290,8 @@ pub struct ContactSolution {
     pub inner_history: Vec<Vec<f64>>,
     /// Time spent in each phase.
     pub timings: Timings,
+    /// The Γ3 nodes in the exact solver's dense problem at the end (0 for Uzawa).
+    pub condensed_nodes: usize,
     /// The residual of the discrete KKT conditions at `x` (model §10).
     pub kkt: KktResidual,
     /// The global force balance at `x`.
@@ -301,7 +310,12 @@ pub fn solve_contact(
         &model.foundation,
         model.compliance.gap,
     );
-    let condensed = Condensed::new(&dofs, &surface, model.compliance.penetration > 0.0);
+    let max_condensed = match settings.method {
+        Method::Newton { max_condensed, .. } => max_condensed,
+        Method::Uzawa { .. } => usize::MAX,
+    };
+    let with_phi = model.compliance.penetration > 0.0;
+    let mut condensed = Condensed::new(&dofs, &surface, with_phi, max_condensed);
     let exact = settings.method.is_exact();
     if exact {
         condensed.check_memory(crate::limits::available_memory())?;
@@ -322,6 +336,7 @@ pub fn solve_contact(
     let mut solution = ContactSolution {
         kkt: KktResidual::default(),
         balance: Balance::default(),
+        condensed_nodes: 0,
         x: vec![0.0; system.dofs().n_total()],
         dofs: DofMap::default(),
         surface: surface.clone(),
@@ -371,7 +386,7 @@ pub fn solve_contact(
             conduction: model.pv2.as_ref().map(|(_, conduction)| conduction),
             start: &solution.x,
         };
-        let inner = run_inner(&settings.method, &step, &condensed, &mut system)?;
+        let inner = run_inner(&settings.method, &step, &mut condensed, &mut system, &g)?;
         solution.inner_iterations.push(inner.iterations);
         solution.inner_history.push(inner.history.clone());
         solution.outer_iterations = n + 1;
@@ -450,6 +465,7 @@ pub fn solve_contact(
         });
     }
     solution.timings = system.timings();
+    solution.condensed_nodes = if exact { condensed.node_count() } else { 0 };
     solution.dofs = system.into_dofs();
     (solution.kkt, solution.balance) = residual::assess(problem, model, settings, &solution)?;
     if let Method::Newton { tol, .. } = settings.method

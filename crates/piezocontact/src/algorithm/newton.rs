@@ -41,6 +41,8 @@ pub const STEP_TOLERANCE: f64 = 1e-12;
 const STEP_FLOOR: f64 = 1e-15;
 /// Halvings of the line search.
 const HALVINGS: usize = 8;
+/// Condensed problems solved in one outer step, at most (each after a factorisation).
+const MAX_ROUNDS: usize = 10;
 
 /// The Γ3 unknowns kept by the condensation, in the order of the Schur complement.
 #[derive(Clone, Debug)]
@@ -55,8 +57,11 @@ pub struct Condensed {
     /// Per Γ3 node: its ϕ.
     phi: Vec<Phi>,
     /// Per Γ3 node: whether it is condensed. A node whose normal misses the foundation (an
-    /// infinite gap) cannot touch it, and stays with the interior.
+    /// infinite gap) cannot touch it, and stays with the interior, as do the nodes left out
+    /// of a Γ3 too large to condense whole.
     kept: Vec<bool>,
+    /// Whether ϕ of the nodes is condensed.
+    with_phi: bool,
 }
 
 /// ϕ of a Γ3 node in the condensed problem.
@@ -72,15 +77,37 @@ enum Phi {
 }
 
 impl Condensed {
-    /// The u of every Γ3 node, and its ϕ when `with_phi` (the laws that read ϕ can act: a
-    /// penetration g_p > 0); a prescribed ϕ (a Γ3 node on Γa) is not an unknown.
-    pub fn new(dofs: &DofMap, surface: &ContactSurface, with_phi: bool) -> Self {
+    /// The Γ3 nodes within the foundation's reach, at most `max_nodes` of them: all when
+    /// they are that few, else the `max_nodes` nearest to the foundation (smallest gap; the
+    /// first of equal ones), which [`Condensed::grown`] corrects. A node's u is condensed, and its ϕ when
+    /// `with_phi` (the laws that read ϕ can act: a penetration g_p > 0); a prescribed ϕ (a
+    /// Γ3 node on Γa) is not an unknown.
+    pub fn new(dofs: &DofMap, surface: &ContactSurface, with_phi: bool, max_nodes: usize) -> Self {
+        let gap = &surface.gap;
+        let mut reach: Vec<usize> = (0..surface.len()).filter(|&i| gap[i].is_finite()).collect();
+        if reach.len() > max_nodes {
+            reach.sort_by(|&a, &b| gap[a].total_cmp(&gap[b]).then(a.cmp(&b)));
+            reach.truncate(max_nodes);
+        }
+        let mut kept = vec![false; surface.len()];
+        reach.into_iter().for_each(|i| kept[i] = true);
+        Self::with_nodes(dofs, surface, with_phi, kept)
+    }
+
+    /// The unknowns of the `kept` nodes.
+    fn with_nodes(
+        dofs: &DofMap,
+        surface: &ContactSurface,
+        with_phi: bool,
+        kept: Vec<bool>,
+    ) -> Self {
         let mut this = Self {
             free: Vec::new(),
             global: Vec::new(),
             u: Vec::new(),
             phi: Vec::new(),
             kept: Vec::new(),
+            with_phi,
         };
         let push = |this: &mut Self, g: usize| {
             this.free.push(dofs.free_index(g));
@@ -88,9 +115,7 @@ impl Condensed {
             this.free.len() - 1
         };
         for (i, &node) in surface.nodes.iter().enumerate() {
-            let kept = surface.gap[i].is_finite();
-            this.kept.push(kept);
-            if !kept {
+            if !kept[i] {
                 this.u.push([usize::MAX; 3]);
                 this.phi.push(Phi::Interior);
                 continue;
@@ -110,7 +135,65 @@ impl Condensed {
             };
             this.phi.push(phi);
         }
+        this.kept = kept;
         this
+    }
+
+    /// The active-set check of the nodes left out (model §11): at the solution `x` of the
+    /// condensed problem, a left-out node carries no contact force, which is its law only
+    /// while u_ν ≤ g_a. `None` when every left-out node is there. Else the condensation
+    /// with those that pass it added, and with them the left-out nodes as near to touching
+    /// (u_ν − g_a above minus the largest excess e), deepest first. When that would exceed
+    /// `max_nodes`, condensed nodes clear of the foundation make room, the clearest first;
+    /// an error when none can.
+    pub fn grown(
+        &self,
+        dofs: &DofMap,
+        surface: &ContactSurface,
+        x: &[f64],
+        max_nodes: usize,
+    ) -> Result<Option<Self>> {
+        let excess = |i: usize| {
+            let nu = surface.frame(i)[0];
+            let u_nu: f64 =
+                (0..surface.dim()).map(|k| nu[k] * x[dofs.u(surface.nodes[i], k)]).sum();
+            u_nu - surface.gap[i]
+        };
+        let reach = |i: &usize| surface.gap[*i].is_finite();
+        let ranked = |kept: bool| {
+            let mut nodes: Vec<(usize, f64)> = (0..surface.len())
+                .filter(|i| reach(i) && self.kept[*i] == kept)
+                .map(|i| (i, excess(i)))
+                .collect();
+            nodes.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+            nodes
+        };
+        let mut left_out = ranked(false);
+        let touching = left_out.iter().filter(|(_, v)| *v > 0.0).count();
+        if touching == 0 {
+            return Ok(None);
+        }
+        let largest = left_out[0].1;
+        left_out.retain(|(_, v)| *v > -largest);
+        let mut kept = self.kept.clone();
+        let count = self.node_count();
+        let short = (count + left_out.len()).saturating_sub(max_nodes);
+        let clear = ranked(true).into_iter().rev().take_while(|(_, v)| *v < 0.0).take(short);
+        clear.for_each(|(i, _)| kept[i] = false);
+        let room = max_nodes - kept.iter().filter(|k| **k).count();
+        if room == 0 {
+            return Err(Error::Input(format!(
+                "the contact zone is larger than solver.max_condensed = {max_nodes} nodes: with that many Γ3 nodes condensed and touching, {touching} more still touch the foundation; raise solver.max_condensed to at least {} (its dense matrices grow as its square), or use solver.method = \"uzawa\"",
+                count + touching
+            )));
+        }
+        left_out.into_iter().take(room).for_each(|(i, _)| kept[i] = true);
+        Ok(Some(Self::with_nodes(dofs, surface, self.with_phi, kept)))
+    }
+
+    /// Number of condensed Γ3 nodes.
+    pub fn node_count(&self) -> usize {
+        self.kept.iter().filter(|k| **k).count()
     }
 
     /// Checks that the dense work of the condensation — the Schur complement, its factor
@@ -185,6 +268,54 @@ struct Evaluation {
     /// σ_ν per node and R σ_ν.
     sigma_nu: Vec<f64>,
     r_sigma: Vec<f64>,
+}
+
+/// What the exact solver reads from `solver.*`.
+#[derive(Clone, Copy, Debug)]
+pub struct Parameters {
+    /// r/E: the complementarity constant relative to the local stiffness [-].
+    pub c_factor: f64,
+    /// Cap on Newton steps per condensed problem.
+    pub max_iterations: usize,
+    /// The most Γ3 nodes condensed.
+    pub max_condensed: usize,
+}
+
+/// Solves an outer step with the factorised `system` (ordered with `condensed` last),
+/// growing the condensation until no node left out touches (model §11). Each growth orders
+/// the new condensed unknowns last, factorises B̌ with the moduli `g` again, and restarts
+/// Newton from the last solution; the steps and histories of all rounds are summed.
+pub fn solve(
+    step: &Step,
+    parameters: Parameters,
+    condensed: &mut Condensed,
+    system: &mut CoupledSystem,
+    g: &[f64],
+) -> Result<InnerResult> {
+    let Parameters { c_factor, max_iterations, max_condensed } = parameters;
+    let mut result = Newton { step, condensed, c_factor, max_iterations }.run(system)?;
+    let mut rounds = 1;
+    while matches!(result.stop, Stop::Converged)
+        && let Some(grown) =
+            condensed.grown(system.dofs(), step.surface, &result.x, max_condensed)?
+    {
+        if rounds == MAX_ROUNDS {
+            return Err(Error::Input(format!(
+                "the exact solver's condensation of Γ3 did not settle in {MAX_ROUNDS} factorisations (solver.max_condensed = {max_condensed} nodes, {} condensed): raise solver.max_condensed, or use solver.method = \"uzawa\"",
+                condensed.node_count()
+            )));
+        }
+        rounds += 1;
+        grown.check_memory(crate::limits::available_memory())?;
+        *condensed = grown;
+        system.put_last(&condensed.free)?;
+        system.factorize(step.problem, g, &[])?;
+        let warm = Step { start: &result.x, ..*step };
+        let next = Newton { step: &warm, condensed, c_factor, max_iterations }.run(system)?;
+        let history = [std::mem::take(&mut result.history), next.history].concat();
+        result = InnerResult { iterations: result.iterations + next.iterations, history, ..next };
+    }
+    Ok(result)
 }
 
 impl Newton<'_> {
@@ -547,6 +678,7 @@ mod tests {
             u: Vec::new(),
             phi: Vec::new(),
             kept: Vec::new(),
+            with_phi: false,
         };
         assert!(many.check_memory(64.0 * 2f64.powi(30)).is_ok());
         let e = many.check_memory(16.0 * 2f64.powi(30)).unwrap_err().to_string();

@@ -352,6 +352,9 @@ pub struct SolverSection {
     pub max_inner: Option<usize>,
     /// Cap on fixed-point iterations; default 100.
     pub max_outer: Option<usize>,
+    /// The most Γ3 nodes the exact solver condenses into its dense problem; default 2000
+    /// (newton only).
+    pub max_condensed: Option<usize>,
 }
 
 /// The defaults of `[solver]`, in one place.
@@ -364,6 +367,7 @@ struct SolverDefaults {
     max_uzawa: usize,
     max_newton: usize,
     max_outer: usize,
+    max_condensed: usize,
 }
 
 impl SolverSection {
@@ -377,6 +381,7 @@ impl SolverSection {
         max_uzawa: 10_000,
         max_newton: 100,
         max_outer: 100,
+        max_condensed: 2000,
     };
 }
 
@@ -611,10 +616,11 @@ impl Case {
                 Rule("solver.eps_fp", settings.eps_fp, positive, "ε_fp > 0"),
                 Rule("solver.max_inner", max_inner as f64, |v| v >= 1.0, "at least 1"),
             ]),
-            Method::Newton { r, tol, max_inner } => rules.extend([
+            Method::Newton { r, tol, max_inner, max_condensed } => rules.extend([
                 Rule("solver.r", r, positive, "r > 0"),
                 Rule("solver.tol", tol, positive, "a tolerance > 0"),
                 Rule("solver.max_inner", max_inner as f64, |v| v >= 1.0, "at least 1"),
+                Rule("solver.max_condensed", max_condensed as f64, |v| v >= 1.0, "at least 1"),
             ]),
         }
         rules.push(Rule("solver.max_outer", settings.max_outer as f64, |v| v >= 1.0, "at least 1"));
@@ -657,18 +663,22 @@ impl Case {
     /// Keys of `[solver]` that the chosen method does not read, as warnings.
     pub fn setting_warnings(&self) -> Vec<String> {
         let s = &self.file.solver;
-        let (method, unused) = match s.method.unwrap_or_default() {
+        let (method, other, unused) = match s.method.unwrap_or_default() {
             MethodKey::Newton => {
-                ("newton", [("eps", s.eps.is_some()), ("eps_fp", s.eps_fp.is_some())])
+                ("newton", "uzawa", [("eps", s.eps.is_some()), ("eps_fp", s.eps_fp.is_some())])
             }
-            MethodKey::Uzawa => ("uzawa", [("tol", s.tol.is_some()), ("", false)]),
+            MethodKey::Uzawa => (
+                "uzawa",
+                "newton",
+                [("tol", s.tol.is_some()), ("max_condensed", s.max_condensed.is_some())],
+            ),
         };
         unused
             .iter()
             .filter(|(_, set)| *set)
             .map(|(key, _)| {
                 format!(
-                    "{}: solver.{key} is not used by solver.method = \"{method}\" (newton stops on solver.tol, uzawa on solver.eps and solver.eps_fp)",
+                    "{}: solver.{key} is not used by solver.method = \"{method}\" (only {other} reads it; newton stops on solver.tol, uzawa on solver.eps and solver.eps_fp)",
                     self.locate(&format!("solver.{key}"))
                 )
             })
@@ -849,6 +859,7 @@ impl Case {
                 r,
                 tol: s.tol.unwrap_or(d.tol),
                 max_inner: s.max_inner.unwrap_or(d.max_newton),
+                max_condensed: s.max_condensed.unwrap_or(d.max_condensed),
             },
         };
         Settings {
@@ -1052,7 +1063,12 @@ gap = 0.1
         let c = case(MINIMAL, &[]).unwrap();
         let s = c.settings().unwrap();
         let d = SolverSection::DEFAULTS;
-        let newton = Method::Newton { r: 0.25 * 100.0, tol: d.tol, max_inner: d.max_newton };
+        let newton = Method::Newton {
+            r: 0.25 * 100.0,
+            tol: d.tol,
+            max_inner: d.max_newton,
+            max_condensed: d.max_condensed,
+        };
         assert_eq!(s, Settings { method: newton, eps_fp: d.eps_fp, max_outer: d.max_outer });
         let uzawa = case(MINIMAL, &["solver.method=\"uzawa\""]).unwrap().settings().unwrap();
         let expected = Method::Uzawa { r: 25.0, eps: d.eps, max_inner: d.max_uzawa };
@@ -1067,6 +1083,11 @@ gap = 0.1
         // Keys of the other method are reported, not silently dropped.
         let unused = case(MINIMAL, &["solver.eps=1e-6"]).unwrap().setting_warnings();
         assert!(unused[0].contains("solver.eps is not used by solver.method = \"newton\""));
+        let overrides = ["solver.method=\"uzawa\"", "solver.max_condensed=10"];
+        let unused = case(MINIMAL, &overrides).unwrap().setting_warnings();
+        assert!(
+            unused[0].contains("solver.max_condensed is not used by solver.method = \"uzawa\"")
+        );
     }
 
     #[test]
@@ -1101,6 +1122,7 @@ gap = 0.1
             (vec!["solver.max_inner=0"], vec!["solver.max_inner = 0", "at least 1"]),
             (vec!["solver.method=\"simplex\""], vec!["unknown variant `simplex`", "uzawa"]),
             (vec!["solver.tol=0"], vec!["solver.tol = 0 is not allowed: a tolerance > 0"]),
+            (vec!["solver.max_condensed=0"], vec!["solver.max_condensed = 0", "at least 1"]),
             (vec!["contact.alpha_nu=1"], vec!["contact.alpha_nu = 1", "α_ν > 1"]),
             (
                 vec!["material.poisson=0.5"],

@@ -16,9 +16,19 @@ use piezocontact::solver::CoupledSystem;
 
 /// Newton with the KKT tolerance 1e−10 and r = `r_per_young`·E.
 fn newton(r_per_young: f64) -> Settings {
+    condensing(r_per_young, 2000)
+}
+
+/// Newton as [`newton`], condensing at most `max_condensed` Γ3 nodes.
+fn condensing(r_per_young: f64, max_condensed: usize) -> Settings {
     let young = PAPER_UNITS.stress(58.7102);
     Settings {
-        method: Method::Newton { r: r_per_young * young, tol: 1e-10, max_inner: 100 },
+        method: Method::Newton {
+            r: r_per_young * young,
+            tol: 1e-10,
+            max_inner: 100,
+            max_condensed,
+        },
         eps_fp: 1e-10,
         max_outer: 100,
     }
@@ -190,6 +200,41 @@ fn the_exact_solver_converges_with_hencky_active() {
         assert!(softened > problem.mesh.n_cells() / 10, "Hencky is not active ({softened})");
         assert!(solution.timings.numeric_count > 1);
         assert!(solution.kkt.max <= 1e-10, "{:?}", solution.kkt);
+    }
+}
+
+/// A gap large enough that only the middle of Γ3 touches, and room for only a few more
+/// nodes than touch: with equal gaps the first guess is the first nodes of Γ3, which misses
+/// the contact zone's right end. The condensation trades clear nodes for touching ones and
+/// ends at the solution of the whole condensation — with ϕ condensed (g_p > 0, conduction),
+/// and with Hencky's law refactorising in the outer loop.
+#[test]
+fn a_grown_condensation_gives_the_whole_condensation_s_solution() {
+    for (law, mut model, gap) in [
+        (ElasticLaw::Linear, paper_model(Some((0.2, 0.2)), 0.05, PAPER_UNITS), 1.3),
+        (ElasticLaw::Hencky { t0: 1e-6 }, paper_model(None, 0.0, PAPER_UNITS), 3.0),
+    ] {
+        model.compliance.gap = gap;
+        let problem = paper_problem(48, 8, PAPER_UNITS, law);
+        let whole = solve(&problem, &model, &newton(0.25));
+        let n3 = whole.surface.len();
+        let touching = whole.sigma_nu.iter().filter(|s| **s < 0.0).count();
+        let max_condensed = touching + 4;
+        let last = (0..n3).rfind(|&i| whole.sigma_nu[i] < 0.0).unwrap();
+        assert!(last >= max_condensed, "the first guess holds the contact zone");
+        let grown = solve(&problem, &model, &condensing(0.25, max_condensed));
+        let d = differences(&problem, &grown, &whole);
+        println!(
+            "{}: {touching} of {n3} touch; {} condensed, {} factorisations (whole: {}), differences {}",
+            model.name(),
+            grown.condensed_nodes,
+            grown.timings.numeric_count,
+            whole.timings.numeric_count,
+            show(&d)
+        );
+        assert!(grown.condensed_nodes < n3 && grown.kkt.max <= 1e-10, "{:?}", grown.kkt);
+        assert!(grown.timings.numeric_count > whole.timings.numeric_count);
+        assert!(d.iter().all(|v| *v < 1e-9), "{d:?}");
     }
 }
 

@@ -8,19 +8,24 @@ use piezocontact::contact::Foundation;
 use piezocontact::material::ElasticLaw;
 use piezocontact::problem::Problem;
 
-fn newton() -> Settings {
+/// Newton condensing at most `max_condensed` Γ3 nodes.
+fn newton(max_condensed: usize) -> Settings {
     let young = PAPER_UNITS.stress(58.7102);
     Settings {
-        method: Method::Newton { r: 0.25 * young, tol: 1e-10, max_inner: 100 },
+        method: Method::Newton { r: 0.25 * young, tol: 1e-10, max_inner: 100, max_condensed },
         eps_fp: 1e-10,
         max_outer: 10,
     }
 }
 
-fn solve(problem: &Problem, model: &ContactModel) -> ContactSolution {
-    let solution = solve_contact(problem, model, &newton()).unwrap();
+fn solve_with(problem: &Problem, model: &ContactModel, settings: &Settings) -> ContactSolution {
+    let solution = solve_contact(problem, model, settings).unwrap();
     assert!(solution.converged && solution.kkt.max <= 1e-10, "{:?}", solution.failure);
     solution
+}
+
+fn solve(problem: &Problem, model: &ContactModel) -> ContactSolution {
+    solve_with(problem, model, &newton(2000))
 }
 
 /// A plane under Γ3 through (x, y0) with unit normal (sin θ, cos θ), and no offset.
@@ -147,10 +152,10 @@ fn symmetric_block(n: usize, m: usize) -> piezocontact::mesh::Mesh {
     piezocontact::mesh::Mesh::new(3, coords, cells, parts).unwrap()
 }
 
-/// A ball pressed into the middle of a mirror-symmetric PZT block (poled along z, so the
-/// material has the mirror symmetries too), with friction: the solution is symmetric.
-#[test]
-fn a_symmetric_3d_problem_has_a_symmetric_solution() {
+/// A ball of radius 0.5 pressed 0.1 into the middle of the PZT block [−1,1]² × [−1,0]
+/// (12 × 12 × 4 cubes; poled along z, so the material has the block's mirror symmetries),
+/// clamped and grounded at the bottom, with friction µ = 0.3.
+fn ball_on_block() -> (Problem, ContactModel) {
     use piezocontact::problem::{BodyLoads, Boundary};
     let mesh = symmetric_block(12, 4);
     let part = |n: &str| mesh.part_index(n).unwrap();
@@ -165,6 +170,13 @@ fn a_symmetric_3d_problem_has_a_symmetric_solution() {
     let mut model = paper_model(Some((0.3, 0.0)), 0.0, PAPER_UNITS);
     model.compliance.gap = 0.0;
     model.foundation = Foundation::Sphere { center: [0.0, 0.0, 0.4], radius: 0.5 };
+    (problem, model)
+}
+
+/// The ball on the block: the solution is mirror-symmetric.
+#[test]
+fn a_symmetric_3d_problem_has_a_symmetric_solution() {
+    let (problem, model) = ball_on_block();
     let solution = solve(&problem, &model);
     let (mesh, dofs, x) = (&problem.mesh, &solution.dofs, &solution.x);
     let node_at = |p: [f64; 3]| {
@@ -207,9 +219,8 @@ fn nodes_that_cannot_touch_change_nothing() {
     let surface = &exact.surface;
     let misses = surface.gap.iter().filter(|g| g.is_infinite()).count();
     assert!(2 * misses > surface.len(), "{misses} of {} miss the disk", surface.len());
-    // Only the nodes that can touch are condensed: u_x and u_y of each (g_p = 0: no ϕ).
-    let condensed = piezocontact::algorithm::newton::Condensed::new(&exact.dofs, surface, false);
-    assert_eq!(condensed.len(), 2 * (surface.len() - misses));
+    // Only the nodes that can touch are condensed.
+    assert_eq!(exact.condensed_nodes, surface.len() - misses);
     assert!(exact.sigma_nu.iter().filter(|s| **s < 0.0).count() >= 3, "no contact");
     let tight = super::common::paper_settings(PAPER_UNITS, 1e-13);
     let uzawa = solve_contact(&problem, &model, &tight).unwrap();
@@ -217,4 +228,42 @@ fn nodes_that_cannot_touch_change_nothing() {
     let size = exact.x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let gap = exact.x.iter().zip(&uzawa.x).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
     assert!(gap <= 1e-7 * size, "{gap} of {size}");
+}
+
+/// The ball on the block with room for two more nodes than touch, of the 29 within the
+/// ball's reach: the nodes nearest to the ball are the contact zone, so the first guess is
+/// the answer — one factorisation, the solution of the whole condensation, and the nodes
+/// left out clear of the ball.
+#[test]
+fn the_nodes_nearest_to_a_ball_are_its_contact_zone() {
+    let (problem, model) = ball_on_block();
+    let whole = solve(&problem, &model);
+    let surface = &whole.surface;
+    let touching = whole.sigma_nu.iter().filter(|s| **s < 0.0).count();
+    let reach = surface.gap.iter().filter(|g| g.is_finite()).count();
+    assert_eq!(whole.condensed_nodes, reach);
+    let max_condensed = touching + 2;
+    assert!(max_condensed < reach, "{touching}, {reach}");
+    let part = solve_with(&problem, &model, &newton(max_condensed));
+    assert_eq!((part.condensed_nodes, part.timings.numeric_count), (max_condensed, 1));
+    let size = whole.x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let gap = whole.x.iter().zip(&part.x).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+    assert!(gap <= 1e-10 * size, "{gap} of {size}");
+    for i in 0..surface.len() {
+        let (u_nu, _) = surface.split(&part.dofs, &part.x, i);
+        assert!(u_nu <= surface.gap[i] + 1e-12 * size, "node {i} passes through the ball");
+    }
+}
+
+/// Room for fewer nodes than touch: the run is refused with the number it needs.
+#[test]
+fn a_contact_zone_larger_than_max_condensed_is_refused() {
+    let (problem, model) = ball_on_block();
+    let e = solve_contact(&problem, &model, &newton(4)).unwrap_err().to_string();
+    assert!(
+        e.contains("larger than solver.max_condensed = 4 nodes")
+            && e.contains("raise solver.max_condensed to at least")
+            && e.contains("uzawa"),
+        "{e}"
+    );
 }

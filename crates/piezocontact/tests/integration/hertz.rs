@@ -68,7 +68,7 @@ fn indent(mesh_name: &str, depth: f64) -> (f64, f64) {
         foundation: Foundation::Sphere { center, radius: 1.0 },
     };
     let settings = Settings {
-        method: Method::Newton { r: 0.25 * YOUNG, tol: 1e-10, max_inner: 100 },
+        method: Method::Newton { r: 0.25 * YOUNG, tol: 1e-10, max_inner: 100, max_condensed: 2000 },
         eps_fp: 1e-10,
         max_outer: 10,
     };
