@@ -6,6 +6,7 @@
 //! On a Gmsh mesh every boundary part is clamped and grounded and the paper's PZT-5A is used:
 //! the matrix has the structure of every run on that mesh.
 
+use crate::say;
 use anyhow::{Result, anyhow, bail};
 use piezocontact::assembly::secant_moduli;
 use piezocontact::case::Case;
@@ -46,7 +47,7 @@ pub enum Target<'a> {
 
 /// Runs the benchmark and prints one line per mesh; `lu` adds faer's sparse LU.
 pub fn run(target: &Target, lu: bool) -> Result<()> {
-    println!(
+    say!(
         "{:>16} {:>9} {:>10} {:>11} {:>11} {:>11} {:>9} {:>15} {:>13} {:>16} {:>20} {:>10} {:>10}",
         "mesh",
         "DOFs",
@@ -75,7 +76,7 @@ pub fn run(target: &Target, lu: bool) -> Result<()> {
             measure(&name, &case.problem()?, lu)?;
         }
     }
-    println!(
+    say!(
         "pattern_s: DOF map, sparsity pattern and gather plan (once per run); assembly_s: f̌ and \
          one refill of B̌ (every factorisation); both parallel over {} threads. numeric_s, \
          solve_s: piezocontact's LDLᵀ (with diagonal scaling and pivot checks); faer_*: faer's \
@@ -120,7 +121,7 @@ fn measure(name: &str, problem: &Problem, lu: bool) -> Result<()> {
     let (pattern, assembly) = (dof_map + timings.pattern, timings.assembly);
     let matrix = system.matrix().ok_or_else(|| anyhow!("no matrix"))?;
     let [faer_numeric, faer_solve] = bare_ldlt_seconds(matrix, system.rhs())?;
-    println!(
+    say!(
         "{:>16} {:>9} {:>10.4} {:>11.4} {:>11.4} {:>11.4} {:>9.4} {:>15.4} {:>13.4} {:>16.3} {:>20.3} {:>10} {:>10}",
         name,
         system.dofs().n_free(),
@@ -138,9 +139,15 @@ fn measure(name: &str, problem: &Problem, lu: bool) -> Result<()> {
     );
     if lu {
         let [s, n, v] = matrix.time_lu(system.rhs())?;
-        println!(
+        say!(
             "{:>16} {:>9} {:>10} {:>11} {:>11.4} {:>11.4} {:>9.4}   (faer sparse LU)",
-            "", "", "", "", s, n, v
+            "",
+            "",
+            "",
+            "",
+            s,
+            n,
+            v
         );
     }
     Ok(())
@@ -195,11 +202,12 @@ fn contact_problems(target: &str) -> Result<Vec<(&'static str, Case)>> {
 /// `bench --contact`: every measurement in a process of its own (peak memory per run), on
 /// each target: a size "NXxNY" of the paper's bar or a Gmsh mesh.
 pub fn contact(targets: &[String]) -> Result<()> {
-    println!(
-        "{:>10} {:>9} {:>11} {:>7} {:>12} {:>9} {:>14} {:>8} {:>9} {:>15} {:>9}",
+    say!(
+        "{:>10} {:>9} {:>11} {:>11} {:>7} {:>12} {:>9} {:>14} {:>8} {:>9} {:>15} {:>9}",
         "mesh",
         "DOFs",
         "problem",
+        "condensed",
         "newton",
         "kkt_residual",
         "wall_s",
@@ -236,11 +244,12 @@ pub fn contact(targets: &[String]) -> Result<()> {
         for (k, (name, _)) in problems.iter().enumerate() {
             let run = one(format!("contact{k},{target}"))?;
             let (seconds, mb) = (get(&run, "seconds")?, get(&run, "peak_mb")?);
-            println!(
-                "{:>10} {:>9} {:>11} {:>7} {:>12.3e} {:>9.3} {:>14.3} {:>8.2} {:>9.0} {:>15.0} {:>9.2}",
+            say!(
+                "{:>10} {:>9} {:>11} {:>11} {:>7} {:>12.3e} {:>9.3} {:>14.3} {:>8.2} {:>9.0} {:>15.0} {:>9.2}",
                 size,
                 get(&run, "dofs")?,
                 name,
+                format!("{}/{}", get(&run, "condensed")?, get(&run, "gamma3")?),
                 get(&run, "newton")?,
                 get(&run, "kkt")?,
                 seconds,
@@ -252,9 +261,10 @@ pub fn contact(targets: &[String]) -> Result<()> {
             );
         }
     }
-    println!(
-        "wall_s: solve_contact with solver.method = \"newton\" (pattern, ordering, factorisation, \
-         Schur complement, Newton, two solves, KKT residual); factorisation_s: one plain \
+    say!(
+        "condensed: Γ3 nodes in the exact solver's dense problem / all Γ3 nodes; wall_s: \
+         solve_contact with solver.method = \"newton\" (pattern, ordering, factorisations, \
+         Schur complement, Newton, two solves per factorisation, KKT residual); factorisation_s: one plain \
          pattern + assembly + symbolic + numeric LDLᵀ (AMD) of the same mesh; peak_MB: the \
          process's peak resident memory; ratios: contact / factorisation"
     );
@@ -273,7 +283,7 @@ pub fn measure_one(spec: &str) -> Result<()> {
         let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
         system.factorize(&problem, &g, &[])?;
         let seconds = start.elapsed().as_secs_f64();
-        println!("seconds={seconds} peak_mb={}", peak_mb());
+        say!("seconds={seconds} peak_mb={}", peak_mb());
         return Ok(());
     }
     let k: usize = kind.trim_start_matches("contact").parse()?;
@@ -284,10 +294,12 @@ pub fn measure_one(spec: &str) -> Result<()> {
     let start = std::time::Instant::now();
     let s = &piezocontact::algorithm::solve_contact(&problem, &model, &settings)?;
     let seconds = start.elapsed().as_secs_f64();
-    println!(
-        "seconds={seconds} peak_mb={} dofs={} newton={} kkt={} converged={}",
+    say!(
+        "seconds={seconds} peak_mb={} dofs={} condensed={} gamma3={} newton={} kkt={} converged={}",
         peak_mb(),
         s.dofs.n_free(),
+        s.condensed_nodes,
+        s.surface.len(),
         s.inner_iterations.iter().sum::<usize>(),
         s.kkt.max,
         s.converged
