@@ -9,5 +9,5 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
     let (toml, overrides) = text.split_once("\n---\n").unwrap_or((text, ""));
     let overrides: Vec<String> = overrides.lines().map(str::to_string).collect();
-    piezocontact_cli::fuzzing::case(toml, &overrides);
+    let _ = piezocontact_cli::fuzzing::case(toml, &overrides);
 });

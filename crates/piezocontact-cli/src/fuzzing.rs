@@ -2,25 +2,43 @@
 //! their corpus: each takes untrusted input and must return, never panic.
 
 use piezocontact::case::Case;
+use piezocontact::contact::ContactSurface;
+use piezocontact::dofs::DofMap;
 use std::path::Path;
 
 /// Meshes larger than this many cells are parsed and validated but not built: the fuzzer's
 /// memory limit is smaller than what a valid large mesh needs.
 const MAX_CELLS: usize = 20_000;
 
+/// Mesh files larger than this are not read (the committed 3D test meshes are smaller).
+const MAX_MESH_BYTES: u64 = 1 << 20;
+
 /// Reads a case from text with overrides, validates it, and builds the problem, the contact
-/// model, the settings and the warnings; every step may fail with an error.
-pub fn case(toml: &str, overrides: &[String]) {
-    let Ok(case) = Case::from_text(Path::new("fuzz.toml"), toml, overrides) else { return };
+/// model (with the foundation), the settings and the warnings; every step may fail with an
+/// error. The case sits in the repository's `meshes/`, so `mesh.file = "cube.msh"` reads a
+/// committed mesh (2D or 3D); other mesh files — paths, large files — are not read. Returns
+/// the dimension of the problem built, if one was.
+pub fn case(toml: &str, overrides: &[String]) -> Option<usize> {
+    let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes");
+    let case = Case::from_text(&meshes.join("fuzz.toml"), toml, overrides).ok()?;
     let _ = case.contact_settings();
     let m = &case.file.mesh;
     let cells = m.nx.unwrap_or(1).saturating_mul(m.ny.unwrap_or(1));
-    if m.file.is_some() || cells > MAX_CELLS {
-        return;
+    let readable = |file: &Path| {
+        let plain = file.components().count() == 1 && file.extension().is_some_and(|e| e == "msh");
+        plain && std::fs::metadata(meshes.join(file)).is_ok_and(|f| f.len() <= MAX_MESH_BYTES)
+    };
+    if m.file.as_deref().is_some_and(|f| !readable(f)) || cells > MAX_CELLS {
+        return None;
     }
-    let Ok(problem) = case.problem() else { return };
-    let _ = case.contact_model(&problem);
+    let problem = case.problem().ok()?;
+    if let (Ok(Some(model)), Ok(dofs)) = (case.contact_model(&problem), DofMap::new(&problem)) {
+        // The gaps of Γ3 to the foundation.
+        let surface = ContactSurface::new(&problem, &dofs);
+        let _ = surface.map(|s| s.with_gaps(&problem, &model.foundation, model.compliance.gap));
+    }
     let _ = case.settings();
     let _ = case.hypothesis_warnings(&problem.material);
     let _ = case.uniqueness_note();
+    Some(problem.mesh.dim())
 }

@@ -6,5 +6,7 @@ pub mod bench;
 pub mod fuzzing;
 pub mod plot;
 pub mod print;
+pub mod progress;
 pub mod reproduce;
+pub mod say;
 pub mod sweep;

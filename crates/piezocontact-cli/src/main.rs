@@ -7,7 +7,9 @@ use piezocontact::case::Case;
 use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
 use piezocontact::run::{ContactRun, StaticRun};
+use piezocontact_cli::progress::Reporter;
 use piezocontact_cli::{bench, plot, print, reproduce, sweep};
+use piezocontact_cli::{say, say_err};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -18,6 +20,9 @@ struct Cli {
     /// More log output (-v info, -vv debug); RUST_LOG overrides.
     #[arg(short, long, action = clap::ArgAction::Count, global = true)]
     verbose: u8,
+    /// No progress and no report on stdout; errors and warnings still go to stderr.
+    #[arg(short, long, global = true)]
+    quiet: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -37,6 +42,9 @@ enum Command {
         /// Write into an output directory that holds files piezocontact did not write.
         #[arg(long)]
         force: bool,
+        /// Seconds between two plain progress lines when stdout is not a terminal.
+        #[arg(long, default_value_t = 5.0, value_name = "SECONDS")]
+        progress_interval: f64,
     },
     /// Run a case once per value of swept keys, in parallel; write DIR/sweep.csv.
     Sweep {
@@ -87,7 +95,8 @@ enum Command {
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
     },
-    /// Print what a Gmsh MSH 4.1 file holds, or why it cannot be read.
+    /// Print what a Gmsh MSH 4.1 file holds, or why it cannot be read; exits 1 when the file
+    /// cannot be used as a mesh.
     MeshInfo {
         /// The .msh file.
         file: PathBuf,
@@ -136,12 +145,15 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let level = ["warn", "info", "debug"][usize::from(cli.verbose.min(2))];
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
+    if cli.quiet {
+        piezocontact_cli::say::set_quiet();
+    }
     match run(cli.command) {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
         Ok(Outcome::NotConverged) => ExitCode::from(3),
         Ok(Outcome::Failed) => ExitCode::from(4),
         Err(e) => {
-            eprintln!("error: {e:#}");
+            say_err!("error: {e:#}");
             ExitCode::from(1)
         }
     }
@@ -149,9 +161,9 @@ fn main() -> ExitCode {
 
 fn run(command: Command) -> Result<Outcome> {
     match command {
-        Command::Run { case, out, set, force } => {
+        Command::Run { case, out, set, force, progress_interval } => {
             let _claim = claim(&out, force)?;
-            run_case(&case, &out, &set)
+            run_case(&case, &out, &set, progress_interval)
         }
         Command::Sweep { case, set_list, set, reference, jobs, out, force } => {
             let _claim = claim(&out, force)?;
@@ -169,7 +181,7 @@ fn run(command: Command) -> Result<Outcome> {
             let _claim = claim(&out, force)?;
             let converged =
                 reproduce::reproduce(&reproduce::Request { out: out.clone(), mesh, jobs })?;
-            println!("wrote {} with its figures and tables", out.join("REPORT.md").display());
+            say!("wrote {} with its figures and tables", out.join("REPORT.md").display());
             Ok(if converged { Outcome::Done } else { Outcome::NotConverged })
         }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
@@ -216,10 +228,10 @@ enum Outcome {
     Failed,
 }
 
-fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<Outcome> {
+fn run_case(path: &Path, out: &Path, set: &[String], interval: f64) -> Result<Outcome> {
     let case = Case::load(path, set)?;
     if case.file.contact.is_some() {
-        return run_contact(&case, out);
+        return run_contact(&case, out, interval);
     }
     let run = StaticRun::solve(&case)?;
     if !run.problem.boundary.contact.is_empty() {
@@ -232,8 +244,13 @@ fn run_case(path: &Path, out: &Path, set: &[String]) -> Result<Outcome> {
     Ok(Outcome::Done)
 }
 
-fn run_contact(case: &Case, out: &Path) -> Result<Outcome> {
-    let run = ContactRun::solve(case)?;
+fn run_contact(case: &Case, out: &Path, interval: f64) -> Result<Outcome> {
+    let interval = std::time::Duration::try_from_secs_f64(interval).map_err(|_| {
+        anyhow::anyhow!("--progress-interval {interval}: give a number of seconds ≥ 0")
+    })?;
+    let reporter = Reporter::new(case.settings()?.method.name(), interval);
+    let run = ContactRun::solve_with(case, &|event| reporter.event(event))?;
+    drop(reporter);
     run.write(case, out)?;
     if run.problem.mesh.dim() == 3 {
         let units = &case.file.units;
@@ -243,7 +260,7 @@ fn run_contact(case: &Case, out: &Path) -> Result<Outcome> {
     }
     print::contact_run(&run, case, out);
     if let Some(failure) = &run.solution.failure {
-        eprintln!(
+        say_err!(
             "error: {}: {failure}; the partial result is in {} (marked \"converged\": false)",
             case.path.display(),
             out.display()
@@ -262,8 +279,8 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
     let dofs = piezocontact::dofs::DofMap::new(&problem)?;
     let (mesh, units) = (&problem.mesh, &case.file.units);
     let (lo, hi) = mesh.bounding_box();
-    println!("{}: valid", path.display());
-    println!(
+    say!("{}: valid", path.display());
+    say!(
         "mesh: {}D, {} nodes, {} elements, bounding box {lo:?}–{hi:?} {}",
         mesh.dim(),
         mesh.n_nodes(),
@@ -292,7 +309,7 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
         } else {
             roles.join(", ")
         };
-        println!(
+        say!(
             "  part {:<12} {:>6} facets, measure {:.6} {unit}  ({roles})",
             part.name,
             part.n_facets(),
@@ -300,14 +317,14 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
         );
     }
     let el = problem.material.elasticity;
-    println!(
+    say!(
         "material: mu1 = {:.6} {s}, k0 = {:.6} {s}, law {:?}",
         el.mu1,
         el.k0,
         el.law,
         s = units.stress
     );
-    println!(
+    say!(
         "dofs: {} in all, {} free ({} u, {} phi)",
         dofs.n_total(),
         dofs.n_free(),
@@ -315,17 +332,17 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
         dofs.n_free() - dofs.n_free_u()
     );
     if case.file.contact.is_some() {
-        println!("problem: {:?}", case.problem_kind());
+        say!("problem: {:?}", case.problem_kind());
     }
     for warning in case.hypothesis_warnings(&problem.material) {
-        println!("warning: {warning}");
+        say!("warning: {warning}");
     }
     if let Some(note) = case.uniqueness_note() {
-        println!("note: {note}");
+        say!("note: {note}");
     }
-    println!("contact and solver settings (in the case's units):");
+    say!("contact and solver settings (in the case's units):");
     for (key, value) in case.contact_settings()? {
-        println!("  {key:<22} = {value}");
+        say!("  {key:<22} = {value}");
     }
     Ok(())
 }
@@ -333,18 +350,18 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
 fn mesh_info(path: &Path) -> Result<()> {
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
     let info = gmsh::inspect(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    println!("{}: MSH 4.1 {}", path.display(), if info.binary { "binary" } else { "ASCII" });
-    println!("nodes: {}", info.nodes);
-    println!("elements:");
+    say!("{}: MSH 4.1 {}", path.display(), if info.binary { "binary" } else { "ASCII" });
+    say!("nodes: {}", info.nodes);
+    say!("elements:");
     for (name, dim, count) in &info.elements {
-        println!("  dim {dim}  {name:<6} {count:>8}");
+        say!("  dim {dim}  {name:<6} {count:>8}");
     }
-    println!("physical groups:");
+    say!("physical groups:");
     if info.groups.is_empty() {
-        println!("  (none: piezocontact needs named boundary parts)");
+        say!("  (none: piezocontact needs named boundary parts)");
     }
     for g in &info.groups {
-        println!(
+        say!(
             "  dim {}  tag {:<4} {:<20} {:>8} elements",
             g.dim,
             g.tag,
@@ -353,13 +370,16 @@ fn mesh_info(path: &Path) -> Result<()> {
         );
     }
     match gmsh::read(&bytes) {
-        Ok(mesh) => println!(
+        Ok(mesh) => say!(
             "usable: yes ({}D, {} nodes, {} cells)",
             mesh.dim(),
             mesh.n_nodes(),
             mesh.n_cells()
         ),
-        Err(e) => println!("usable: no: {e}"),
+        Err(e) => {
+            say!("usable: no: {e}");
+            anyhow::bail!("{} cannot be used as a mesh: {e}", path.display());
+        }
     }
     Ok(())
 }

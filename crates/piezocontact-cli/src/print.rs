@@ -1,5 +1,6 @@
 //! The terminal report of a run: every number with its unit.
 
+use crate::say;
 use piezocontact::case::Case;
 use piezocontact::run::{ContactRun, StaticRun};
 use std::path::Path;
@@ -10,37 +11,41 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
     let (sigma_nu, sigma_tau) = run.peaks();
     let (c, st, sl) = run.zones();
     let t = solution.timings;
-    println!(
+    say!(
         "{}: {}, {} nodes, {} elements",
         case.path.display(),
         run.model.name(),
         run.problem.mesh.n_nodes(),
         run.problem.mesh.n_cells()
     );
-    println!(
+    say!(
         "  outer iterations   = {} ({})",
         solution.outer_iterations,
         if solution.converged { "converged" } else { "NOT converged" }
     );
     let inner = if run.settings.method.is_exact() { "Newton steps" } else { "inner iterations" };
-    println!("  {inner:<18} = {:?} (per outer step)", solution.inner_iterations);
+    say!("  {inner:<18} = {:?} (per outer step)", solution.inner_iterations);
     if run.settings.method.is_exact() {
         let n3 = solution.surface.len();
-        println!("  condensed nodes    = {} of {n3} Γ3 nodes", solution.condensed_nodes);
+        say!("  condensed nodes    = {} of {n3} Γ3 nodes", solution.condensed_nodes);
     }
-    println!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
-    println!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
+    say!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
+    say!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
     let measure = match run.problem.mesh.dim() {
         2 => units.length.clone(),
         _ => format!("{}^2", units.length),
     };
-    println!("  contact / stick / slip measure = {c:.4} / {st:.4} / {sl:.4} {measure}");
-    println!(
+    say!("  contact / stick / slip measure = {c:.4} / {st:.4} / {sl:.4} {measure}");
+    say!(
         "  KKT residual       = {:.3e} (equilibrium u {:.1e}, phi {:.1e}; contact {:.1e}; friction {:.1e})",
-        kkt.max, kkt.equilibrium_u, kkt.equilibrium_phi, kkt.contact, kkt.friction
+        kkt.max,
+        kkt.equilibrium_u,
+        kkt.equilibrium_phi,
+        kkt.contact,
+        kkt.friction
     );
-    println!("  force balance      = relative imbalance {:.1e}", run.solution.balance.imbalance);
-    println!(
+    say!("  force balance      = relative imbalance {:.1e}", run.solution.balance.imbalance);
+    say!(
         "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}), total {:.3} s",
         t.pattern,
         t.assembly,
@@ -52,26 +57,31 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         run.seconds
     );
     let map = if run.problem.mesh.dim() == 3 { ", contact_map.png/.svg" } else { "" };
-    println!("  wrote contact.csv, summary.json, solution.vtu{map} in {}", out.display());
+    say!("  wrote contact.csv, summary.json, solution.vtu{map} in {}", out.display());
 }
 
 /// Prints a run without contact.
 pub fn static_run(run: &StaticRun, case: &Case, out: &Path) {
     let (units, problem, t) = (&case.file.units, &run.problem, run.solution.timings);
-    println!(
+    say!(
         "{}: {} nodes, {} elements, {} free DOFs (no contact)",
         case.path.display(),
         problem.mesh.n_nodes(),
         problem.mesh.n_cells(),
         run.solution.free_dofs
     );
-    println!("  max |u|            = {:.6e} {}", run.max_u, units.length);
+    say!("  max |u|            = {:.6e} {}", run.max_u, units.length);
     let (lo, hi) = run.phi_range;
-    println!("  phi range          = [{lo:.6e}, {hi:.6e}] {}", units.potential);
-    println!("  relative residual  = {:.3e}", run.solution.relative_residual);
-    println!(
+    say!("  phi range          = [{lo:.6e}, {hi:.6e}] {}", units.potential);
+    say!("  relative residual  = {:.3e}", run.solution.relative_residual);
+    say!(
         "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, total {:.3} s",
-        t.pattern, t.assembly, t.symbolic, t.numeric, t.solve, run.seconds
+        t.pattern,
+        t.assembly,
+        t.symbolic,
+        t.numeric,
+        t.solve,
+        run.seconds
     );
-    println!("  wrote summary.json and solution.vtu in {}", out.display());
+    say!("  wrote summary.json and solution.vtu in {}", out.display());
 }

@@ -9,6 +9,7 @@ use piezocontact::algorithm::NodeStatus;
 use piezocontact::case::{Case, Units};
 use piezocontact::output::files::write_atomic;
 use piezocontact::report::Row;
+use piezocontact::report::csv_number;
 use piezocontact::run::ContactRun;
 use plotters::prelude::SeriesLabelPosition;
 use std::fmt::Write;
@@ -484,8 +485,13 @@ impl Report<'_> {
             ours.push(s.outer_iterations);
             let _ = writeln!(
                 csv,
-                "{mu},{mu},{paper},{},{inner},{},{sn:e},{st:e},{d:e},{:.3}",
-                s.outer_iterations, s.converged, run.seconds
+                "{mu},{mu},{paper},{},{inner},{},{},{},{},{:.3}",
+                s.outer_iterations,
+                s.converged,
+                csv_number(sn),
+                csv_number(st),
+                csv_number(d),
+                run.seconds
             );
             let history: Vec<String> = s.outer_history.iter().map(|c| format!("{c:.1e}")).collect();
             let _ = writeln!(
@@ -686,10 +692,14 @@ impl Report<'_> {
             let (c, stick, _) = run.zones();
             let _ = writeln!(
                 csv,
-                "{ex},{},{},{},{sn:e},{st:e},{c:e},{stick:e}",
+                "{ex},{},{},{},{},{},{},{}",
                 nx * k,
                 ny * k,
-                run.solution.outer_iterations
+                run.solution.outer_iterations,
+                csv_number(sn),
+                csv_number(st),
+                csv_number(c),
+                csv_number(stick)
             );
             let _ = writeln!(
                 md,
@@ -757,8 +767,13 @@ impl Report<'_> {
             let (rn, rt) = (rms(|r| r.sigma_nu), rms(|r| r.sigma_tau[0]));
             let _ = writeln!(
                 csv,
-                "{ex},{dn:e},{dt:e},{rn:e},{rt:e},{:e},{:e}",
-                a.solution.kkt.max, b.solution.kkt.max
+                "{ex},{},{},{},{},{},{}",
+                csv_number(dn),
+                csv_number(dt),
+                csv_number(rn),
+                csv_number(rt),
+                csv_number(a.solution.kkt.max),
+                csv_number(b.solution.kkt.max)
             );
             let _ = writeln!(
                 md,

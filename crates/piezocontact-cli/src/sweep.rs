@@ -1,10 +1,12 @@
 //! `piezocontact sweep`: one run per value of a swept key, in parallel, with a progress bar
 //! on a terminal and plain lines otherwise; DIR/sweep.csv holds one row per run.
 
+use crate::{say, say_err};
 use anyhow::{Context, Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use piezocontact::case::Case;
 use piezocontact::output::files::write_atomic;
+use piezocontact::report::csv_number;
 use piezocontact::run::ContactRun;
 use rayon::prelude::*;
 use std::fmt::Write;
@@ -55,7 +57,7 @@ pub fn run_jobs(jobs: Vec<Job>, threads: usize) -> Result<Vec<ContactRun>> {
                         bar.inc(1);
                         bar.set_message(line);
                     }
-                    None => eprintln!("[{k}/{total}] {line}"),
+                    None => say_err!("[{k}/{total}] {line}"),
                 }
                 Ok(run)
             })
@@ -124,26 +126,26 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
         let (sigma_nu, sigma_tau) = run.peaks();
         let (contact, stick, slip) = run.zones();
         let distance = match &reference {
-            Some(r) => format!("{:e}", run.distance_to(r)?),
+            Some(r) => csv_number(run.distance_to(r)?),
             None => String::new(),
         };
         let _ = writeln!(
             csv,
-            "{},{},{},{},{:e},{:e},{:e},{:e},{:e},{distance},{:.3}",
+            "{},{},{},{},{},{},{},{},{},{distance},{:.3}",
             vec![value.as_str(); keys.len()].join(","),
             run.solution.outer_iterations,
             run.solution.inner_iterations.iter().sum::<usize>(),
             run.solution.converged,
-            sigma_nu,
-            sigma_tau,
-            contact,
-            stick,
-            slip,
+            csv_number(sigma_nu),
+            csv_number(sigma_tau),
+            csv_number(contact),
+            csv_number(stick),
+            csv_number(slip),
             run.seconds
         );
     }
     write_atomic(&request.out.join("sweep.csv"), csv.as_bytes())?;
-    println!("{}", csv.trim_end());
-    println!("wrote {} and one directory per run", request.out.join("sweep.csv").display());
+    say!("{}", csv.trim_end());
+    say!("wrote {} and one directory per run", request.out.join("sweep.csv").display());
     Ok(runs.iter().all(|r| r.solution.converged))
 }

@@ -136,9 +136,10 @@ pub enum Error {
     #[error("{0}")]
     Input(String),
 
-    /// An error placed in a case file: `location` is "file" or "file:line".
-    #[error("{location}: {source}")]
-    Located { location: String, source: Box<Error> },
+    /// An error placed in a case file: `location` is "file" or "file:line". (Its message
+    /// holds the error's, so the error is not also a `source`: chains print it once.)
+    #[error("{location}: {error}")]
+    Located { location: String, error: Box<Error> },
 
     /// An output directory that holds files piezocontact did not write.
     #[error(

@@ -107,6 +107,7 @@ impl Problem {
                       non-empty boundary part as grounded",
             });
         }
+        self.check_pieces()?;
         let traction: Vec<usize> = b.traction.iter().map(|(p, _)| *p).collect();
         let charge: Vec<usize> = b.charge.iter().map(|(p, _)| *p).collect();
         let roles: [(&'static str, &[usize]); 6] = [
@@ -120,6 +121,42 @@ impl Problem {
         // Pairs that must be disjoint: (Γ1, Γ2), (Γ3, all others), (Γa, Γb).
         for (i, j) in [(0, 1), (2, 0), (2, 1), (2, 3), (2, 4), (3, 4)] {
             self.check_disjoint(roles[i], roles[j])?;
+        }
+        Ok(())
+    }
+
+    /// Checks that every connected piece of the body touches Γ1 and Γa: a piece that does
+    /// not can move freely (or float electrically), and the system is singular.
+    fn check_pieces(&self) -> Result<()> {
+        let pieces = self.mesh.pieces();
+        let b = &self.boundary;
+        for (role, key, parts) in [
+            ("Γ1 (clamped)", "boundary.clamped", &b.clamped),
+            ("Γa (grounded)", "boundary.grounded", &b.grounded),
+        ] {
+            let mut held = vec![false; pieces.cells.len()];
+            for node in self.part_nodes(parts) {
+                held[pieces.of_node[node]] = true;
+            }
+            let loose: Vec<String> = (0..held.len())
+                .filter(|&k| !held[k] && pieces.cells[k] > 0)
+                .map(|k| {
+                    let (lo, hi) = &pieces.boxes[k];
+                    format!(
+                        "piece {} ({} elements, bounding box {lo:?}–{hi:?})",
+                        k + 1,
+                        pieces.cells[k]
+                    )
+                })
+                .collect();
+            if !loose.is_empty() {
+                let count = pieces.cells.iter().filter(|c| **c > 0).count();
+                return Err(Error::Input(format!(
+                    "the body has {count} connected pieces and {} of them touch no {role} part: {}; such a piece is not held, and the system is singular: add a boundary part on it to {key}, or remove it from the mesh",
+                    loose.len(),
+                    loose.join("; ")
+                )));
+            }
         }
         Ok(())
     }

@@ -81,11 +81,69 @@ pub fn contact_csv(rows: &[Row], dim: usize) -> String {
         fields.extend_from_slice(&r.sigma_tau[..dim - 1]);
         fields.extend([r.phi, r.s]);
         for v in fields {
-            let _ = write!(s, "{v:e},");
+            let _ = write!(s, "{},", csv_number(v));
         }
         let _ = writeln!(s, "{}", r.status.name());
     }
     s
+}
+
+/// A number for a CSV cell: `{:e}`, or an empty cell when it is not finite (every CSV
+/// reader takes an empty cell as missing; no NaN or inf token is ever written). The
+/// summary.json of the run says why ([`non_finite`]).
+pub fn csv_number(v: f64) -> String {
+    if v.is_finite() { format!("{v:e}") } else { String::new() }
+}
+
+/// The `non_finite` object of summary.json: for each output field that holds values that are
+/// not finite — written as null in summary.json and as empty cells in contact.csv — how
+/// many and why. Empty when every value is finite.
+pub fn non_finite(solution: &ContactSolution, rows: &[Row]) -> Value {
+    let (kkt, balance) = (&solution.kkt, &solution.balance);
+    let row_values = |r: &Row| {
+        let mut v = vec![r.u_nu, r.sigma_nu, r.phi, r.s];
+        v.extend(r.x.iter().chain(&r.u_tau).chain(&r.sigma_tau));
+        v
+    };
+    let fields: [(&str, Vec<f64>); 5] = [
+        (
+            "kkt_residual",
+            vec![
+                kkt.max,
+                kkt.equilibrium_u,
+                kkt.equilibrium_phi,
+                kkt.contact,
+                kkt.friction,
+                kkt.penetration,
+            ],
+        ),
+        (
+            "balance",
+            [&balance.applied, &balance.contact, &balance.reaction]
+                .map(|v| v.iter().copied())
+                .into_iter()
+                .flatten()
+                .chain([balance.imbalance])
+                .collect(),
+        ),
+        ("outer_criterion_history", solution.outer_history.clone()),
+        ("inner_criterion_history", solution.inner_history.concat()),
+        ("contact.csv", rows.iter().flat_map(row_values).collect()),
+    ];
+    let why = match &solution.failure {
+        Some(failure) => format!("the run failed: {failure}"),
+        None => "an overflow in the post-processing".to_string(),
+    };
+    let mut object = serde_json::Map::new();
+    for (name, values) in fields {
+        let count = values.iter().filter(|v| !v.is_finite()).count();
+        if count > 0 {
+            let how = if name == "contact.csv" { "empty cells" } else { "null" };
+            let text = format!("{count} values are NaN or infinite, written as {how}; {why}");
+            object.insert(name.to_string(), json!(text));
+        }
+    }
+    Value::Object(object)
 }
 
 /// Lengths (2D) or areas (3D) of Γ3 by status: (contact, stick, slip), from the nodal weights.
@@ -145,6 +203,7 @@ pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &
             "slip_measure": slip,
         },
         "timings_seconds": timings(&t),
+        "non_finite": non_finite(solution, rows),
     })
 }
 

@@ -1,7 +1,9 @@
 //! One contact run of a case: solve, assess, summarise and write its results — what
 //! `piezocontact run`, `sweep` and `reproduce` do for each case, and what a library user calls.
 
-use crate::algorithm::{ContactModel, ContactSolution, NodeStatus, Settings, solve_contact};
+use crate::algorithm::{
+    ContactModel, ContactSolution, NodeStatus, Progress, Settings, solve_contact_with,
+};
 use crate::assembly::x_norm_squared;
 use crate::case::Case;
 use crate::dofs::DofMap;
@@ -34,6 +36,11 @@ pub struct ContactRun {
 impl ContactRun {
     /// Solves a case that has a `[contact]` table and contact parts.
     pub fn solve(case: &Case) -> Result<Self> {
+        Self::solve_with(case, &|_| {})
+    }
+
+    /// [`ContactRun::solve`], telling `progress` of each outer step and inner iteration.
+    pub fn solve_with(case: &Case, progress: &dyn Fn(Progress)) -> Result<Self> {
         let start = Instant::now();
         let problem = case.problem()?;
         let model = case.contact_model(&problem)?.ok_or_else(|| {
@@ -46,7 +53,8 @@ impl ContactRun {
             )));
         }
         let settings = case.settings()?;
-        let solution = solve_contact(&problem, &model, &settings).map_err(|e| case.context(e))?;
+        let solution = solve_contact_with(&problem, &model, &settings, progress)
+            .map_err(|e| case.context(e))?;
         let rows = report::rows(&problem, &model, &solution);
         Ok(Self {
             problem,

@@ -13,9 +13,74 @@ pub fn command() -> Command {
     c
 }
 
-/// Runs the command with `args`.
+/// Runs the command with `args`, then checks every output file it wrote under its `--out`
+/// directory ([`assert_strict_outputs`]).
 pub fn piezocontact(args: &[&str]) -> Output {
-    command().args(args).output().unwrap()
+    let output = command().args(args).output().unwrap();
+    if let Some(k) = args.iter().position(|a| *a == "--out") {
+        assert_strict_outputs(&root().join(args[k + 1]));
+    }
+    output
+}
+
+/// Every summary.json under `dir` parses with a strict JSON parser (serde_json rejects NaN
+/// and Infinity tokens), a null number comes with its reason in `non_finite`, and no CSV
+/// under `dir` holds a NaN or inf token.
+pub fn assert_strict_outputs(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for entry in entries.filter_map(|e| e.ok()) {
+        let path = entry.path();
+        if path.is_dir() {
+            assert_strict_outputs(&path);
+            continue;
+        }
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if name == "summary.json" {
+            let text = std::fs::read_to_string(&path).unwrap();
+            let summary: serde_json::Value = serde_json::from_str(&text)
+                .unwrap_or_else(|e| panic!("{} is not strict JSON: {e}", path.display()));
+            assert_nulls_explained(&summary, &summary, "", &path);
+        } else if name.ends_with(".csv") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            for cell in text.lines().flat_map(|l| l.split(',')) {
+                let lower = cell.trim().to_ascii_lowercase();
+                assert!(
+                    !lower.contains("nan") && !lower.contains("inf"),
+                    "{} holds the token {cell:?}",
+                    path.display()
+                );
+            }
+        }
+    }
+}
+
+/// A null in summary.json is either `failure` (no failure) or a number that was not finite,
+/// for which `non_finite` names the top-level field and the reason.
+fn assert_nulls_explained(
+    root: &serde_json::Value,
+    value: &serde_json::Value,
+    at: &str,
+    file: &Path,
+) {
+    match value {
+        serde_json::Value::Null => {
+            let top = at.trim_start_matches('.').split(['.', '[']).next().unwrap_or("");
+            let explained = root["non_finite"].get(top).is_some_and(|v| v.is_string());
+            assert!(
+                top == "failure" || explained,
+                "{}: null at {at} with no reason in non_finite",
+                file.display()
+            );
+        }
+        serde_json::Value::Array(a) => a
+            .iter()
+            .enumerate()
+            .for_each(|(i, v)| assert_nulls_explained(root, v, &format!("{at}[{i}]"), file)),
+        serde_json::Value::Object(o) => {
+            o.iter().for_each(|(k, v)| assert_nulls_explained(root, v, &format!("{at}.{k}"), file))
+        }
+        _ => {}
+    }
 }
 
 /// stdout and stderr together.

@@ -15,6 +15,7 @@ fn seeds(target: &str) -> Vec<PathBuf> {
 
 #[test]
 fn case_reader_corpus() {
+    let mut built = Vec::new();
     for path in seeds("case_toml") {
         let bytes = std::fs::read(&path).unwrap();
         let Ok(text) = std::str::from_utf8(&bytes) else { continue };
@@ -22,6 +23,22 @@ fn case_reader_corpus() {
         let overrides: Vec<String> = overrides.lines().map(str::to_string).collect();
         let result = std::panic::catch_unwind(|| piezocontact_cli::fuzzing::case(toml, &overrides));
         assert!(result.is_ok(), "{} panics", path.display());
+        if let Ok(Some(dim)) = result {
+            built.push((path.file_name().unwrap().to_string_lossy().into_owned(), dim));
+        }
+    }
+    // The valid seeds build their problems, 3D meshes from files among them; the invalid
+    // ones do not.
+    for (name, dim) in [("indentation-3d.toml", 3), ("cube-pv1.toml", 3), ("paper-7.1.toml", 2)] {
+        assert!(built.contains(&(name.to_string(), dim)), "{name} was not built: {built:?}");
+    }
+    for name in [
+        "two-bodies.toml",
+        "mesh-path-traversal.toml",
+        "phi0-1e308.toml",
+        "max-condensed-zero.toml",
+    ] {
+        assert!(!built.iter().any(|(n, _)| n == name), "{name} was built");
     }
 }
 

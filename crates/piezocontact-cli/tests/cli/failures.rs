@@ -107,7 +107,11 @@ fn output_directories_are_never_clobbered() {
         a.into_iter().map(String::from).collect::<Vec<_>>()
     };
     let args = |extra: &[&str]| case_args("cases/paper-7.1.toml", extra);
-    let run = |a: Vec<String>| command().args(&a).output().unwrap();
+    let run = |a: Vec<String>| {
+        let output = command().args(&a).output().unwrap();
+        super::common::assert_strict_outputs(&out);
+        output
+    };
     let o = run(args(&[]));
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     assert!(
@@ -192,6 +196,7 @@ fn a_killed_run_leaves_only_complete_files() {
         let _ = child.wait();
         if out.exists() {
             assert_all_complete(&out);
+            super::common::assert_strict_outputs(&out);
         }
     }
     assert!(killed_while_running >= 2, "the runs ended before they could be killed");

@@ -8,5 +8,7 @@ mod common;
 mod corpus;
 /// Numerical failures, output-directory rules, a killed run.
 mod failures;
+/// Bad input, round 2: closed pipes, unusable meshes, overflow, loose pieces, progress.
+mod input;
 /// Random valid cases solve or fail with typed errors, never NaN in outputs.
 mod properties;

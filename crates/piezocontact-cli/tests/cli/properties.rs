@@ -5,10 +5,10 @@ use piezocontact::case::Case;
 use piezocontact::run::ContactRun;
 use proptest::prelude::*;
 use proptest::test_runner::{RngAlgorithm, TestRng, TestRunner};
-use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 const PAPER_72: &str = include_str!("../../../../cases/paper-7.2.toml");
+const INDENTATION: &str = include_str!("../../../../cases/indentation-3d.toml");
 
 /// Overrides that span the valid (and some invalid) ranges of the case's parameters.
 fn overrides() -> impl Strategy<Value = Vec<String>> {
@@ -17,6 +17,7 @@ fn overrides() -> impl Strategy<Value = Vec<String>> {
         (-20.0f64..20.0, -20.0f64..20.0, -20.0f64..20.0, 1.0f64..3000.0),
         (-10.0f64..10.0, -0.5f64..1.0, 0.0f64..0.2, 0.0f64..1.5, 0.0f64..2.0),
         (1e-6f64..1e-2, 1usize..300, 1usize..15, prop::bool::ANY, prop::bool::ANY),
+        prop::bool::ANY,
     )
         .prop_map(
             |(
@@ -24,6 +25,7 @@ fn overrides() -> impl Strategy<Value = Vec<String>> {
                 (e31, e33, e15, beta),
                 (f2, gap, penetration, mu, ke),
                 (eps, max_inner, max_outer, linear, pv1),
+                newton,
             )| {
                 let mut o = vec![
                     format!("mesh.nx={}", 6 * nx), // nodes at x = 2 and 10, the ends of Γ3
@@ -52,6 +54,50 @@ fn overrides() -> impl Strategy<Value = Vec<String>> {
                 if pv1 {
                     o.push("contact.problem=\"PV1\"".into());
                 }
+                if newton {
+                    o.push("solver.method=\"newton\"".into());
+                }
+                o
+            },
+        )
+}
+
+/// Overrides of cases/indentation-3d.toml on its coarse mesh: material, ball (depth and
+/// radius), friction, penetration, problem, law and method.
+fn overrides_3d() -> impl Strategy<Value = Vec<String>> {
+    (
+        (1e-1f64..1e3, -0.9f64..0.49, -20.0f64..20.0, -20.0f64..20.0, 1.0f64..3000.0),
+        (-0.05f64..0.1, 0.2f64..3.0, 0.0f64..1.5, 0.0f64..0.05),
+        (prop::bool::ANY, prop::bool::ANY, prop::bool::ANY, 1usize..40),
+    )
+        .prop_map(
+            |(
+                (young, poisson, e33, e15, beta),
+                (depth, radius, mu, penetration),
+                (linear, pv1, uzawa, max_inner),
+            )| {
+                let mut o = vec![
+                    "mesh.file=\"../meshes/indent-3d-h0.05.msh\"".to_string(),
+                    format!("material.young={young}"),
+                    format!("material.poisson={poisson}"),
+                    format!("material.e33={e33}"),
+                    format!("material.e15={e15}"),
+                    format!("material.beta33_rel={beta}"),
+                    format!("foundation.center=[0.0, 0.0, {}]", radius - depth),
+                    format!("foundation.radius={radius}"),
+                    format!("friction.mu={mu}"),
+                    format!("contact.penetration={penetration}"),
+                    format!("solver.max_inner={}", if uzawa { 100 * max_inner } else { max_inner }),
+                ];
+                if linear {
+                    o.push("material.law=\"linear\"".into());
+                }
+                if pv1 {
+                    o.push("contact.problem=\"PV1\"".into());
+                }
+                if uzawa {
+                    o.push("solver.method=\"uzawa\"".into());
+                }
                 o
             },
         )
@@ -66,18 +112,20 @@ fn finite_json(value: &serde_json::Value) -> bool {
     }
 }
 
-/// Solves one random case; returns whether it passed validation.
-fn check(o: &[String]) -> Result<bool, TestCaseError> {
+/// Solves one random case of `path` (text `base`); returns whether it passed validation.
+fn check(path: &str, base: &str, o: &[String]) -> Result<bool, TestCaseError> {
     // Every override names a real key with a value of the right type: the case parses.
-    let case = Case::from_text(Path::new("cases/paper-7.2.toml"), PAPER_72, o)
+    let case = Case::from_text(&super::common::root().join(path), base, o)
         .map_err(|e| TestCaseError::fail(format!("{e}")))?;
     if case.problem().is_err() {
         return Ok(false); // a typed validation error
     }
     let result = std::panic::catch_unwind(|| {
         ContactRun::solve(&case).map(|run| {
+            static RUN: AtomicUsize = AtomicUsize::new(0);
+            let k = RUN.fetch_add(1, Ordering::SeqCst);
             let out =
-                std::env::temp_dir().join(format!("piezocontact-prop-{}", std::process::id()));
+                std::env::temp_dir().join(format!("piezocontact-prop-{}-{k}", std::process::id()));
             run.write(&case, &out).map(|_| out)
         })
     });
@@ -87,6 +135,7 @@ fn check(o: &[String]) -> Result<bool, TestCaseError> {
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
                 .unwrap();
         prop_assert!(finite_json(&summary), "non-finite number in summary.json for {o:?}");
+        super::common::assert_strict_outputs(&out);
         for file in ["contact.csv", "solution.vtu"] {
             let text = std::fs::read_to_string(out.join(file)).unwrap();
             prop_assert!(
@@ -98,23 +147,40 @@ fn check(o: &[String]) -> Result<bool, TestCaseError> {
     Ok(true)
 }
 
-/// 32 random cases from a fixed seed (reproducible); most of them must pass validation, so
-/// that the property is not vacuous.
-#[test]
-fn valid_cases_solve_or_fail_cleanly() {
-    let config =
-        ProptestConfig { cases: 32, failure_persistence: None, ..ProptestConfig::default() };
+/// Runs `cases` random cases of `strategy` on the case `path` (text `base`) from a fixed
+/// seed (reproducible); returns how many passed validation.
+fn run_random(
+    path: &str,
+    base: &str,
+    cases: u32,
+    strategy: impl Strategy<Value = Vec<String>>,
+) -> usize {
+    let config = ProptestConfig { cases, failure_persistence: None, ..ProptestConfig::default() };
     let mut runner =
         TestRunner::new_with_rng(config, TestRng::deterministic_rng(RngAlgorithm::ChaCha));
     let solved = AtomicUsize::new(0);
     runner
-        .run(&overrides(), |o| {
-            if check(&o)? {
+        .run(&strategy, |o| {
+            if check(path, base, &o)? {
                 solved.fetch_add(1, Ordering::SeqCst);
             }
             Ok(())
         })
         .unwrap();
-    let solved = solved.load(Ordering::SeqCst);
+    solved.load(Ordering::SeqCst)
+}
+
+/// 32 random 2D cases, Uzawa and Newton; most of them must pass validation, so that the
+/// property is not vacuous.
+#[test]
+fn valid_cases_solve_or_fail_cleanly() {
+    let solved = run_random("cases/paper-7.2.toml", PAPER_72, 32, overrides());
     assert!(solved >= 24, "only {solved} of 32 random cases passed validation");
+}
+
+/// 12 random 3D indentations (sphere foundation), Uzawa and Newton.
+#[test]
+fn valid_3d_cases_solve_or_fail_cleanly() {
+    let solved = run_random("cases/indentation-3d.toml", INDENTATION, 12, overrides_3d());
+    assert!(solved >= 8, "only {solved} of 12 random 3D cases passed validation");
 }

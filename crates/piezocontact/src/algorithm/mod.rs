@@ -169,6 +169,29 @@ pub struct Step<'a> {
     pub conduction: Option<&'a Conduction>,
     /// The previous outer iterate x_n (global; zero at the first step).
     pub start: &'a [f64],
+    /// Told of every inner iteration.
+    pub progress: &'a dyn Fn(Progress),
+}
+
+/// What a running solve reports to the observer of [`solve_contact_with`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Progress {
+    /// Outer step `step` (from 1) of at most `max` starts.
+    Outer {
+        /// The step.
+        step: usize,
+        /// solver.max_outer.
+        max: usize,
+    },
+    /// An iteration of the inner method ended.
+    Inner {
+        /// The iteration (from 1) within the outer step.
+        iteration: usize,
+        /// Its stopping criterion: Uzawa's (6.12)/(6.16), or Newton's relative step.
+        criterion: f64,
+        /// The value the criterion must fall below.
+        tolerance: f64,
+    },
 }
 
 /// The nodal blocks that `method` adds to B̌ on the Γ3 nodes.
@@ -304,6 +327,16 @@ pub fn solve_contact(
     model: &ContactModel,
     settings: &Settings,
 ) -> Result<ContactSolution> {
+    solve_contact_with(problem, model, settings, &|_| {})
+}
+
+/// [`solve_contact`], telling `progress` of each outer step and inner iteration.
+pub fn solve_contact_with(
+    problem: &Problem,
+    model: &ContactModel,
+    settings: &Settings,
+    progress: &dyn Fn(Progress),
+) -> Result<ContactSolution> {
     let dofs = DofMap::new(problem)?;
     let surface = ContactSurface::new(problem, &dofs)?.with_gaps(
         problem,
@@ -355,6 +388,7 @@ pub fn solve_contact(
     let mut g = secant_moduli(problem, system.dofs(), &solution.x)?;
     let mut factorised_with: Option<Vec<f64>> = None;
     for n in 0..settings.max_outer {
+        progress(Progress::Outer { step: n + 1, max: settings.max_outer });
         if factorised_with.as_ref() != Some(&g) {
             if let Err(e) = system.factorize(problem, &g, &blocks) {
                 solution.failure = Some(Error::NumericalFailure {
@@ -385,6 +419,7 @@ pub fn solve_contact(
             friction: model.pv2.as_ref().map(|_| (mu.as_slice(), &mollifier)),
             conduction: model.pv2.as_ref().map(|(_, conduction)| conduction),
             start: &solution.x,
+            progress,
         };
         let inner = run_inner(&settings.method, &step, &mut condensed, &mut system, &g)?;
         solution.inner_iterations.push(inner.iterations);

@@ -28,7 +28,7 @@
 //! The iteration stops when the sets no longer change and the step is at round-off; one solve
 //! with the contact forces then recovers the interior.
 
-use super::{ContactState, InnerResult, Step, Stop};
+use super::{ContactState, InnerResult, Progress, Step, Stop};
 use crate::contact::ContactSurface;
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
@@ -344,6 +344,8 @@ impl Newton<'_> {
             let size = y.iter().fold(0.0_f64, |a, v| a.max(v.abs())).max(f64::MIN_POSITIVE);
             let criterion = alpha * delta.iter().fold(0.0_f64, |a, v| a.max(v.abs())) / size;
             history.push(criterion);
+            let tolerance = STEP_TOLERANCE;
+            (self.step.progress)(Progress::Inner { iteration: k + 1, criterion, tolerance });
             if !criterion.is_finite() {
                 (stop, iterations) =
                     (Stop::NotFinite(format!("the Newton step is {criterion}")), k + 1);

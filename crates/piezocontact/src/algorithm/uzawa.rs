@@ -11,7 +11,7 @@
 //! The matrix of Step 1 was factorised by the caller; every iteration is one solve plus
 //! O(|Γ3|) work. Every call starts cold (p = λ = 0, x⁰ = 0), as model §7 requires.
 
-use super::{ContactState, DIVERGENCE, InnerResult, Step, Stop};
+use super::{ContactState, DIVERGENCE, InnerResult, Progress, Step, Stop};
 use crate::contact::law::project_ball;
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::Result;
@@ -94,6 +94,7 @@ impl Uzawa<'_> {
             den += step.mass.squared(step.problem, dofs, &x_new);
             let criterion = if den > 0.0 { (num / den).sqrt() } else { 0.0 };
             history.push(criterion);
+            (step.progress)(Progress::Inner { iteration: k + 1, criterion, tolerance: self.eps });
             if !criterion.is_finite() {
                 let cause = format!("the criterion (6.12) is {criterion}");
                 return Ok(done(x, state, k + 1, history, Stop::NotFinite(cause)));

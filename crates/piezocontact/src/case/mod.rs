@@ -385,6 +385,58 @@ impl SolverSection {
     };
 }
 
+/// The largest magnitude of a number in a case file, and the smallest nonzero one: the model
+/// multiplies and squares its inputs, and beyond these bounds double precision overflows or
+/// underflows. Every physical constant lies well inside them in any sensible units.
+pub const MAGNITUDE: f64 = 1e30;
+/// The smallest magnitude of a nonzero number in a case file (1/[`MAGNITUDE`]).
+pub const MIN_MAGNITUDE: f64 = 1e-30;
+
+/// Refuses every float of `item` (at dotted key `key`) that is not finite, or whose magnitude
+/// lies outside [MIN_MAGNITUDE, MAGNITUDE] without being zero.
+fn check_magnitudes(path: &Path, source: &str, key: &str, item: &toml_edit::Item) -> Result<()> {
+    let child =
+        |name: &str| if key.is_empty() { name.to_string() } else { format!("{key}.{name}") };
+    match item {
+        toml_edit::Item::Table(table) => {
+            table.iter().try_for_each(|(k, v)| check_magnitudes(path, source, &child(k), v))
+        }
+        toml_edit::Item::Value(value) => check_value(path, source, key, value),
+        toml_edit::Item::ArrayOfTables(tables) => tables.iter().try_for_each(|t| {
+            t.iter().try_for_each(|(k, v)| check_magnitudes(path, source, &child(k), v))
+        }),
+        toml_edit::Item::None => Ok(()),
+    }
+}
+
+/// [`check_magnitudes`] for one value (arrays and inline tables too).
+fn check_value(path: &Path, source: &str, key: &str, value: &toml_edit::Value) -> Result<()> {
+    match value {
+        toml_edit::Value::Float(f) => {
+            let v = *f.value();
+            let ok = v == 0.0 || (v.abs() <= MAGNITUDE && v.abs() >= MIN_MAGNITUDE);
+            if ok {
+                return Ok(());
+            }
+            let location = match key_line(source, key) {
+                Some(line) => format!("{}:{line}", path.display()),
+                None => path.display().to_string(),
+            };
+            Err(input!(
+                "{location}: {key} = {v:e} is out of range: a number must be finite, and 0 or of magnitude between {MIN_MAGNITUDE:e} and {MAGNITUDE:e} (the model multiplies and squares its inputs, which would overflow or underflow double precision beyond); express it in units that make it moderate ([units])"
+            ))
+        }
+        toml_edit::Value::Array(array) => {
+            array.iter().try_for_each(|v| check_value(path, source, key, v))
+        }
+        toml_edit::Value::InlineTable(table) => table.iter().try_for_each(|(k, v)| {
+            let child = if key.is_empty() { k.to_string() } else { format!("{key}.{k}") };
+            check_value(path, source, &child, v)
+        }),
+        _ => Ok(()),
+    }
+}
+
 /// A whole case file.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -435,6 +487,7 @@ impl Case {
             apply_override(&mut doc, o)?;
         }
         let source = doc.to_string();
+        check_magnitudes(path, &source, "", doc.as_item())?;
         let file: CaseFile = toml::from_str(&source).map_err(|e| {
             let note = if overrides.is_empty() {
                 String::new()
@@ -460,7 +513,7 @@ impl Case {
             Error::InvalidParameter { name, .. } => self.locate(name),
             _ => self.path.display().to_string(),
         };
-        Error::Located { location, source: Box::new(e) }
+        Error::Located { location, error: Box::new(e) }
     }
 
     /// Builds the mesh: the rectangle or the Gmsh file.

@@ -59,6 +59,17 @@ fn facet_key(nodes: &[usize]) -> FacetKey {
     key
 }
 
+/// The connected pieces of a mesh ([`Mesh::pieces`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Pieces {
+    /// The piece of each node.
+    pub of_node: Vec<usize>,
+    /// Cells per piece.
+    pub cells: Vec<usize>,
+    /// Bounding box (min, max) per piece.
+    pub boxes: Vec<(Vec<f64>, Vec<f64>)>,
+}
+
 impl Mesh {
     /// Builds and checks a mesh. `coords` holds `dim` numbers per node, `cells` `dim + 1` node
     /// indices per cell, and each part's facets `dim` node indices per facet.
@@ -192,6 +203,50 @@ impl Mesh {
             }
         }
         (lo, hi)
+    }
+
+    /// The connected pieces of the body (cells that share a node are connected): the piece
+    /// of each node, and per piece its number of cells and bounding box. A node in no cell
+    /// is a piece of no cells.
+    pub fn pieces(&self) -> Pieces {
+        let mut parent: Vec<usize> = (0..self.n_nodes()).collect();
+        fn root(parent: &mut [usize], mut a: usize) -> usize {
+            while parent[a] != a {
+                parent[a] = parent[parent[a]];
+                a = parent[a];
+            }
+            a
+        }
+        for cell in self.cells.chunks_exact(self.dim + 1) {
+            let first = root(&mut parent, cell[0]);
+            for &node in &cell[1..] {
+                let other = root(&mut parent, node);
+                parent[other] = first;
+            }
+        }
+        let mut index = vec![usize::MAX; self.n_nodes()];
+        let mut pieces = Pieces { of_node: vec![0; self.n_nodes()], ..Pieces::default() };
+        for node in 0..self.n_nodes() {
+            let r = root(&mut parent, node);
+            if index[r] == usize::MAX {
+                index[r] = pieces.cells.len();
+                pieces.cells.push(0);
+                pieces
+                    .boxes
+                    .push((vec![f64::INFINITY; self.dim], vec![f64::NEG_INFINITY; self.dim]));
+            }
+            let piece = index[r];
+            pieces.of_node[node] = piece;
+            let (lo, hi) = &mut pieces.boxes[piece];
+            for (k, x) in self.node(node).iter().enumerate() {
+                lo[k] = lo[k].min(*x);
+                hi[k] = hi[k].max(*x);
+            }
+        }
+        for cell in self.cells.chunks_exact(self.dim + 1) {
+            pieces.cells[pieces.of_node[cell[0]]] += 1;
+        }
+        pieces
     }
 
     fn check_nodes(&self) -> Result<()> {

@@ -1,0 +1,154 @@
+//! Bad input and failure, round 2: a reader that stops reading, meshes that cannot be used,
+//! numbers out of double precision's range, loose pieces of the body, progress and --quiet.
+//! Each asserts the message and the exit code.
+
+use super::common::{command, piezocontact, root, temp_dir, text};
+use std::io::Read;
+use std::process::Stdio;
+
+/// Runs `args` with stdout a pipe whose reader has already closed it; returns the exit code
+/// and stderr.
+fn with_closed_stdout(args: &[&str]) -> (Option<i32>, String) {
+    let mut child =
+        command().args(args).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    drop(child.stdout.take()); // the reader goes away before the first line
+    let mut stderr = String::new();
+    child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
+    (child.wait().unwrap().code(), stderr)
+}
+
+#[test]
+fn a_reader_that_stops_reading_ends_the_output_quietly() {
+    for args in [
+        vec!["mesh-info", "meshes/cube.msh"],
+        vec!["check", "cases/paper-7.1.toml"],
+        vec!["check", "cases/indentation-3d.toml"],
+    ] {
+        let (code, stderr) = with_closed_stdout(&args);
+        assert_eq!(code, Some(0), "{args:?}: {stderr}");
+        assert!(stderr.is_empty(), "{args:?} wrote to stderr: {stderr}");
+    }
+    // The exit code is the command's own: an unusable mesh still exits 1.
+    let bad = temp_dir("closed-pipe").join("bad.msh");
+    std::fs::write(&bad, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n").unwrap();
+    let (code, stderr) = with_closed_stdout(&["mesh-info", bad.to_str().unwrap()]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains("cannot be used as a mesh") && !stderr.contains("panicked"));
+}
+
+#[test]
+fn mesh_info_exits_1_when_the_mesh_cannot_be_used() {
+    let dir = temp_dir("mesh-info");
+    let bad = dir.join("no-elements.msh");
+    std::fs::write(&bad, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n").unwrap();
+    let o = piezocontact(&["mesh-info", bad.to_str().unwrap()]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(t.contains("usable: no") && t.contains("cannot be used as a mesh"), "{t}");
+    let o = piezocontact(&["mesh-info", "meshes/cube.msh"]);
+    assert!(o.status.success() && text(&o).contains("usable: yes (3D"), "{}", text(&o));
+}
+
+/// ϕ0 = 1e308 (finite, but its products overflow) and a tiny Young's modulus are refused
+/// before any work, naming the key, its line and the bound.
+#[test]
+fn numbers_beyond_double_precision_s_range_are_refused_with_the_bound() {
+    for (set, key) in [
+        ("conductivity.phi0=1e308", "conductivity.phi0 = 1e308"),
+        ("material.young=1e-40", "material.young = 1e-40"),
+        ("foundation.center=[6.0, -1e31]", "foundation.center = -1e31"),
+    ] {
+        let mut args = vec!["check", "cases/paper-7.2.toml", "--set", set];
+        if set.starts_with("foundation") {
+            args.extend(["--set", "foundation.kind=\"sphere\"", "--set", "foundation.radius=1.0"]);
+        }
+        let o = piezocontact(&args);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(1), "{t}");
+        assert!(t.contains(key) && t.contains("is out of range") && t.contains("1e30"), "{t}");
+        assert!(!t.contains("NaN") && !t.contains("solver.r"), "{t}");
+    }
+    let o = piezocontact(&["check", "cases/paper-7.2.toml", "--set", "conductivity.phi0=1e308"]);
+    assert!(text(&o).contains("cases/paper-7.2.toml:"), "no line: {}", text(&o));
+}
+
+/// A case on meshes/two-bodies.msh: a rectangle clamped and grounded on its left side, and
+/// a loose square [5,6]×[0,1].
+fn two_bodies_case(dir: &std::path::Path) -> std::path::PathBuf {
+    let case = dir.join("two-bodies.toml");
+    let mesh = root().join("meshes/two-bodies.msh");
+    let text = format!(
+        r#"[mesh]
+file = {mesh:?}
+[material]
+young = 100.0
+poisson = 0.25
+e31 = -5.4
+e33 = 15.8
+e15 = 12.3
+eps0 = 8.885e-3
+beta11_rel = 916.0
+beta33_rel = 830.0
+[boundary]
+clamped = ["left"]
+grounded = ["left"]
+"#
+    );
+    std::fs::write(&case, text).unwrap();
+    case
+}
+
+#[test]
+fn a_piece_of_the_body_that_is_not_held_is_named_before_any_work() {
+    let dir = temp_dir("two-bodies");
+    let case = two_bodies_case(&dir);
+    let out = dir.join("out");
+    for args in [
+        vec!["check", case.to_str().unwrap()],
+        vec!["run", case.to_str().unwrap(), "--out", out.to_str().unwrap()],
+    ] {
+        let o = piezocontact(&args);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(1), "{t}");
+        assert!(
+            t.contains("2 connected pieces")
+                && t.contains("touch no Γ1 (clamped) part")
+                && t.contains("bounding box [5.0, 0.0]–[6.0, 1.0]")
+                && t.contains("boundary.clamped"),
+            "{t}"
+        );
+        let elements = t.split("piece 2 (").nth(1).and_then(|r| r.split(' ').next());
+        assert!(elements.is_some_and(|n| n.parse::<usize>().is_ok_and(|n| n > 0)), "{t}");
+    }
+    assert!(!out.join("summary.json").exists());
+}
+
+/// Progress: plain lines on stderr when stdout is not a terminal (here every event, with
+/// --progress-interval 0), none with --quiet, which also drops the report.
+#[test]
+fn progress_shows_on_long_runs_and_quiet_silences_it() {
+    let dir = temp_dir("progress");
+    let out = dir.join("out");
+    let base = ["run", "cases/paper-7.2.toml", "--out", out.to_str().unwrap()];
+    let coarse = ["--set", "mesh.nx=24", "--set", "mesh.ny=4"];
+    let mut args: Vec<&str> = base.iter().chain(&coarse).copied().collect();
+    args.extend(["--progress-interval", "0"]);
+    let o = piezocontact(&args);
+    assert!(o.status.success(), "{}", text(&o));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("progress: outer step 1 (of at most"), "{stderr}");
+    assert!(stderr.contains("Uzawa iteration 1: criterion"), "{stderr}");
+    assert!(stderr.contains("(stops below 1.0e-4)"), "{stderr}");
+    let mut quiet: Vec<&str> = base.iter().chain(&coarse).copied().collect();
+    quiet.extend(["--progress-interval", "0", "--quiet"]);
+    let o = piezocontact(&quiet);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(o.stdout.is_empty() && o.stderr.is_empty(), "{}", text(&o));
+    assert!(out.join("summary.json").exists());
+    // The exact solver's steps.
+    let mut newton: Vec<&str> = base.iter().chain(&coarse).copied().collect();
+    newton.extend(["--set", "solver.method=\"newton\"", "--progress-interval", "0"]);
+    let o = piezocontact(&newton);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success() && stderr.contains("Newton step 1: criterion"), "{stderr}");
+}
