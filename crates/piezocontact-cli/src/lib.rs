@@ -4,6 +4,7 @@
 
 pub mod bench;
 pub mod fuzzing;
+pub mod outputs;
 pub mod plot;
 pub mod print;
 pub mod progress;

@@ -8,7 +8,7 @@ use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
 use piezocontact::run::{ContactRun, StaticRun};
 use piezocontact_cli::progress::Reporter;
-use piezocontact_cli::{bench, plot, print, reproduce, sweep};
+use piezocontact_cli::{bench, outputs, print, reproduce, sweep};
 use piezocontact_cli::{say, say_err};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -251,13 +251,7 @@ fn run_contact(case: &Case, out: &Path, interval: f64) -> Result<Outcome> {
     let reporter = Reporter::new(case.settings()?.method.name(), interval);
     let run = ContactRun::solve_with(case, &|event| reporter.event(event))?;
     drop(reporter);
-    run.write(case, out)?;
-    if run.problem.mesh.dim() == 3 {
-        let units = &case.file.units;
-        let title = if case.file.title.is_empty() { "Γ3" } else { case.file.title.as_str() };
-        let labels = plot::MapLabels { title, length: &units.length, stress: &units.stress };
-        plot::contact_map(&run, &labels, &out.join("contact_map"))?;
-    }
+    outputs::write_contact_run(&run, case, out)?;
     print::contact_run(&run, case, out);
     if let Some(failure) = &run.solution.failure {
         say_err!(

@@ -63,24 +63,47 @@ pub fn rows(problem: &Problem, model: &ContactModel, solution: &ContactSolution)
         .collect()
 }
 
-/// `contact.csv`: columns exactly `x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status` in 2D
-/// (u_τ, σ_τ along τ = ν turned by +90°), and
-/// `x,y,z,u_nu,u_tau1,u_tau2,sigma_nu,sigma_tau1,sigma_tau2,phi,s,status` in 3D (along τ1,
-/// τ2 of [`crate::contact::ContactSurface::frame`]).
-pub fn contact_csv(rows: &[Row], dim: usize) -> String {
-    let mut s = String::from(if dim == 2 {
-        "x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status\n"
+/// The numeric columns of `contact.csv`, without `status`: exactly
+/// `x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s` in 2D (u_τ, σ_τ along τ = ν turned by +90°),
+/// and `x,y,z,u_nu,u_tau1,u_tau2,sigma_nu,sigma_tau1,sigma_tau2,phi,s` in 3D (along τ1, τ2 of
+/// [`crate::contact::ContactSurface::frame`]).
+pub fn contact_columns(dim: usize) -> &'static [&'static str] {
+    if dim == 2 {
+        &["x", "y", "u_nu", "u_tau", "sigma_nu", "sigma_tau", "phi", "s"]
     } else {
-        "x,y,z,u_nu,u_tau1,u_tau2,sigma_nu,sigma_tau1,sigma_tau2,phi,s,status\n"
-    });
+        &[
+            "x",
+            "y",
+            "z",
+            "u_nu",
+            "u_tau1",
+            "u_tau2",
+            "sigma_nu",
+            "sigma_tau1",
+            "sigma_tau2",
+            "phi",
+            "s",
+        ]
+    }
+}
+
+/// The values of a row in the order of [`contact_columns`].
+pub fn row_values(r: &Row, dim: usize) -> Vec<f64> {
+    let mut values: Vec<f64> = r.x[..dim].to_vec();
+    values.push(r.u_nu);
+    values.extend_from_slice(&r.u_tau[..dim - 1]);
+    values.push(r.sigma_nu);
+    values.extend_from_slice(&r.sigma_tau[..dim - 1]);
+    values.extend([r.phi, r.s]);
+    values
+}
+
+/// `contact.csv`: the [`contact_columns`] and `status`, one row per Γ3 node.
+pub fn contact_csv(rows: &[Row], dim: usize) -> String {
+    let mut s = contact_columns(dim).join(",");
+    s.push_str(",status\n");
     for r in rows {
-        let mut fields: Vec<f64> = r.x[..dim].to_vec();
-        fields.push(r.u_nu);
-        fields.extend_from_slice(&r.u_tau[..dim - 1]);
-        fields.push(r.sigma_nu);
-        fields.extend_from_slice(&r.sigma_tau[..dim - 1]);
-        fields.extend([r.phi, r.s]);
-        for v in fields {
+        for v in row_values(r, dim) {
             let _ = write!(s, "{},", csv_number(v));
         }
         let _ = writeln!(s, "{}", r.status.name());
@@ -100,11 +123,7 @@ pub fn csv_number(v: f64) -> String {
 /// many and why. Empty when every value is finite.
 pub fn non_finite(solution: &ContactSolution, rows: &[Row]) -> Value {
     let (kkt, balance) = (&solution.kkt, &solution.balance);
-    let row_values = |r: &Row| {
-        let mut v = vec![r.u_nu, r.sigma_nu, r.phi, r.s];
-        v.extend(r.x.iter().chain(&r.u_tau).chain(&r.sigma_tau));
-        v
-    };
+    let dim = solution.surface.dim();
     let fields: [(&str, Vec<f64>); 5] = [
         (
             "kkt_residual",
@@ -128,7 +147,7 @@ pub fn non_finite(solution: &ContactSolution, rows: &[Row]) -> Value {
         ),
         ("outer_criterion_history", solution.outer_history.clone()),
         ("inner_criterion_history", solution.inner_history.concat()),
-        ("contact.csv", rows.iter().flat_map(row_values).collect()),
+        ("contact.csv", rows.iter().flat_map(|r| row_values(r, dim)).collect()),
     ];
     let why = match &solution.failure {
         Some(failure) => format!("the run failed: {failure}"),

@@ -1,0 +1,333 @@
+//! piezocontact from Python: solve a case file (or a case built from a dict) with the library
+//! that the `piezocontact` command uses, and get its results as numpy arrays.
+//!
+//! - `solve(case_path, overrides=None)` runs what `piezocontact run` runs; `overrides` maps
+//!   dotted keys to values, as `--set` does.
+//! - `Case.from_dict(...)`, `Case.from_file(...)` and `Case.solve()`.
+//! - `Solution`: `summary` (summary.json as a dict), `contact` (the contact.csv columns),
+//!   `points`, `u`, `phi`, `converged`, and `write(directory)` (the files `run` writes).
+//!
+//! Bad input raises `CaseError`, a `ValueError` with the command line's message (file, line,
+//! key). The solve runs without the GIL, and a panic inside it becomes a `RuntimeError`.
+
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use piezocontact::case::Case as CaseFile;
+use piezocontact::output::files::Claimed;
+use piezocontact::report::{contact_columns, row_values};
+use piezocontact::run::{ContactRun, StaticRun};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyRuntimeError, PyRuntimeWarning, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use std::ffi::CString;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+
+create_exception!(
+    piezocontact,
+    CaseError,
+    PyValueError,
+    "Bad input — a case file, a key, a value, a mesh — with the message the command line gives \
+     (file, line, key and the fix)."
+);
+
+/// A library error as the Python exception that carries its message.
+fn case_error(e: impl std::fmt::Display) -> PyErr {
+    CaseError::new_err(e.to_string())
+}
+
+/// A Python value as a TOML value: bool, int, float (numpy scalars and arrays through their
+/// `tolist()`), str, list or tuple, dict.
+fn toml_value(value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+    let value = if value.hasattr("tolist")? && !value.is_instance_of::<PyString>() {
+        value.call_method0("tolist")?
+    } else {
+        value.clone()
+    };
+    if value.is_instance_of::<PyBool>() {
+        Ok(toml::Value::Boolean(value.extract()?))
+    } else if value.is_instance_of::<PyInt>() {
+        Ok(toml::Value::Integer(value.extract()?))
+    } else if value.is_instance_of::<PyFloat>() {
+        Ok(toml::Value::Float(value.extract()?))
+    } else if value.is_instance_of::<PyString>() {
+        Ok(toml::Value::String(value.extract()?))
+    } else if value.is_instance_of::<PyDict>() {
+        Ok(toml::Value::Table(toml_table(value.cast::<PyDict>()?)?))
+    } else if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
+        let items: PyResult<Vec<toml::Value>> =
+            value.try_iter()?.map(|item| toml_value(&item?)).collect();
+        Ok(toml::Value::Array(items?))
+    } else {
+        Err(CaseError::new_err(format!(
+            "a value of type {} cannot be a case value: give a bool, int, float, str, list or dict",
+            value.get_type().name()?
+        )))
+    }
+}
+
+/// A dict with string keys as a TOML table.
+fn toml_table(dict: &Bound<'_, PyDict>) -> PyResult<toml::Table> {
+    let mut table = toml::Table::new();
+    for (key, value) in dict.iter() {
+        let key: String = key.extract().map_err(|_| {
+            CaseError::new_err(format!(
+                "case keys are strings, not {}",
+                key.repr().map_or_else(|_| "?".into(), |r| r.to_string())
+            ))
+        })?;
+        table.insert(key, toml_value(&value)?);
+    }
+    Ok(table)
+}
+
+/// `overrides` as `--set` strings "dotted.key=value".
+fn override_strings(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<String>> {
+    let Some(overrides) = overrides else { return Ok(Vec::new()) };
+    toml_table(overrides)?.into_iter().map(|(key, value)| Ok(format!("{key}={value}"))).collect()
+}
+
+/// A solved case: a contact run, or a run without contact (no `[contact]` table).
+enum Run {
+    Contact(Box<ContactRun>),
+    Static(Box<StaticRun>),
+}
+
+/// The message of a panic payload.
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "no message".into())
+}
+
+/// Solves `case` without the GIL; a panic becomes a `RuntimeError`, an unconverged run a
+/// `RuntimeWarning` (its results are there, marked `converged = False`).
+fn solve_case(py: Python<'_>, case: CaseFile) -> PyResult<Solution> {
+    let result = py.detach(|| {
+        catch_unwind(AssertUnwindSafe(|| {
+            if case.file.contact.is_some() {
+                ContactRun::solve(&case).map(|r| Run::Contact(Box::new(r)))
+            } else {
+                StaticRun::solve(&case).map(|r| Run::Static(Box::new(r)))
+            }
+        }))
+    });
+    let run = match result {
+        Ok(run) => run.map_err(case_error)?,
+        Err(payload) => {
+            return Err(PyRuntimeError::new_err(format!(
+                "internal error in piezocontact (please report it with the case): {}",
+                panic_message(payload.as_ref())
+            )));
+        }
+    };
+    let solution = Solution { run, case };
+    if let Run::Contact(run) = &solution.run
+        && let Some(failure) = &run.solution.failure
+    {
+        let message = CString::new(format!(
+            "{}: {failure}; the partial result is in the Solution (converged = False)",
+            solution.case.path.display()
+        ))
+        .unwrap_or_default();
+        PyErr::warn(py, &py.get_type::<PyRuntimeWarning>(), &message, 1)?;
+    }
+    Ok(solution)
+}
+
+/// Runs what `piezocontact run CASE_PATH --set key=value ...` runs and returns the solution.
+#[pyfunction]
+#[pyo3(signature = (case_path, overrides = None))]
+fn solve(
+    py: Python<'_>,
+    case_path: PathBuf,
+    overrides: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Solution> {
+    let case = CaseFile::load(&case_path, &override_strings(overrides)?).map_err(case_error)?;
+    solve_case(py, case)
+}
+
+/// Raises a panic inside the solver's guard: the interpreter must get a RuntimeError, not
+/// die (used by the tests of that guard).
+#[pyfunction]
+fn _panic_inside_the_guard(py: Python<'_>) -> PyResult<()> {
+    let result = py.detach(|| catch_unwind(|| panic!("a deliberate panic")));
+    result.map_err(|payload| {
+        PyRuntimeError::new_err(format!(
+            "internal error in piezocontact (please report it with the case): {}",
+            panic_message(payload.as_ref())
+        ))
+    })
+}
+
+/// A case, read from a file or built from a dict with the case file's structure.
+#[pyclass(frozen, module = "piezocontact")]
+struct Case {
+    case: CaseFile,
+}
+
+#[pymethods]
+impl Case {
+    /// A case from a dict shaped like a case file ({"mesh": {...}, "material": {...}, ...});
+    /// relative paths in it (mesh.file) are relative to `base_dir` (default: the current
+    /// directory). Messages name it "<base_dir>/case-from-dict.toml".
+    #[staticmethod]
+    #[pyo3(signature = (data, base_dir = None))]
+    fn from_dict(data: &Bound<'_, PyDict>, base_dir: Option<PathBuf>) -> PyResult<Self> {
+        let text = toml::to_string(&toml_table(data)?).map_err(case_error)?;
+        let path = base_dir.unwrap_or_else(|| PathBuf::from(".")).join("case-from-dict.toml");
+        Ok(Self { case: CaseFile::from_text(&path, &text, &[]).map_err(case_error)? })
+    }
+
+    /// A case file with `overrides` (dotted keys, as `--set`).
+    #[staticmethod]
+    #[pyo3(signature = (path, overrides = None))]
+    fn from_file(path: PathBuf, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let case = CaseFile::load(&path, &override_strings(overrides)?).map_err(case_error)?;
+        Ok(Self { case })
+    }
+
+    /// The case as TOML text (with its overrides applied).
+    #[getter]
+    fn text(&self) -> &str {
+        &self.case.source
+    }
+
+    /// Solves the case.
+    fn solve(&self, py: Python<'_>) -> PyResult<Solution> {
+        let case =
+            CaseFile::from_text(&self.case.path, &self.case.source, &[]).map_err(case_error)?;
+        solve_case(py, case)
+    }
+}
+
+/// The solution of a case.
+#[pyclass(frozen, module = "piezocontact")]
+struct Solution {
+    run: Run,
+    case: CaseFile,
+}
+
+impl Solution {
+    /// The problem, the DOF map and x = (u, ϕ).
+    fn parts(&self) -> (&piezocontact::problem::Problem, &piezocontact::dofs::DofMap, &[f64]) {
+        match &self.run {
+            Run::Contact(r) => (&r.problem, &r.solution.dofs, &r.solution.x),
+            Run::Static(r) => (&r.problem, &r.solution.dofs, &r.solution.x),
+        }
+    }
+
+    /// An n × d array of the nodes.
+    fn nodal<'py>(
+        &self,
+        py: Python<'py>,
+        value: impl Fn(usize, usize) -> f64,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let mesh = &self.parts().0.mesh;
+        let (n, d) = (mesh.n_nodes(), mesh.dim());
+        let flat: Vec<f64> =
+            (0..n).flat_map(|a| (0..d).map(move |k| (a, k))).map(|(a, k)| value(a, k)).collect();
+        PyArray1::from_vec(py, flat).reshape([n, d])
+    }
+}
+
+#[pymethods]
+impl Solution {
+    /// summary.json as a dict.
+    #[getter]
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let summary = match &self.run {
+            Run::Contact(r) => r.summary(&self.case),
+            Run::Static(r) => r.summary(&self.case),
+        };
+        let text = serde_json::to_string(&summary).map_err(case_error)?;
+        py.import("json")?.call_method1("loads", (text,))
+    }
+
+    /// The contact.csv columns as 1-D numpy arrays (float, and `status` as str), one entry per
+    /// Γ3 node; empty without contact.
+    #[getter]
+    fn contact<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        let Run::Contact(run) = &self.run else { return Ok(dict) };
+        let dim = run.problem.mesh.dim();
+        let rows: Vec<Vec<f64>> = run.rows.iter().map(|r| row_values(r, dim)).collect();
+        for (k, name) in contact_columns(dim).iter().enumerate() {
+            let column: Vec<f64> = rows.iter().map(|r| r[k]).collect();
+            dict.set_item(*name, PyArray1::from_vec(py, column))?;
+        }
+        let status: Vec<&str> = run.rows.iter().map(|r| r.status.name()).collect();
+        dict.set_item("status", py.import("numpy")?.call_method1("array", (status,))?)?;
+        Ok(dict)
+    }
+
+    /// The node coordinates, n × d.
+    #[getter]
+    fn points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let mesh = &self.parts().0.mesh;
+        self.nodal(py, |a, k| mesh.node(a)[k])
+    }
+
+    /// The displacement u at the nodes, n × d.
+    #[getter]
+    fn u<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (_, dofs, x) = self.parts();
+        self.nodal(py, |a, k| x[dofs.u(a, k)])
+    }
+
+    /// The electric potential ϕ at the nodes, n.
+    #[getter]
+    fn phi<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let (problem, dofs, x) = self.parts();
+        let phi: Vec<f64> = (0..problem.mesh.n_nodes()).map(|a| x[dofs.phi(a)]).collect();
+        PyArray1::from_vec(py, phi)
+    }
+
+    /// Whether every loop converged (a run without contact always does).
+    #[getter]
+    fn converged(&self) -> bool {
+        match &self.run {
+            Run::Contact(r) => r.solution.converged,
+            Run::Static(_) => true,
+        }
+    }
+
+    /// Writes the files `piezocontact run` writes into `directory`; a directory holding
+    /// files piezocontact did not write is refused unless `force`.
+    #[pyo3(signature = (directory, force = false))]
+    fn write(&self, py: Python<'_>, directory: PathBuf, force: bool) -> PyResult<()> {
+        py.detach(|| self.write_files(&directory, force)).map_err(case_error)
+    }
+}
+
+impl Solution {
+    /// [`Solution::write`] without the GIL.
+    fn write_files(&self, directory: &Path, force: bool) -> anyhow::Result<()> {
+        let _claim = Claimed::new(directory, force).map_err(|e| match e {
+            piezocontact::Error::ForeignOutput { .. } => {
+                anyhow::anyhow!("{e}: choose another directory, or pass force=True")
+            }
+            e => e.into(),
+        })?;
+        match &self.run {
+            Run::Contact(run) => {
+                piezocontact_cli::outputs::write_contact_run(run, &self.case, directory)
+            }
+            Run::Static(run) => Ok(run.write(&self.case, directory)?),
+        }
+    }
+}
+
+/// The module `piezocontact._native`, re-exported by the package `piezocontact`.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(_panic_inside_the_guard, m)?)?;
+    m.add_class::<Case>()?;
+    m.add_class::<Solution>()?;
+    m.add("CaseError", m.py().get_type::<CaseError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

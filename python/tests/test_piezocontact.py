@@ -1,0 +1,214 @@
+"""The Python package against the command line: same numbers, overrides (numpy scalars too),
+errors as ValueError with the command's message, complete files, the GIL released during a
+solve, and a panic that does not kill the interpreter."""
+
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import piezocontact
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+PAPER_71 = ROOT / "cases" / "paper-7.1.toml"
+PAPER_72 = ROOT / "cases" / "paper-7.2.toml"
+COARSE = {"mesh.nx": 24, "mesh.ny": 4}
+
+
+def cli():
+    """The piezocontact command built by `cargo test` or `cargo build` (debug or release)."""
+    for profile in ("release", "debug"):
+        exe = ROOT / "target" / profile / "piezocontact"
+        if exe.exists():
+            return exe
+    raise AssertionError("build the command first: cargo build -p piezocontact-cli")
+
+
+def cli_run(case, out, overrides):
+    """`piezocontact run CASE --out OUT --set k=v ...`; returns summary.json and the rows of
+    contact.csv."""
+    sets = [a for k, v in overrides.items() for a in ("--set", f"{k}={v}")]
+    subprocess.run([cli(), "run", case, "--out", out, "-q", *sets], check=True)
+    summary = json.loads((out / "summary.json").read_text())
+    with open(out / "contact.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    return summary, rows
+
+
+@pytest.mark.parametrize("case", [PAPER_71, PAPER_72])
+def test_solve_gives_the_command_s_numbers(tmp_path, case):
+    summary, rows = cli_run(case, tmp_path / "cli", COARSE)
+    solution = piezocontact.solve(case, COARSE)
+    assert solution.converged
+    ours = solution.summary
+    for key in ("max_abs_sigma_nu", "max_abs_sigma_tau", "contact_measure", "slip_measure"):
+        assert ours["gamma3"][key] == pytest.approx(summary["gamma3"][key], rel=1e-12, abs=1e-300)
+    assert ours["outer_iterations"] == summary["outer_iterations"]
+    assert ours["inner_iterations"] == summary["inner_iterations"]
+    contact = solution.contact
+    assert list(contact) == list(rows[0])  # the contact.csv columns, in order
+    for name in rows[0]:
+        column = [r[name] for r in rows]
+        if name == "status":
+            assert list(contact[name]) == column
+        else:
+            # contact.csv holds each number's shortest round-trip form: equal to the last bit.
+            np.testing.assert_array_equal(contact[name], np.array(column, dtype=float))
+
+
+def test_points_u_and_phi_are_nodal_arrays():
+    solution = piezocontact.solve(PAPER_72, COARSE)
+    n = (24 + 1) * (4 + 1)
+    assert solution.points.shape == (n, 2) and solution.u.shape == (n, 2)
+    assert solution.phi.shape == (n,)
+    # The bar [0,12]×[0,2]; its bottom moves down onto the foundation, the ends are clamped.
+    assert solution.points.min(axis=0) == pytest.approx([0, 0])
+    assert solution.points.max(axis=0) == pytest.approx([12, 2])
+    ends = np.isclose(solution.points[:, 0], 0) | np.isclose(solution.points[:, 0], 12)
+    assert np.all(solution.u[ends] == 0)
+    assert solution.u[:, 1].min() < -0.5  # the gap is 0.5 m: the bar reaches the foundation
+    assert np.all(np.isfinite(solution.phi))
+
+
+def test_overrides_take_python_and_numpy_scalars():
+    plain = piezocontact.solve(PAPER_72, {**COARSE, "friction.mu": 0.2, "conductivity.ke": 0.2})
+    numpy = piezocontact.solve(
+        PAPER_72,
+        {
+            "mesh.nx": np.int64(24),
+            "mesh.ny": np.int32(4),
+            "friction.mu": np.float64(0.2),
+            "conductivity.ke": np.array([0.2])[0],
+        },
+    )
+    default = piezocontact.solve(PAPER_72, COARSE)
+    np.testing.assert_array_equal(plain.contact["sigma_nu"], numpy.contact["sigma_nu"])
+    assert not np.array_equal(plain.contact["sigma_tau"], default.contact["sigma_tau"])
+    # numpy booleans, strings and arrays too.
+    pv1 = piezocontact.solve(
+        PAPER_72, {**COARSE, "contact.problem": "PV1", "solver.method": np.str_("newton")}
+    )
+    assert pv1.summary["problem"] == "PV1" and pv1.summary["method"] == "newton"
+    assert np.all(pv1.contact["sigma_tau"] == 0)
+
+
+def test_bad_input_raises_a_value_error_naming_the_key():
+    with pytest.raises(piezocontact.CaseError) as error:
+        piezocontact.solve(PAPER_71, {"material.poisson": 0.7})
+    assert isinstance(error.value, ValueError)
+    message = str(error.value)
+    assert "paper-7.1.toml:" in message and "material.poisson" in message
+    # The command line's message, word for word.
+    cli_message = subprocess.run(
+        [cli(), "check", PAPER_71, "--set", "material.poisson=0.7"], capture_output=True, text=True
+    ).stderr
+    assert cli_message.strip() == f"error: {message}"
+    with pytest.raises(ValueError, match="unknown field `youngs`"):
+        piezocontact.solve(PAPER_71, {"material.youngs": 1.0})
+    with pytest.raises(ValueError, match="conductivity.phi0 = 1e308 is out of range"):
+        piezocontact.solve(PAPER_72, {"conductivity.phi0": 1e308})
+    with pytest.raises(ValueError, match="cannot be a case value"):
+        piezocontact.solve(PAPER_71, {"mesh.nx": object()})
+    with pytest.raises(ValueError, match="cannot read"):
+        piezocontact.solve(ROOT / "cases" / "no-such-case.toml")
+
+
+def test_a_case_from_a_dict_solves_like_its_file(tmp_path):
+    case = {
+        "mesh": {"x": [0.0, 4.0], "y": [0.0, 1.0], "nx": 16, "ny": 4,
+                 "segments": {"left": ["{0}x[0,1]"], "bottom": ["[0,4]x{0}"], "top": ["[0,4]x{1}"]}},
+        "material": {"young": 100.0, "poisson": 0.25, "e31": -5.4, "e33": 15.8, "e15": 12.3,
+                     "eps0": 8.885e-3, "beta11_rel": 916.0, "beta33_rel": 830.0},
+        "boundary": {"clamped": ["left"], "grounded": ["left"], "contact": ["bottom"],
+                     "traction": [{"parts": ["top"], "f2": [0.0, -2.0]}]},
+        "contact": {"gap": 0.01},
+    }
+    from_dict = piezocontact.Case.from_dict(case, base_dir=tmp_path)
+    path = tmp_path / "case.toml"
+    path.write_text(from_dict.text)
+    solved = from_dict.solve()
+    assert solved.converged and solved.summary["kkt_residual"]["max"] <= 1e-10
+    np.testing.assert_array_equal(solved.u, piezocontact.solve(path).u)
+    assert np.any(solved.contact["sigma_nu"] < 0), "the beam does not touch"
+    case["material"]["poisson"] = 0.6
+    with pytest.raises(ValueError, match=r"case-from-dict.toml:\d+: material.poisson"):
+        piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
+
+
+def test_write_writes_the_files_of_run(tmp_path):
+    solution = piezocontact.solve(PAPER_72, COARSE)
+    out = tmp_path / "out"
+    solution.write(out)
+    summary = json.loads((out / "summary.json").read_text())  # strict: no NaN tokens
+    assert summary == solution.summary
+    text = (out / "contact.csv").read_text()
+    assert text.splitlines()[0] == "x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status"
+    assert len(text.splitlines()) == 1 + len(solution.contact["x"]) and text.endswith("\n")
+    assert (out / "solution.vtu").read_text().rstrip().endswith("</VTKFile>")
+    cli_summary, _ = cli_run(PAPER_72, tmp_path / "cli", COARSE)
+    assert sorted(p.name for p in out.iterdir()) == sorted(p.name for p in (tmp_path / "cli").iterdir())
+    # A directory with someone else's files is refused, unless forced.
+    foreign = tmp_path / "foreign"
+    foreign.mkdir()
+    (foreign / "notes.txt").write_text("mine")
+    with pytest.raises(ValueError, match="force=True"):
+        solution.write(foreign)
+    solution.write(foreign, force=True)
+    assert (foreign / "notes.txt").read_text() == "mine" and (foreign / "contact.csv").exists()
+
+
+def test_3d_solutions_write_the_contact_map(tmp_path):
+    solution = piezocontact.solve(
+        ROOT / "cases" / "indentation-3d.toml", {"mesh.file": "../meshes/indent-3d-h0.05.msh"}
+    )
+    assert solution.points.shape[1] == 3 and "sigma_tau2" in solution.contact
+    solution.write(tmp_path)
+    assert (tmp_path / "contact_map.png").read_bytes()[-8:-4] == b"IEND"
+
+
+def test_the_gil_is_released_during_a_solve():
+    """A Python thread keeps running while another one solves."""
+    ticks = []
+    done = threading.Event()
+
+    def tick():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    ticker = threading.Thread(target=tick)
+    ticker.start()
+    start = time.perf_counter()
+    piezocontact.solve(PAPER_72, {"mesh.nx": 96, "mesh.ny": 16})
+    seconds = time.perf_counter() - start
+    done.set()
+    ticker.join()
+    during = [t for t in ticks if start <= t <= start + seconds]
+    assert seconds > 0.05, "the solve was too short to tell"
+    assert len(during) > 10, f"{len(during)} ticks in {seconds:.2f} s: the GIL was held"
+
+
+def test_a_panic_raises_instead_of_killing_the_interpreter():
+    with pytest.raises(RuntimeError, match="internal error in piezocontact.*a deliberate panic"):
+        piezocontact._native._panic_inside_the_guard()
+    assert piezocontact.solve(PAPER_71, COARSE).converged  # the interpreter lives on
+
+
+def test_an_unconverged_run_warns_and_keeps_its_result():
+    with pytest.warns(RuntimeWarning, match="did not converge"):
+        solution = piezocontact.solve(PAPER_72, {**COARSE, "solver.max_outer": 1})
+    assert not solution.converged and solution.summary["converged"] is False
+    assert np.all(np.isfinite(solution.u))
+
+
+def test_the_table2_example_saves_its_figure(tmp_path):
+    pytest.importorskip("matplotlib")
+    example = ROOT / "python" / "examples" / "table2.py"
+    subprocess.run([sys.executable, example], cwd=tmp_path, check=True, capture_output=True)
+    assert (tmp_path / "table2.png").read_bytes()[:4] == b"\x89PNG"
