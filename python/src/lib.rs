@@ -93,36 +93,32 @@ enum Run {
     Static(Box<StaticRun>),
 }
 
-/// The message of a panic payload.
-fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
-    payload
-        .downcast_ref::<&str>()
-        .map(|s| s.to_string())
-        .or_else(|| payload.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "no message".into())
+/// Runs `work` without the GIL; a panic in it becomes a `RuntimeError` instead of unwinding
+/// into the interpreter.
+fn guarded<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
+    py.detach(|| catch_unwind(AssertUnwindSafe(work))).map_err(|payload| {
+        let message = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "no message".into());
+        PyRuntimeError::new_err(format!(
+            "internal error in piezocontact (please report it with the case): {message}"
+        ))
+    })
 }
 
 /// Solves `case` without the GIL; a panic becomes a `RuntimeError`, an unconverged run a
 /// `RuntimeWarning` (its results are there, marked `converged = False`).
 fn solve_case(py: Python<'_>, case: CaseFile) -> PyResult<Solution> {
-    let result = py.detach(|| {
-        catch_unwind(AssertUnwindSafe(|| {
-            if case.file.contact.is_some() {
-                ContactRun::solve(&case).map(|r| Run::Contact(Box::new(r)))
-            } else {
-                StaticRun::solve(&case).map(|r| Run::Static(Box::new(r)))
-            }
-        }))
-    });
-    let run = match result {
-        Ok(run) => run.map_err(case_error)?,
-        Err(payload) => {
-            return Err(PyRuntimeError::new_err(format!(
-                "internal error in piezocontact (please report it with the case): {}",
-                panic_message(payload.as_ref())
-            )));
+    let run = guarded(py, || {
+        if case.file.contact.is_some() {
+            ContactRun::solve(&case).map(|r| Run::Contact(Box::new(r)))
+        } else {
+            StaticRun::solve(&case).map(|r| Run::Static(Box::new(r)))
         }
-    };
+    })?
+    .map_err(case_error)?;
     let solution = Solution { run, case };
     if let Run::Contact(run) = &solution.run
         && let Some(failure) = &run.solution.failure
@@ -149,17 +145,11 @@ fn solve(
     solve_case(py, case)
 }
 
-/// Raises a panic inside the solver's guard: the interpreter must get a RuntimeError, not
-/// die (used by the tests of that guard).
+/// Panics inside the guard that every solve runs in: the interpreter must get a
+/// RuntimeError, not die (the tests of that guard call it).
 #[pyfunction]
 fn _panic_inside_the_guard(py: Python<'_>) -> PyResult<()> {
-    let result = py.detach(|| catch_unwind(|| panic!("a deliberate panic")));
-    result.map_err(|payload| {
-        PyRuntimeError::new_err(format!(
-            "internal error in piezocontact (please report it with the case): {}",
-            panic_message(payload.as_ref())
-        ))
-    })
+    guarded(py, || panic!("a deliberate panic"))
 }
 
 /// A case, read from a file or built from a dict with the case file's structure.
@@ -298,7 +288,7 @@ impl Solution {
     /// files piezocontact did not write is refused unless `force`.
     #[pyo3(signature = (directory, force = false))]
     fn write(&self, py: Python<'_>, directory: PathBuf, force: bool) -> PyResult<()> {
-        py.detach(|| self.write_files(&directory, force)).map_err(case_error)
+        guarded(py, || self.write_files(&directory, force))?.map_err(case_error)
     }
 }
 
