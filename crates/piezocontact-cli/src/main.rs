@@ -270,6 +270,7 @@ fn run_contact(case: &Case, out: &Path, interval: f64) -> Result<Outcome> {
 fn check(path: &Path, set: &[String]) -> Result<()> {
     let case = Case::load(path, set)?;
     let problem = case.problem()?;
+    let model = case.contact_model(&problem)?;
     let dofs = piezocontact::dofs::DofMap::new(&problem)?;
     let (mesh, units) = (&problem.mesh, &case.file.units);
     let (lo, hi) = mesh.bounding_box();
@@ -325,8 +326,8 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
         dofs.n_free_u(),
         dofs.n_free() - dofs.n_free_u()
     );
-    if case.file.contact.is_some() {
-        say!("problem: {:?}", case.problem_kind());
+    if let Some(model) = &model {
+        say!("problem: {:?}, foundation: {:?}", case.problem_kind(), model.foundation);
     }
     for warning in case.hypothesis_warnings(&problem.material) {
         say!("warning: {warning}");

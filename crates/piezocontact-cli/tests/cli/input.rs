@@ -152,3 +152,30 @@ fn progress_shows_on_long_runs_and_quiet_silences_it() {
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success() && stderr.contains("Newton step 1: criterion"), "{stderr}");
 }
+
+/// The newer keys — [foundation], solver.method, solver.tol, solver.max_condensed — are
+/// checked by `check` as by `run`, with file:line:key and the fix.
+#[test]
+fn check_validates_the_foundation_and_the_exact_solver_s_keys() {
+    for (set, pieces) in [
+        (
+            "foundation.radius=-1.0",
+            vec!["indentation-3d.toml:", "foundation.radius = -1", "a radius > 0"],
+        ),
+        (
+            "foundation.normal=[0.0, 0.0, 1.0]",
+            vec!["foundation.normal does not belong to kind = \"sphere\""],
+        ),
+        ("foundation.center=[0.0, 1.0]", vec!["foundation.center", "3 finite components"]),
+        ("solver.tol=-1", vec!["indentation-3d.toml:", "solver.tol = -1", "a tolerance > 0"]),
+        ("solver.max_condensed=0", vec!["solver.max_condensed = 0", "at least 1"]),
+        ("solver.method=\"simplex\"", vec!["unknown variant `simplex`", "newton", "uzawa"]),
+    ] {
+        let o = piezocontact(&["check", "cases/indentation-3d.toml", "--set", set]);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(1), "{set}: {t}");
+        assert!(pieces.iter().all(|p| t.contains(p)), "{set}: {t}");
+    }
+    let o = piezocontact(&["check", "cases/indentation-3d.toml"]);
+    assert!(o.status.success() && text(&o).contains("foundation: Sphere"), "{}", text(&o));
+}
