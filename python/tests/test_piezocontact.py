@@ -21,6 +21,15 @@ PAPER_72 = ROOT / "cases" / "paper-7.2.toml"
 COARSE = {"mesh.nx": 24, "mesh.ny": 4}
 
 
+def strict_json(text):
+    """Parses JSON, refusing the NaN and Infinity tokens that Python's json module accepts."""
+
+    def refuse(token):
+        raise AssertionError(f"{token} in a JSON output")
+
+    return json.loads(text, parse_constant=refuse)
+
+
 def cli():
     """The piezocontact command built by `cargo test` or `cargo build` (debug or release)."""
     for profile in ("release", "debug"):
@@ -35,7 +44,7 @@ def cli_run(case, out, overrides):
     contact.csv."""
     sets = [a for k, v in overrides.items() for a in ("--set", f"{k}={v}")]
     subprocess.run([cli(), "run", case, "--out", out, "-q", *sets], check=True)
-    summary = json.loads((out / "summary.json").read_text())
+    summary = strict_json((out / "summary.json").read_text())
     with open(out / "contact.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     return summary, rows
@@ -145,7 +154,7 @@ def test_write_writes_the_files_of_run(tmp_path):
     solution = piezocontact.solve(PAPER_72, COARSE)
     out = tmp_path / "out"
     solution.write(out)
-    summary = json.loads((out / "summary.json").read_text())  # strict: no NaN tokens
+    summary = strict_json((out / "summary.json").read_text())
     assert summary == solution.summary
     text = (out / "contact.csv").read_text()
     assert text.splitlines()[0] == "x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status"
