@@ -6,12 +6,12 @@ use super::common::{command, piezocontact, root, temp_dir, text};
 use std::io::Read;
 use std::process::Stdio;
 
-/// Runs `args` with stdout a pipe whose reader has already closed it; returns the exit code
-/// and stderr.
+/// Runs `args` with stdout a pipe whose reading end is closed before the command starts (so
+/// its first line meets a broken pipe); returns the exit code and stderr.
 fn with_closed_stdout(args: &[&str]) -> (Option<i32>, String) {
-    let mut child =
-        command().args(args).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
-    drop(child.stdout.take()); // the reader goes away before the first line
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let mut child = command().args(args).stdout(writer).stderr(Stdio::piped()).spawn().unwrap();
     let mut stderr = String::new();
     child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
     (child.wait().unwrap().code(), stderr)
