@@ -187,9 +187,7 @@ impl Case {
 
     /// Solves the case.
     fn solve(&self, py: Python<'_>) -> PyResult<Solution> {
-        let case =
-            CaseFile::from_text(&self.case.path, &self.case.source, &[]).map_err(case_error)?;
-        solve_case(py, case)
+        solve_case(py, self.case.clone())
     }
 }
 

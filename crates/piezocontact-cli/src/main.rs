@@ -12,6 +12,7 @@ use piezocontact_cli::{bench, outputs, print, reproduce, sweep};
 use piezocontact_cli::{say, say_err};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Duration;
 
 /// Static contact of a piezoelectric body with a foundation: P1 finite elements.
 #[derive(Parser)]
@@ -43,8 +44,8 @@ enum Command {
         #[arg(long)]
         force: bool,
         /// Seconds between two plain progress lines when stdout is not a terminal.
-        #[arg(long, default_value_t = 5.0, value_name = "SECONDS")]
-        progress_interval: f64,
+        #[arg(long, default_value = "5", value_name = "SECONDS", value_parser = parse_seconds)]
+        progress_interval: Duration,
     },
     /// Run a case once per value of swept keys, in parallel; write DIR/sweep.csv.
     Sweep {
@@ -125,6 +126,12 @@ enum Command {
         #[arg(long, hide = true)]
         one: Option<String>,
     },
+}
+
+/// Parses a number of seconds ≥ 0.
+fn parse_seconds(s: &str) -> Result<Duration, String> {
+    let bad = || format!("'{s}' is not a number of seconds ≥ 0, e.g. 5 or 0.5");
+    s.trim().parse::<f64>().ok().and_then(|v| Duration::try_from_secs_f64(v).ok()).ok_or_else(bad)
 }
 
 /// Parses `NX,NY`.
@@ -228,7 +235,7 @@ enum Outcome {
     Failed,
 }
 
-fn run_case(path: &Path, out: &Path, set: &[String], interval: f64) -> Result<Outcome> {
+fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Result<Outcome> {
     let case = Case::load(path, set)?;
     if case.file.contact.is_some() {
         return run_contact(&case, out, interval);
@@ -244,10 +251,7 @@ fn run_case(path: &Path, out: &Path, set: &[String], interval: f64) -> Result<Ou
     Ok(Outcome::Done)
 }
 
-fn run_contact(case: &Case, out: &Path, interval: f64) -> Result<Outcome> {
-    let interval = std::time::Duration::try_from_secs_f64(interval).map_err(|_| {
-        anyhow::anyhow!("--progress-interval {interval}: give a number of seconds ≥ 0")
-    })?;
+fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
     let reporter = Reporter::new(case.settings()?.method.name(), interval);
     let run = ContactRun::solve_with(case, &|event| reporter.event(event))?;
     drop(reporter);

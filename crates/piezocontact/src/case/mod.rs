@@ -392,49 +392,9 @@ pub const MAGNITUDE: f64 = 1e30;
 /// The smallest magnitude of a nonzero number in a case file (1/[`MAGNITUDE`]).
 pub const MIN_MAGNITUDE: f64 = 1e-30;
 
-/// Refuses every float of `item` (at dotted key `key`) that is not finite, or whose magnitude
-/// lies outside [MIN_MAGNITUDE, MAGNITUDE] without being zero.
-fn check_magnitudes(path: &Path, source: &str, key: &str, item: &toml_edit::Item) -> Result<()> {
-    let child =
-        |name: &str| if key.is_empty() { name.to_string() } else { format!("{key}.{name}") };
-    match item {
-        toml_edit::Item::Table(table) => {
-            table.iter().try_for_each(|(k, v)| check_magnitudes(path, source, &child(k), v))
-        }
-        toml_edit::Item::Value(value) => check_value(path, source, key, value),
-        toml_edit::Item::ArrayOfTables(tables) => tables.iter().try_for_each(|t| {
-            t.iter().try_for_each(|(k, v)| check_magnitudes(path, source, &child(k), v))
-        }),
-        toml_edit::Item::None => Ok(()),
-    }
-}
-
-/// [`check_magnitudes`] for one value (arrays and inline tables too).
-fn check_value(path: &Path, source: &str, key: &str, value: &toml_edit::Value) -> Result<()> {
-    match value {
-        toml_edit::Value::Float(f) => {
-            let v = *f.value();
-            let ok = v == 0.0 || (v.abs() <= MAGNITUDE && v.abs() >= MIN_MAGNITUDE);
-            if ok {
-                return Ok(());
-            }
-            let location = match key_line(source, key) {
-                Some(line) => format!("{}:{line}", path.display()),
-                None => path.display().to_string(),
-            };
-            Err(input!(
-                "{location}: {key} = {v:e} is out of range: a number must be finite, and 0 or of magnitude between {MIN_MAGNITUDE:e} and {MAGNITUDE:e} (the model multiplies and squares its inputs, which would overflow or underflow double precision beyond); express it in units that make it moderate ([units])"
-            ))
-        }
-        toml_edit::Value::Array(array) => {
-            array.iter().try_for_each(|v| check_value(path, source, key, v))
-        }
-        toml_edit::Value::InlineTable(table) => table.iter().try_for_each(|(k, v)| {
-            let child = if key.is_empty() { k.to_string() } else { format!("{key}.{k}") };
-            check_value(path, source, &child, v)
-        }),
-        _ => Ok(()),
-    }
+/// `key.name`, or `name` at the top.
+fn dotted(key: &str, name: &str) -> String {
+    if key.is_empty() { name.to_string() } else { format!("{key}.{name}") }
 }
 
 /// A whole case file.
@@ -460,6 +420,7 @@ pub struct CaseFile {
 }
 
 /// A case read from a file, with the source text kept for error locations.
+#[derive(Clone, Debug)]
 pub struct Case {
     /// The file it came from.
     pub path: PathBuf,
@@ -487,7 +448,6 @@ impl Case {
             apply_override(&mut doc, o)?;
         }
         let source = doc.to_string();
-        check_magnitudes(path, &source, "", doc.as_item())?;
         let file: CaseFile = toml::from_str(&source).map_err(|e| {
             let note = if overrides.is_empty() {
                 String::new()
@@ -496,7 +456,46 @@ impl Case {
             };
             input!("{}{note}: {e}", path.display())
         })?;
-        Ok(Self { path: path.to_path_buf(), source, file })
+        let case = Self { path: path.to_path_buf(), source, file };
+        case.check_magnitudes("", doc.as_item())?;
+        Ok(case)
+    }
+
+    /// Refuses every float of `item` (at dotted key `key`) that is not finite, or whose
+    /// magnitude lies outside [MIN_MAGNITUDE, MAGNITUDE] without being zero.
+    fn check_magnitudes(&self, key: &str, item: &toml_edit::Item) -> Result<()> {
+        let tables = |t: &toml_edit::Table| {
+            t.iter().try_for_each(|(k, v)| self.check_magnitudes(&dotted(key, k), v))
+        };
+        match item {
+            toml_edit::Item::Table(table) => tables(table),
+            toml_edit::Item::Value(value) => self.check_value(key, value),
+            toml_edit::Item::ArrayOfTables(array) => array.iter().try_for_each(tables),
+            toml_edit::Item::None => Ok(()),
+        }
+    }
+
+    /// [`Case::check_magnitudes`] for one value (arrays and inline tables too).
+    fn check_value(&self, key: &str, value: &toml_edit::Value) -> Result<()> {
+        match value {
+            toml_edit::Value::Float(f) => {
+                let v = *f.value();
+                if v == 0.0 || (v.abs() <= MAGNITUDE && v.abs() >= MIN_MAGNITUDE) {
+                    return Ok(());
+                }
+                Err(input!(
+                    "{}: {key} = {v:e} is out of range: a number must be finite, and 0 or of magnitude between {MIN_MAGNITUDE:e} and {MAGNITUDE:e} (the model multiplies and squares its inputs, which would overflow or underflow double precision beyond); express it in units that make it moderate ([units])",
+                    self.locate(key)
+                ))
+            }
+            toml_edit::Value::Array(array) => {
+                array.iter().try_for_each(|v| self.check_value(key, v))
+            }
+            toml_edit::Value::InlineTable(table) => {
+                table.iter().try_for_each(|(k, v)| self.check_value(&dotted(key, k), v))
+            }
+            _ => Ok(()),
+        }
     }
 
     /// "file:line" of a dotted key, for messages.
