@@ -300,9 +300,7 @@ impl Solution {
             e => e.into(),
         })?;
         match &self.run {
-            Run::Contact(run) => {
-                piezocontact_cli::outputs::write_contact_run(run, &self.case, directory)
-            }
+            Run::Contact(run) => Ok(run.write(&self.case, directory)?),
             Run::Static(run) => Ok(run.write(&self.case, directory)?),
         }
     }

@@ -9,9 +9,9 @@
 use crate::say;
 use anyhow::{Result, anyhow, bail};
 use piezocontact::assembly::secant_moduli;
-use piezocontact::case::Case;
+use piezocontact::case::{Built, Case};
 use piezocontact::dofs::DofMap;
-use piezocontact::linalg::bare_ldlt_seconds;
+use piezocontact::linalg::{bare_ldlt_seconds, default_solver};
 use piezocontact::problem::Problem;
 use piezocontact::solver::CoupledSystem;
 use std::path::Path;
@@ -112,7 +112,7 @@ fn measure(name: &str, problem: &Problem, lu: bool) -> Result<()> {
     let t = std::time::Instant::now();
     let dofs = DofMap::new(problem)?;
     let dof_map = t.elapsed().as_secs_f64();
-    let mut system = CoupledSystem::new(problem, dofs, &[])?;
+    let mut system = CoupledSystem::new(problem, dofs, &[], default_solver())?;
     let zero = vec![0.0; system.dofs().n_total()];
     let g = secant_moduli(problem, system.dofs(), &zero)?;
     system.factorize(problem, &g, &[])?;
@@ -279,7 +279,8 @@ pub fn measure_one(spec: &str) -> Result<()> {
     if kind == "plain" {
         let problem = problems.swap_remove(0).1.problem()?;
         let start = std::time::Instant::now();
-        let mut system = CoupledSystem::new(&problem, DofMap::new(&problem)?, &[])?;
+        let mut system =
+            CoupledSystem::new(&problem, DofMap::new(&problem)?, &[], default_solver())?;
         let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
         system.factorize(&problem, &g, &[])?;
         let seconds = start.elapsed().as_secs_f64();
@@ -288,9 +289,8 @@ pub fn measure_one(spec: &str) -> Result<()> {
     }
     let k: usize = kind.trim_start_matches("contact").parse()?;
     let (_, case) = problems.into_iter().nth(k).ok_or_else(|| anyhow!("--one {spec}"))?;
-    let problem = case.problem()?;
-    let model = case.contact_model(&problem)?.ok_or_else(|| anyhow!("no [contact] table"))?;
-    let settings = case.settings()?;
+    let Built { problem, model, settings, .. } = case.build()?;
+    let model = model.ok_or_else(|| anyhow!("no [contact] table"))?;
     let start = std::time::Instant::now();
     let s = &piezocontact::algorithm::solve_contact(&problem, &model, &settings)?;
     let seconds = start.elapsed().as_secs_f64();

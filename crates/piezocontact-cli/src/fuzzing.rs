@@ -1,7 +1,7 @@
 //! Entry points shared by the fuzz targets (`fuzz/`) and the regression tests that replay
 //! their corpus: each takes untrusted input and must return, never panic.
 
-use piezocontact::case::Case;
+use piezocontact::case::{Built, Case};
 use piezocontact::contact::ContactSurface;
 use piezocontact::dofs::DofMap;
 use std::path::Path;
@@ -21,7 +21,6 @@ const MAX_MESH_BYTES: u64 = 1 << 20;
 pub fn case(toml: &str, overrides: &[String]) -> Option<usize> {
     let meshes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../meshes");
     let case = Case::from_text(&meshes.join("fuzz.toml"), toml, overrides).ok()?;
-    let _ = case.contact_settings();
     let m = &case.file.mesh;
     let cells = m.nx.unwrap_or(1).saturating_mul(m.ny.unwrap_or(1));
     let readable = |file: &Path| {
@@ -31,14 +30,12 @@ pub fn case(toml: &str, overrides: &[String]) -> Option<usize> {
     if m.file.as_deref().is_some_and(|f| !readable(f)) || cells > MAX_CELLS {
         return None;
     }
-    let problem = case.problem().ok()?;
-    if let (Ok(Some(model)), Ok(dofs)) = (case.contact_model(&problem), DofMap::new(&problem)) {
+    let Built { problem, model, .. } = case.build().ok()?;
+    if let (Some(model), Ok(dofs)) = (model, DofMap::new(&problem)) {
         // The gaps of Γ3 to the foundation.
         let surface = ContactSurface::new(&problem, &dofs);
         let _ = surface.map(|s| s.with_gaps(&problem, &model.foundation, model.compliance.gap));
     }
-    let _ = case.settings();
-    let _ = case.hypothesis_warnings(&problem.material);
     let _ = case.uniqueness_note();
     Some(problem.mesh.dim())
 }

@@ -3,12 +3,13 @@
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use piezocontact::case::Case;
+use piezocontact::case::{Built, Case};
+use piezocontact::linalg::default_solver;
 use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
 use piezocontact::run::{ContactRun, StaticRun};
 use piezocontact_cli::progress::Reporter;
-use piezocontact_cli::{bench, outputs, print, reproduce, sweep};
+use piezocontact_cli::{bench, print, reproduce, sweep};
 use piezocontact_cli::{say, say_err};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -252,10 +253,11 @@ fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Resu
 }
 
 fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
-    let reporter = Reporter::new(case.settings()?.method.name(), interval);
-    let run = ContactRun::solve_with(case, &|event| reporter.event(event))?;
+    let reporter = Reporter::new(case.method_name(), interval);
+    let progress = |event| reporter.event(event);
+    let run = ContactRun::solve_with(case, default_solver(), &progress)?;
     drop(reporter);
-    outputs::write_contact_run(&run, case, out)?;
+    run.write(case, out)?;
     print::contact_run(&run, case, out);
     if let Some(failure) = &run.solution.failure {
         say_err!(
@@ -273,8 +275,7 @@ fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
 
 fn check(path: &Path, set: &[String]) -> Result<()> {
     let case = Case::load(path, set)?;
-    let problem = case.problem()?;
-    let model = case.contact_model(&problem)?;
+    let Built { problem, model, .. } = case.build()?;
     let dofs = piezocontact::dofs::DofMap::new(&problem)?;
     let (mesh, units) = (&problem.mesh, &case.file.units);
     let (lo, hi) = mesh.bounding_box();

@@ -23,9 +23,10 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         solution.outer_iterations,
         if solution.converged { "converged" } else { "NOT converged" }
     );
-    let inner = if run.settings.method.is_exact() { "Newton steps" } else { "inner iterations" };
+    let exact = !run.settings.method.lags_contact();
+    let inner = if exact { "Newton steps" } else { "inner iterations" };
     say!("  {inner:<18} = {:?} (per outer step)", solution.inner_iterations);
-    if run.settings.method.is_exact() {
+    if exact {
         let n3 = solution.surface.len();
         say!("  condensed nodes    = {} of {n3} Γ3 nodes", solution.condensed_nodes);
     }

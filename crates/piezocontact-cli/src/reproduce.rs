@@ -2,12 +2,12 @@
 //! 7.1 and 7.2, Table 2, Figures 1–4 — with a Theorem 4.1 convergence figure, a mesh study
 //! and a stopping-rule study, and writes REPORT.md around them.
 
-use crate::plot::{self, BodyLabels, LinePlot, PALETTE, Series};
 use crate::sweep::{Job, run_jobs, threads};
 use anyhow::Result;
-use piezocontact::algorithm::NodeStatus;
 use piezocontact::case::{Case, Units};
+use piezocontact::contact::NodeStatus;
 use piezocontact::output::files::write_atomic;
+use piezocontact::output::plot::{self, BodyLabels, LinePlot, PALETTE, Series};
 use piezocontact::report::Row;
 use piezocontact::report::csv_number;
 use piezocontact::run::ContactRun;

@@ -10,3 +10,17 @@ pub fn available_memory() -> f64 {
         })
         .map_or(24.0 * 2f64.powi(30), |kib| kib * 1024.0)
 }
+
+/// The one memory check: refuses work that needs `bytes` when `available` bytes are free,
+/// before anything is allocated. The error says what needs it, both sizes and the way out.
+pub fn check_memory(bytes: f64, available: f64, what: &str, fix: &str) -> crate::Result<()> {
+    if bytes <= available {
+        return Ok(());
+    }
+    let gib = 2f64.powi(30);
+    Err(crate::Error::Input(format!(
+        "{what} would need about {:.1} GiB, more than the {:.1} GiB available; {fix}",
+        bytes / gib,
+        available / gib
+    )))
+}

@@ -1,7 +1,8 @@
 //! Reports of a contact run: `contact.csv` (one row per Γ3 node, ordered along Γ3) and the
 //! `summary.json` fields of Algorithms 1–4.
 
-use crate::algorithm::{ContactModel, ContactSolution, NodeStatus};
+use crate::algorithm::ContactSolution;
+use crate::contact::{ContactModel, NodeStatus};
 use crate::problem::Problem;
 use crate::solver::Timings;
 use serde_json::{Value, json};

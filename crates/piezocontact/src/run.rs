@@ -1,14 +1,15 @@
 //! One contact run of a case: solve, assess, summarise and write its results — what
 //! `piezocontact run`, `sweep` and `reproduce` do for each case, and what a library user calls.
 
-use crate::algorithm::{
-    ContactModel, ContactSolution, NodeStatus, Progress, Settings, solve_contact_with,
-};
+use crate::algorithm::{ContactSolution, Progress, Settings, solve_contact_with};
 use crate::assembly::x_norm_squared;
-use crate::case::Case;
+use crate::case::{Built, Case};
+use crate::contact::{ContactModel, NodeStatus};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
+use crate::linalg::{LinearSolver, default_solver};
 use crate::output::files;
+use crate::output::plot::{self, MapLabels};
 use crate::output::vtu::Field;
 use crate::problem::Problem;
 use crate::report::{self, Row};
@@ -29,21 +30,29 @@ pub struct ContactRun {
     pub rows: Vec<Row>,
     /// The algorithms' settings.
     pub settings: Settings,
+    /// The case's warnings (the paper's hypotheses, unused keys).
+    pub warnings: Vec<String>,
     /// Wall time of the solve and the assessment [s].
     pub seconds: f64,
 }
 
 impl ContactRun {
-    /// Solves a case that has a `[contact]` table and contact parts.
+    /// Solves a case that has a `[contact]` table and contact parts, with the default linear
+    /// solver.
     pub fn solve(case: &Case) -> Result<Self> {
-        Self::solve_with(case, &|_| {})
+        Self::solve_with(case, default_solver(), &|_| {})
     }
 
-    /// [`ContactRun::solve`], telling `progress` of each outer step and inner iteration.
-    pub fn solve_with(case: &Case, progress: &dyn Fn(Progress)) -> Result<Self> {
+    /// [`ContactRun::solve`] with the caller's linear `solver`, telling `progress` of each
+    /// outer step and inner iteration.
+    pub fn solve_with(
+        case: &Case,
+        solver: Box<dyn LinearSolver>,
+        progress: &dyn Fn(Progress),
+    ) -> Result<Self> {
         let start = Instant::now();
-        let problem = case.problem()?;
-        let model = case.contact_model(&problem)?.ok_or_else(|| {
+        let Built { problem, model, settings, warnings } = case.build()?;
+        let model = model.ok_or_else(|| {
             Error::Input(format!("{}: the case has no [contact] table", case.path.display()))
         })?;
         if problem.boundary.contact.is_empty() {
@@ -52,8 +61,7 @@ impl ContactRun {
                 case.locate("boundary")
             )));
         }
-        let settings = case.settings()?;
-        let solution = solve_contact_with(&problem, &model, &settings, progress)
+        let solution = solve_contact_with(&problem, &model, &settings, solver, progress)
             .map_err(|e| case.context(e))?;
         let rows = report::rows(&problem, &model, &solution);
         Ok(Self {
@@ -62,6 +70,7 @@ impl ContactRun {
             solution,
             rows,
             settings,
+            warnings,
             seconds: start.elapsed().as_secs_f64(),
         })
     }
@@ -97,15 +106,26 @@ impl ContactRun {
         let mut summary = common_summary(case, &self.problem, &self.solution.dofs);
         merge(&mut summary, report::contact_summary(&self.model, &self.solution, &self.rows));
         summary["timings_seconds"]["total"] = json!(self.seconds);
-        let mut warnings = case.hypothesis_warnings(&self.problem.material);
-        warnings.extend(case.setting_warnings());
-        summary["warnings"] = json!(warnings);
+        summary["warnings"] = json!(self.warnings);
         summary["method"] = json!(self.settings.method.name());
         summary
     }
 
-    /// Writes contact.csv, summary.json and solution.vtu into `out`.
+    /// Writes the files of a contact run into `out`: contact.csv, summary.json and
+    /// solution.vtu, and for a 3D body the map of Γ3 (contact_map.png and .svg).
     pub fn write(&self, case: &Case, out: &Path) -> Result<()> {
+        self.write_results(case, out)?;
+        if self.problem.mesh.dim() == 3 {
+            let units = &case.file.units;
+            let title = if case.file.title.is_empty() { "Γ3" } else { case.file.title.as_str() };
+            let labels = MapLabels { title, length: &units.length, stress: &units.stress };
+            plot::contact_map(self, &labels, &out.join("contact_map"))?;
+        }
+        Ok(())
+    }
+
+    /// contact.csv, summary.json and solution.vtu.
+    fn write_results(&self, case: &Case, out: &Path) -> Result<()> {
         std::fs::create_dir_all(out).map_err(|e| Error::Io {
             what: format!("cannot create {}", out.display()),
             cause: e.to_string(),

@@ -1,12 +1,12 @@
 //! The coupled electro-elastic system without contact: assemble B̌(x_n) and f̌ (model §5),
 //! factor once, solve. [`CoupledSystem`] keeps the pattern, the symbolic analysis and the
 //! current factorisation so that the contact algorithms reuse them (model §7). The
-//! factorisation sits behind the [`LinearSolver`] seam; LDLᵀ with AMD is the default.
+//! factorisation is the caller's backend, behind the [`LinearSolver`] seam.
 
 use crate::assembly::{Assembler, NodalBlock, load_vector, secant_moduli};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
-use crate::linalg::{LdltSolver, LinearSolver, Ordering, SymmetricMatrix, ordering_with_last};
+use crate::linalg::{DenseMatrix, LinearSolver, SchurComplement, SymmetricMatrix, default_solver};
 use crate::problem::Problem;
 use std::time::Instant;
 
@@ -63,47 +63,46 @@ pub struct CoupledSystem {
 
 impl CoupledSystem {
     /// Builds the pattern on the DOFs of `dofs` (with room for nodal blocks on
-    /// `block_nodes`) and runs the symbolic analysis of sparse LDLᵀ with AMD.
-    pub fn new(problem: &Problem, dofs: DofMap, block_nodes: &[usize]) -> Result<Self> {
-        Self::with_solver(problem, dofs, block_nodes, Box::new(LdltSolver::new()), &Ordering::Amd)
-    }
-
-    /// As [`CoupledSystem::new`] without nodal blocks, with the free unknowns `last`
-    /// eliminated last (in that order) so that the factor yields their Schur complement.
-    pub fn with_last(problem: &Problem, dofs: DofMap, last: &[usize]) -> Result<Self> {
-        let t = Instant::now();
-        let assembler = Assembler::new(problem, dofs, &[])?;
-        let ordering = ordering_with_last(assembler.pattern(), last)?;
-        let pattern_seconds = t.elapsed().as_secs_f64();
-        Self::analysed(problem, assembler, Box::new(LdltSolver::new()), &ordering, pattern_seconds)
-    }
-
-    /// As [`CoupledSystem::new`], with the caller's linear solver and ordering.
-    pub fn with_solver(
+    /// `block_nodes`), assembles f̌ and runs the symbolic analysis of the caller's `solver`.
+    pub fn new(
         problem: &Problem,
         dofs: DofMap,
         block_nodes: &[usize],
         solver: Box<dyn LinearSolver>,
-        ordering: &Ordering,
+    ) -> Result<Self> {
+        let mut this = Self::unanalysed(problem, dofs, block_nodes, solver)?;
+        this.solver.analyze(this.assembler.pattern(), &this.assembler.dofs().signs())?;
+        Ok(this)
+    }
+
+    /// As [`CoupledSystem::new`] without nodal blocks, with the free unknowns `last` kept
+    /// for the Schur complement ([`CoupledSystem::schur_complement`]). Refuses a `solver`
+    /// without that capability, before any work.
+    pub fn with_last(
+        problem: &Problem,
+        dofs: DofMap,
+        last: &[usize],
+        mut solver: Box<dyn LinearSolver>,
+    ) -> Result<Self> {
+        schur_capability(solver.as_mut())?;
+        let mut this = Self::unanalysed(problem, dofs, &[], solver)?;
+        this.put_last(last)?;
+        Ok(this)
+    }
+
+    /// The pattern and f̌, before the symbolic analysis.
+    fn unanalysed(
+        problem: &Problem,
+        dofs: DofMap,
+        block_nodes: &[usize],
+        solver: Box<dyn LinearSolver>,
     ) -> Result<Self> {
         let t = Instant::now();
         let assembler = Assembler::new(problem, dofs, block_nodes)?;
         let pattern_seconds = t.elapsed().as_secs_f64();
-        Self::analysed(problem, assembler, solver, ordering, pattern_seconds)
-    }
-
-    /// Assembles f̌ and runs the symbolic analysis on the assembler's pattern.
-    fn analysed(
-        problem: &Problem,
-        assembler: Assembler,
-        mut solver: Box<dyn LinearSolver>,
-        ordering: &Ordering,
-        pattern_seconds: f64,
-    ) -> Result<Self> {
         let t = Instant::now();
         let load = assembler.restrict(&load_vector(problem, assembler.dofs()));
         let assembly_seconds = t.elapsed().as_secs_f64();
-        solver.analyze(assembler.pattern(), &assembler.dofs().signs(), ordering)?;
         Ok(Self {
             assembler,
             solver,
@@ -115,21 +114,25 @@ impl CoupledSystem {
         })
     }
 
-    /// Orders the free unknowns `last` last (in that order) and runs the symbolic analysis
-    /// again; the next [`CoupledSystem::factorize`] uses it.
+    /// Keeps the free unknowns `last` (in that order) for the Schur complement and runs the
+    /// symbolic analysis again; the next [`CoupledSystem::factorize`] uses it.
     pub fn put_last(&mut self, last: &[usize]) -> Result<()> {
-        let t = Instant::now();
-        let ordering = ordering_with_last(self.assembler.pattern(), last)?;
-        self.pattern_seconds += t.elapsed().as_secs_f64();
+        let signs = self.assembler.dofs().signs();
         self.matrix = None;
-        self.solver.analyze(self.assembler.pattern(), &self.assembler.dofs().signs(), &ordering)
+        let pattern = self.assembler.pattern();
+        schur_capability(self.solver.as_mut())?.analyze_with_last(pattern, &signs, last)
     }
 
-    /// Assembles B̌ with the secant moduli `g` (one per element) plus the nodal `blocks`, and
-    /// factorises.
-    pub fn factorize(&mut self, problem: &Problem, g: &[f64], blocks: &[NodalBlock]) -> Result<()> {
+    /// Assembles B̌ with the secant `moduli` g_e (one per element) plus the nodal `blocks`,
+    /// and factorises.
+    pub fn factorize(
+        &mut self,
+        problem: &Problem,
+        moduli: &[f64],
+        blocks: &[NodalBlock],
+    ) -> Result<()> {
         let t = Instant::now();
-        let (matrix, lifting) = self.assembler.matrix(problem, g, blocks)?;
+        let (matrix, lifting) = self.assembler.matrix(problem, moduli, blocks)?;
         self.rhs = self.load.iter().zip(&lifting).map(|(f, l)| f + l).collect();
         self.assembly_seconds += t.elapsed().as_secs_f64();
         self.solver.factorize(&matrix)?;
@@ -171,10 +174,10 @@ impl CoupledSystem {
         &self.rhs
     }
 
-    /// The Schur complement of the last `m` unknowns of the ordering, from the current
-    /// factorisation (see [`CoupledSystem::with_last`]).
-    pub fn schur_complement(&self, m: usize) -> Result<crate::linalg::DenseMatrix> {
-        self.solver.schur_complement(m)
+    /// The Schur complement of the unknowns given to [`CoupledSystem::with_last`] or
+    /// [`CoupledSystem::put_last`], from the current factorisation.
+    pub fn schur_complement(&mut self) -> Result<DenseMatrix> {
+        schur_capability(self.solver.as_mut())?.schur_complement()
     }
 
     /// Number of stored values of the factor.
@@ -191,6 +194,16 @@ impl CoupledSystem {
     pub fn into_dofs(self) -> DofMap {
         self.assembler.into_dofs()
     }
+}
+
+/// The Schur-complement capability of `solver`, or the error that refuses it.
+fn schur_capability(solver: &mut dyn LinearSolver) -> Result<&mut dyn SchurComplement> {
+    let name = solver.name().to_string();
+    solver.schur().ok_or_else(|| {
+        Error::Input(format!(
+            "the linear solver '{name}' gives no Schur complement, which the exact solver (solver.method = \"newton\") needs; use solver.method = \"uzawa\" with it, or a backend that condenses"
+        ))
+    })
 }
 
 /// Result of a solve without contact.
@@ -211,10 +224,10 @@ pub struct StaticSolution {
 /// Solves the coupled problem without contact, with B̌(x_0) at x_0 = 0 (g = g(0) = µ1: the
 /// linear problem; the Hencky secant update comes with the contact algorithms).
 pub fn solve_without_contact(problem: &Problem) -> Result<StaticSolution> {
-    let mut system = CoupledSystem::new(problem, DofMap::new(problem)?, &[])?;
+    let mut system = CoupledSystem::new(problem, DofMap::new(problem)?, &[], default_solver())?;
     let zero = vec![0.0; system.dofs().n_total()];
-    let g = secant_moduli(problem, system.dofs(), &zero)?;
-    system.factorize(problem, &g, &[])?;
+    let moduli = secant_moduli(problem, system.dofs(), &zero)?;
+    system.factorize(problem, &moduli, &[])?;
     let x = system.solve(None)?;
     let free = system.assembler().restrict(&x);
     let matrix = system.matrix().ok_or_else(|| Error::LinearAlgebra("no matrix".into()))?;

@@ -1,121 +1,103 @@
-//! The fixed-point iterations of [P] Section 6 around the Uzawa loop:
-//! Algorithm 1 (PV2: friction and conduction, inner Algorithm 2) and Algorithm 3 (PV1,
-//! inner Algorithm 4), as restated in model §7.
+//! The outer fixed point of [P] Section 6 — Algorithm 1 (PV2) and Algorithm 3 (PV1) — around
+//! an inner method (model §7): the paper's Uzawa block relaxation ([`uzawa`], Algorithms 2
+//! and 4) or the exact solver ([`newton`], model §11). The outer loop knows no method: it
+//! asks an [`InnerMethod`] to set up the coupled system with the caller's linear solver, to
+//! solve each outer step, and to say how its stops read; adding a method touches the method's
+//! own module and the case's `solver.method` table.
 //!
-//! ```text
-//! x_0 = 0, s_0 = 0
-//! step n:  g_n = g(‖ε^D(u_n)‖²) per element;  factor B̌(x_n) + r M   (only when g_n changed)
-//!          f_{1,n} = f̌ − j̃1(x_n, ·) − ľ(x_n, ·)          (PV1: f̌ − j̃1(x_n, ·))
-//!          x_{n+1} = Uzawa(f_{1,n}, s_n)                   (cold start)
-//!          s_{n+1} = µ |R σ_ν(x_{n+1})|,  σ_ν = −(λ_c + h_ν(ϕ−ϕ0) p_ν(u_ν − g_a))
-//! stop:    ‖s_{n+1} − s_n‖ / ‖s_{n+1}‖ < ε_fp   (6.13, PV2 with s ≢ 0)
-//!          ‖x_{n+1} − x_n‖ / ‖x_{n+1}‖ < ε_fp   (6.15, PV1; PV2 when s ≡ 0; and also
-//!                                                  whenever the Hencky secant is active)
-//! ```
-//!
-//! The reported number of outer iterations is n + 1 at the stop, as Table 2 counts.
+//! One outer step n: update Hencky's secant moduli at x_n and factorise B̌(x_n) (only when
+//! they changed); solve the contact problem of the step; compute σ_ν and the friction bound
+//! s_{n+1} = µ|Rσ_ν(x_{n+1})| ([`crate::contact::model`]); stop on the criteria (6.13)/(6.15)
+//! when the method lags the contact terms, or when the moduli no longer change when it does
+//! not. The reported number of outer iterations is n + 1 at the stop, as Table 2 counts.
 //! Hitting an iteration cap is not a silent stop: the result carries
 //! [`Error::NotConverged`] naming the loop and its last criterion. A growing criterion
 //! ([`Error::Diverged`]), a singular matrix or a NaN ([`Error::NumericalFailure`]) stop the run
 //! the same way, keeping the last finite iterate.
 
+pub mod condensed;
 pub mod newton;
 pub mod residual;
 pub mod uzawa;
 
 use crate::assembly::{MassNorm, NodalBlock, secant_moduli};
-use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
-use crate::contact::{ContactSurface, Foundation};
-use crate::dofs::{CONSTRAINED, DofMap};
+use crate::contact::model::{friction_bound, nodal_mu, normal_stress};
+use crate::contact::{ContactModel, ContactState, ContactSurface, Mollifier, NodeStatus};
+use crate::dofs::DofMap;
 use crate::error::{Error, Result};
+use crate::linalg::{LinearSolver, default_solver};
 use crate::problem::Problem;
 use crate::solver::{CoupledSystem, Timings};
-use kiddo::{ImmutableKdTree, SquaredEuclidean};
-use newton::Condensed;
 use residual::{Balance, KktResidual};
-use uzawa::Uzawa;
 
-/// The method that solves the contact problem of one outer step (model §7).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Method {
-    /// The augmented Lagrangian Uzawa block relaxation, Algorithms 2 and 4, started cold.
-    Uzawa {
-        /// r > 0: augmented Lagrangian parameter [stress/length] (paper: 0.25 E).
-        r: f64,
-        /// ε of (6.12)/(6.16) (paper: 1e−4).
-        eps: f64,
-        /// Cap on Uzawa iterations per outer step.
-        max_inner: usize,
-    },
-    /// The exact solver: semismooth Newton on the problem condensed onto Γ3 (model §11).
-    Newton {
-        /// r > 0 [stress/length]: the constant of the KKT residual; the Newton method uses
-        /// c_i = (r/E)·S_νν,i/w_i, r scaled by the stiffness of Γ3 node i. The answer does
-        /// not depend on it.
-        r: f64,
-        /// The run stops when the KKT residual is at most this [-].
-        tol: f64,
-        /// Cap on Newton steps per outer step.
-        max_inner: usize,
-        /// The most Γ3 nodes condensed into the dense problem. A Γ3 with more nodes within
-        /// the foundation's reach starts from the nodes nearest to it, and trades clear
-        /// nodes for left-out nodes that turn out to touch (model §11).
-        max_condensed: usize,
-    },
-}
-
-impl Method {
+/// What the outer loop asks of an inner method.
+pub trait InnerMethod: std::fmt::Debug + Send + Sync {
     /// The name a case file uses for it (`solver.method`).
-    pub fn name(&self) -> &'static str {
-        match self {
-            Self::Uzawa { .. } => "uzawa",
-            Self::Newton { .. } => "newton",
-        }
+    fn name(&self) -> &'static str;
+    /// The same method and parameters with no state, for a new solve.
+    fn fresh(&self) -> Box<dyn InnerMethod>;
+    /// Whether the outer loop lags the contact terms — the friction bound s, the compliance
+    /// h_ν p_ν and the conduction ψ φ_L at x_n — as Algorithms 1 and 3 do (true), or the
+    /// method solves them at the solution, so that the outer loop only updates Hencky's
+    /// secant moduli (false).
+    fn lags_contact(&self) -> bool;
+    /// The constant c > 0 [stress/length] of the complementarity functions by which the KKT
+    /// residual measures the contact and friction conditions (model §10).
+    fn complementarity_constant(&self) -> f64;
+    /// The outer loop stops when its criterion is below this [-].
+    fn outer_tolerance(&self) -> f64;
+    /// Sets the method up for a solve and builds the coupled system with the caller's
+    /// `solver`; refuses a solver that lacks a capability the method needs.
+    fn prepare(&mut self, setup: Setup, solver: Box<dyn LinearSolver>) -> Result<CoupledSystem>;
+    /// The nodal blocks that the method adds to B̌ on the Γ3 nodes.
+    fn blocks(&self) -> &[NodalBlock];
+    /// Solves the contact problem of one outer step with the factorised `system`.
+    fn solve(&mut self, step: &Step, system: &mut CoupledSystem) -> Result<InnerResult>;
+    /// How a stop of outer step `outer_step` reads in an error.
+    fn stop_context(&self, outer_step: usize, pv2: bool) -> StopContext;
+    /// A final check of the solution's KKT residual, `None` when it is accepted.
+    fn accept(&self, kkt: &KktResidual, outer_history: &[f64]) -> Option<Error> {
+        let _ = (kkt, outer_history);
+        None
     }
-
-    /// Whether the method solves the discrete problem itself — contact, friction with
-    /// s = µ|Rσ_ν(x)|, compliance and conduction at the solution, not lagged — so that the outer
-    /// loop only updates Hencky's secant moduli.
-    pub fn is_exact(&self) -> bool {
-        matches!(self, Self::Newton { .. })
-    }
-
-    /// The constant c > 0 of the complementarity functions λ − max(0, λ + c(u_ν − ρ)) and
-    /// λ_f − P_s(λ_f + c u_τ) by which the KKT residual measures the contact and friction
-    /// conditions [stress/length].
-    pub fn complementarity_constant(&self) -> f64 {
-        match self {
-            Self::Uzawa { r, .. } => *r,
-            Self::Newton { r, .. } => *r,
-        }
+    /// The Γ3 nodes in the method's condensed problem at the end (0 without one).
+    fn condensed_nodes(&self) -> usize {
+        0
     }
 }
 
 /// Parameters of the outer fixed point and the inner method.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Debug)]
 pub struct Settings {
     /// The inner method.
-    pub method: Method,
-    /// ε_fp of (6.13)/(6.15) (paper: 1e−4).
-    pub eps_fp: f64,
+    pub method: Box<dyn InnerMethod>,
     /// Cap on fixed-point iterations.
     pub max_outer: usize,
 }
 
-/// The multipliers on the Γ3 nodes.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ContactState {
-    /// λ_c: contact pressure of the rigid stop [stress].
-    pub lambda_c: Vec<f64>,
-    /// λ_f: friction traction (σ_τ = −λ_f) [stress], 3 components (d used).
-    pub lambda_f: Vec<[f64; 3]>,
+impl Settings {
+    /// `method` with at most `max_outer` fixed-point iterations.
+    pub fn new(method: impl InnerMethod + 'static, max_outer: usize) -> Self {
+        Self { method: Box::new(method), max_outer }
+    }
 }
 
-impl ContactState {
-    /// λ = 0 on `n` nodes.
-    pub fn cold(n: usize) -> Self {
-        Self { lambda_c: vec![0.0; n], lambda_f: vec![[0.0; 3]; n] }
+impl Clone for Settings {
+    fn clone(&self) -> Self {
+        Self { method: self.method.fresh(), max_outer: self.max_outer }
     }
+}
+
+/// What an inner method reads when it sets up a solve.
+pub struct Setup<'a> {
+    /// The problem.
+    pub problem: &'a Problem,
+    /// The DOF numbering, for the coupled system.
+    pub dofs: DofMap,
+    /// Γ3, with the gaps to the foundation.
+    pub surface: &'a ContactSurface,
+    /// The contact laws.
+    pub model: &'a ContactModel,
 }
 
 /// Why an inner loop stopped.
@@ -129,6 +111,19 @@ pub enum Stop {
     Diverged,
     /// A solve produced NaN or infinity, or a criterion was not finite.
     NotFinite(String),
+}
+
+/// How an inner method's stops read in errors.
+#[derive(Clone, Debug)]
+pub struct StopContext {
+    /// The loop, e.g. "the Uzawa loop (Algorithm 2) of outer step 3".
+    pub what: String,
+    /// The value its criterion must fall below.
+    pub tolerance: f64,
+    /// The advice when it hits its cap.
+    pub cap_hint: String,
+    /// The advice when it diverges or fails.
+    pub hint: String,
 }
 
 /// A criterion this many times its smallest value so far means divergence.
@@ -149,7 +144,7 @@ pub struct InnerResult {
     pub stop: Stop,
 }
 
-/// The data of one outer step that the inner method reads.
+/// The data of one outer step that an inner method reads.
 pub struct Step<'a> {
     /// The problem.
     pub problem: &'a Problem,
@@ -157,20 +152,27 @@ pub struct Step<'a> {
     pub mass: &'a MassNorm,
     /// Γ3.
     pub surface: &'a ContactSurface,
-    /// The normal law (for the rigid stop ρ = g_a + g_p).
-    pub compliance: &'a NormalCompliance,
-    /// s_n on the Γ3 nodes with friction (PV2), `None` without.
-    pub friction_bound: Option<&'a [f64]>,
-    /// f_{1,n} − f̌ on the free DOFs: the lagged −j̃1(x_n) − ľ(x_n).
-    pub base: &'a [f64],
-    /// µ per Γ3 node and R, with friction (PV2).
-    pub friction: Option<(&'a [f64], &'a Mollifier)>,
-    /// The conduction law, with a conductive foundation (PV2).
-    pub conduction: Option<&'a Conduction>,
-    /// The previous outer iterate x_n (global; zero at the first step).
-    pub start: &'a [f64],
+    /// The contact laws.
+    pub model: &'a ContactModel,
+    /// µ per Γ3 node (PV2; empty for PV1).
+    pub mu: &'a [f64],
+    /// R of the friction bound.
+    pub mollifier: &'a Mollifier,
+    /// x_n: the previous outer iterate (global; zero at the first step).
+    pub previous: &'a [f64],
+    /// s_n on the Γ3 nodes: the friction bound at x_n [stress] (zero for PV1).
+    pub friction_bound: &'a [f64],
+    /// Hencky's secant moduli at x_n, one per element, with which B̌ was factorised [stress].
+    pub moduli: &'a [f64],
     /// Told of every inner iteration.
     pub progress: &'a dyn Fn(Progress),
+}
+
+impl Step<'_> {
+    /// µ per node and R, with friction (PV2).
+    pub fn friction(&self) -> Option<(&[f64], &Mollifier)> {
+        self.model.pv2.as_ref().map(|_| (self.mu, self.mollifier))
+    }
 }
 
 /// What a running solve reports to the observer of [`solve_contact_with`].
@@ -192,94 +194,6 @@ pub enum Progress {
         /// The value the criterion must fall below.
         tolerance: f64,
     },
-}
-
-/// The nodal blocks that `method` adds to B̌ on the Γ3 nodes.
-fn method_blocks(method: &Method, surface: &ContactSurface, friction: bool) -> Vec<NodalBlock> {
-    match method {
-        Method::Uzawa { r, .. } => step1_blocks(surface, *r, friction),
-        Method::Newton { .. } => Vec::new(),
-    }
-}
-
-/// Runs `method` on one outer step with the `system` factorised with the moduli `g`.
-fn run_inner(
-    method: &Method,
-    step: &Step,
-    condensed: &mut Condensed,
-    system: &mut CoupledSystem,
-    g: &[f64],
-) -> Result<InnerResult> {
-    match *method {
-        Method::Uzawa { r, eps, max_inner } => Uzawa { step, r, eps, max_inner }.run(system),
-        Method::Newton { r, max_inner, max_condensed, .. } => {
-            let c_factor = r / step.problem.material.elasticity.young();
-            let parameters =
-                newton::Parameters { c_factor, max_iterations: max_inner, max_condensed };
-            newton::solve(step, parameters, condensed, system, g)
-        }
-    }
-}
-
-/// The error for an inner loop that stopped without converging: the one place where stops
-/// become errors, with a hint on the method's parameters.
-fn inner_failure(method: &Method, inner: &InnerResult, pv2: bool, step: usize) -> Option<Error> {
-    let (what, tolerance, cap_hint, hint) = match *method {
-        Method::Uzawa { r, eps, max_inner } => {
-            let algorithm = if pv2 { 2 } else { 4 };
-            let hint = format!(
-                "r too small or too large for this problem: try solver.r = {:.4e} or {:.4e} (now {r:.4e}; the paper uses 0.25 E)",
-                2.0 * r,
-                0.5 * r,
-            );
-            let what = format!("the Uzawa loop (Algorithm {algorithm}) of outer step {step}");
-            (what, eps, format!("raise solver.max_inner (now {max_inner}), or {hint}"), hint)
-        }
-        Method::Newton { max_inner, .. } => {
-            let hint = "the active set cycles or the Jacobian is singular: check that Γ3 can \
-                        touch the foundation only where the body is held, and report the case \
-                        if it persists"
-                .to_string();
-            let what = format!("the semismooth Newton method of outer step {step}");
-            let cap = format!("raise solver.max_inner (now {max_inner}); {hint}");
-            (what, newton::STEP_TOLERANCE, cap, hint)
-        }
-    };
-    let history = tail(&inner.history);
-    let iteration = inner.iterations;
-    match &inner.stop {
-        Stop::Converged => None,
-        Stop::Cap => Some(Error::NotConverged {
-            what,
-            iterations: iteration,
-            criterion: inner.history.last().copied().unwrap_or(f64::NAN),
-            tolerance,
-            history,
-            hint: cap_hint,
-        }),
-        Stop::Diverged => Some(Error::Diverged { what, iteration, history, hint }),
-        Stop::NotFinite(cause) => {
-            Some(Error::NumericalFailure { what, iteration, cause: cause.clone(), hint })
-        }
-    }
-}
-
-/// The contact model: normal compliance, and for PV2 friction and conduction.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ContactModel {
-    /// p_ν, h_ν, the gap and the stop.
-    pub compliance: NormalCompliance,
-    /// `None`: PV1 (frictionless, nonconductive). `Some`: PV2.
-    pub pv2: Option<(Friction, Conduction)>,
-    /// The foundation's surface, which sets the gap of every Γ3 node (model §12).
-    pub foundation: Foundation,
-}
-
-impl ContactModel {
-    /// "PV1" or "PV2".
-    pub fn name(&self) -> &'static str {
-        if self.pv2.is_some() { "PV2" } else { "PV1" }
-    }
 }
 
 /// The result of Algorithm 1 or 3.
@@ -321,209 +235,236 @@ pub struct ContactSolution {
     pub balance: Balance,
 }
 
-/// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it).
+/// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it) with the
+/// default linear solver.
 pub fn solve_contact(
     problem: &Problem,
     model: &ContactModel,
     settings: &Settings,
 ) -> Result<ContactSolution> {
-    solve_contact_with(problem, model, settings, &|_| {})
+    solve_contact_with(problem, model, settings, default_solver(), &|_| {})
 }
 
-/// [`solve_contact`], telling `progress` of each outer step and inner iteration.
+/// [`solve_contact`] with the caller's linear `solver`, telling `progress` of each outer step
+/// and inner iteration.
 pub fn solve_contact_with(
     problem: &Problem,
     model: &ContactModel,
     settings: &Settings,
+    solver: Box<dyn LinearSolver>,
     progress: &dyn Fn(Progress),
 ) -> Result<ContactSolution> {
+    let mut method = settings.method.fresh();
     let dofs = DofMap::new(problem)?;
     let surface = ContactSurface::new(problem, &dofs)?.with_gaps(
         problem,
         &model.foundation,
         model.compliance.gap,
     );
-    let max_condensed = match settings.method {
-        Method::Newton { max_condensed, .. } => max_condensed,
-        Method::Uzawa { .. } => usize::MAX,
-    };
-    let with_phi = model.compliance.penetration > 0.0;
-    let mut condensed = Condensed::new(&dofs, &surface, with_phi, max_condensed);
-    let exact = settings.method.is_exact();
-    if exact {
-        condensed.check_memory(crate::limits::available_memory())?;
-    }
-    let blocks = method_blocks(&settings.method, &surface, model.pv2.is_some());
-    let mut system = if exact {
-        CoupledSystem::with_last(problem, dofs, &condensed.free)?
-    } else {
-        CoupledSystem::new(problem, dofs, &surface.nodes)?
-    };
-    let mass = MassNorm::new(problem)?;
-    let mollifier = Mollifier::new(problem, &surface, model)?;
-    let mu = model
-        .pv2
-        .as_ref()
-        .map_or_else(Vec::new, |(friction, _)| nodal_mu(problem, &surface, friction));
-    let n3 = surface.len();
-    let mut solution = ContactSolution {
-        kkt: KktResidual::default(),
-        balance: Balance::default(),
-        condensed_nodes: 0,
-        x: vec![0.0; system.dofs().n_total()],
-        dofs: DofMap::default(),
-        surface: surface.clone(),
-        state: ContactState::cold(n3),
-        s_used: vec![0.0; n3],
-        s: vec![0.0; n3],
-        sigma_nu: vec![0.0; n3],
-        converged: false,
-        failure: None,
-        outer_iterations: 0,
-        inner_iterations: Vec::new(),
-        outer_history: Vec::new(),
-        inner_history: Vec::new(),
-        timings: Timings::default(),
-    };
-    let mut g = secant_moduli(problem, system.dofs(), &solution.x)?;
+    let mut system = method.prepare(Setup { problem, dofs, surface: &surface, model }, solver)?;
+    let fixed = Fixed::new(problem, &surface, model)?;
+    let mut solution = ContactSolution::start(surface, system.dofs().n_total());
+    let mut moduli = secant_moduli(problem, system.dofs(), &solution.x)?;
     let mut factorised_with: Option<Vec<f64>> = None;
-    for n in 0..settings.max_outer {
-        progress(Progress::Outer { step: n + 1, max: settings.max_outer });
-        if factorised_with.as_ref() != Some(&g) {
-            if let Err(e) = system.factorize(problem, &g, &blocks) {
-                solution.failure = Some(Error::NumericalFailure {
-                    what: format!("the factorisation of B̌(x_n) in outer step {}", n + 1),
-                    iteration: n + 1,
-                    cause: e.to_string(),
-                    hint: "a singular matrix means the body is not held (Γ1, Γa) or a material \
-                           constant is not physical"
-                        .into(),
-                });
+    for n in 1..=settings.max_outer {
+        progress(Progress::Outer { step: n, max: settings.max_outer });
+        if factorised_with.as_ref() != Some(&moduli) {
+            if let Err(e) = system.factorize(problem, &moduli, method.blocks()) {
+                solution.failure = Some(factorisation_failure(n, e));
                 break;
             }
-            factorised_with = Some(g.clone());
+            factorised_with = Some(moduli.clone());
         }
-        let base = if exact {
-            vec![0.0; system.dofs().n_free()]
-        } else {
-            lagged_loads(system.dofs(), &surface, model, &solution.x)
-        };
         let s_n = solution.s.clone();
-        let step = Step {
-            problem,
-            mass: &mass,
-            surface: &surface,
-            compliance: &model.compliance,
-            friction_bound: model.pv2.as_ref().map(|_| s_n.as_slice()),
-            base: &base,
-            friction: model.pv2.as_ref().map(|_| (mu.as_slice(), &mollifier)),
-            conduction: model.pv2.as_ref().map(|(_, conduction)| conduction),
-            start: &solution.x,
-            progress,
-        };
-        let inner = run_inner(&settings.method, &step, &mut condensed, &mut system, &g)?;
-        solution.inner_iterations.push(inner.iterations);
-        solution.inner_history.push(inner.history.clone());
-        solution.outer_iterations = n + 1;
-        let failure = inner_failure(&settings.method, &inner, model.pv2.is_some(), n + 1);
-        let dofs = system.dofs();
-        let x_previous = std::mem::replace(&mut solution.x, inner.x);
-        solution.state = inner.state;
-        solution.s_used = s_n;
-        solution.sigma_nu = normal_stress(dofs, &surface, model, &solution.x, &solution.state);
-        solution.s = match &model.pv2 {
-            Some(_) => mollifier
-                .apply(&solution.sigma_nu)
-                .iter()
-                .zip(&mu)
-                .map(|(sn, mu)| mu * sn.abs())
-                .collect(),
-            None => vec![0.0; n3],
-        };
-        if exact {
-            solution.s_used = solution.s.clone();
-        }
+        let step = fixed.step(problem, model, &solution, &s_n, &moduli, progress);
+        let inner = method.solve(&step, &mut system)?;
+        let failure = inner_failure(&method.stop_context(n, model.pv2.is_some()), &inner);
+        solution.outer_iterations = n;
+        let x_previous = solution.record(inner, s_n, method.lags_contact(), model, &fixed, &system);
         if failure.is_some() {
             solution.failure = failure;
             break;
         }
-        let g_next = secant_moduli(problem, dofs, &solution.x)?;
-        let x_criterion = relative_change(problem, dofs, &mass, &solution.x, &x_previous);
-        if let Method::Newton { tol, .. } = settings.method {
-            // Exact inner solves: the outer loop is the secant iteration of Hencky's law,
-            // done when the moduli at the solution are those it was solved with.
-            let criterion = if g_next == g { 0.0 } else { x_criterion };
-            solution.outer_history.push(criterion);
-            g = g_next;
-            if criterion <= tol {
-                solution.converged = true;
-                break;
-            }
-            continue;
-        }
-        let s_norm: f64 = (0..n3).map(|i| surface.weight[i] * solution.s[i].powi(2)).sum();
-        let criterion = if model.pv2.is_some() && s_norm > 0.0 {
-            let ds: f64 = (0..n3)
-                .map(|i| surface.weight[i] * (solution.s[i] - solution.s_used[i]).powi(2))
-                .sum();
-            let s_criterion = (ds / s_norm).sqrt();
-            if g_next != g { s_criterion.max(x_criterion) } else { s_criterion }
-        } else {
-            x_criterion
-        };
+        let moduli_next = secant_moduli(problem, system.dofs(), &solution.x)?;
+        let changed = moduli_next != moduli;
+        let criterion =
+            fixed.outer_criterion(problem, &system, &solution, &x_previous, changed, &*method);
         solution.outer_history.push(criterion);
-        g = g_next;
-        if criterion < settings.eps_fp {
+        moduli = moduli_next;
+        if criterion < method.outer_tolerance() {
             solution.converged = true;
             break;
         }
-        if let Some(failure) = outer_failure(model, &solution) {
+        if method.lags_contact()
+            && let Some(failure) = outer_failure(model, &solution)
+        {
             solution.failure = Some(failure);
             break;
         }
     }
+    finish(problem, model, settings, &*method, system, solution)
+}
+
+/// What stays the same over the outer steps: the norm of the stopping rules, R and µ.
+struct Fixed {
+    mass: MassNorm,
+    mollifier: Mollifier,
+    mu: Vec<f64>,
+}
+
+impl Fixed {
+    fn new(problem: &Problem, surface: &ContactSurface, model: &ContactModel) -> Result<Self> {
+        let mu = model
+            .pv2
+            .as_ref()
+            .map_or_else(Vec::new, |(friction, _)| nodal_mu(problem, surface, friction));
+        Ok(Self {
+            mass: MassNorm::new(problem)?,
+            mollifier: Mollifier::new(problem, surface, model)?,
+            mu,
+        })
+    }
+
+    /// The data of the outer step from x_n = `solution.x` and s_n.
+    fn step<'a>(
+        &'a self,
+        problem: &'a Problem,
+        model: &'a ContactModel,
+        solution: &'a ContactSolution,
+        friction_bound: &'a [f64],
+        moduli: &'a [f64],
+        progress: &'a dyn Fn(Progress),
+    ) -> Step<'a> {
+        Step {
+            problem,
+            mass: &self.mass,
+            surface: &solution.surface,
+            model,
+            mu: &self.mu,
+            mollifier: &self.mollifier,
+            previous: &solution.x,
+            friction_bound,
+            moduli,
+            progress,
+        }
+    }
+
+    /// The outer criterion after a step. With the contact terms lagged: (6.13)
+    /// ‖s_{n+1} − s_n‖/‖s_{n+1}‖ for PV2 with s ≢ 0, else (6.15) ‖x_{n+1} − x_n‖/‖x_{n+1}‖,
+    /// and the larger of both while Hencky's moduli still change. Without lagging, the loop is
+    /// the secant iteration of Hencky's law alone, done when the moduli at the solution are
+    /// those it was solved with (criterion 0), else (6.15).
+    fn outer_criterion(
+        &self,
+        problem: &Problem,
+        system: &CoupledSystem,
+        solution: &ContactSolution,
+        x_previous: &[f64],
+        moduli_changed: bool,
+        method: &dyn InnerMethod,
+    ) -> f64 {
+        let x_criterion =
+            relative_change(problem, system.dofs(), &self.mass, &solution.x, x_previous);
+        if !method.lags_contact() {
+            return if moduli_changed { x_criterion } else { 0.0 };
+        }
+        match solution.friction_bound_change() {
+            Some(s_criterion) if moduli_changed => s_criterion.max(x_criterion),
+            Some(s_criterion) => s_criterion,
+            None => x_criterion,
+        }
+    }
+}
+
+/// The error of a failed factorisation of B̌(x_n) in outer step n.
+fn factorisation_failure(n: usize, e: Error) -> Error {
+    Error::NumericalFailure {
+        what: format!("the factorisation of B̌(x_n) in outer step {n}"),
+        iteration: n,
+        cause: e.to_string(),
+        hint: "a singular matrix means the body is not held (Γ1, Γa) or a material constant is \
+               not physical"
+            .into(),
+    }
+}
+
+/// The end of a solve: the cap's error if no other stop, timings, the residuals, and the
+/// method's last word on them.
+fn finish(
+    problem: &Problem,
+    model: &ContactModel,
+    settings: &Settings,
+    method: &dyn InnerMethod,
+    system: CoupledSystem,
+    mut solution: ContactSolution,
+) -> Result<ContactSolution> {
     if !solution.converged && solution.failure.is_none() {
-        solution.failure = Some(Error::NotConverged {
-            what: format!(
-                "the fixed-point loop (Algorithm {})",
-                if model.pv2.is_some() { 1 } else { 3 }
-            ),
-            iterations: solution.outer_iterations,
-            criterion: solution.outer_history.last().copied().unwrap_or(f64::NAN),
-            tolerance: settings.eps_fp,
-            history: tail(&solution.outer_history),
-            hint: format!(
-                "raise solver.max_outer (now {}); a criterion that stalls means the lagged contact \
-                 terms (h_ν, ψ) are too strong for the fixed point",
-                settings.max_outer
-            ),
-        });
+        solution.failure = Some(outer_cap(model, &solution, settings.max_outer, method));
     }
     solution.timings = system.timings();
-    solution.condensed_nodes = if exact { condensed.node_count() } else { 0 };
+    solution.condensed_nodes = method.condensed_nodes();
     solution.dofs = system.into_dofs();
-    (solution.kkt, solution.balance) = residual::assess(problem, model, settings, &solution)?;
-    if let Method::Newton { tol, .. } = settings.method
-        && solution.converged
-        && (solution.kkt.max > tol || solution.kkt.max.is_nan())
+    let constant = method.complementarity_constant();
+    (solution.kkt, solution.balance) = residual::assess(problem, model, constant, &solution)?;
+    if solution.converged
+        && let Some(failure) = method.accept(&solution.kkt, &solution.outer_history)
     {
         solution.converged = false;
-        solution.failure = Some(Error::NotConverged {
-            what: "the exact solver".into(),
-            iterations: solution.outer_iterations,
-            criterion: solution.kkt.max,
-            tolerance: tol,
-            history: tail(&solution.outer_history),
-            hint: "the KKT residual stays above solver.tol: round-off of an ill-conditioned \
-                   problem, or a tolerance below what double precision reaches here"
-                .into(),
-        });
+        solution.failure = Some(failure);
     }
     Ok(solution)
 }
 
+/// The name of the fixed-point loop in messages.
+fn outer_loop_name(model: &ContactModel) -> String {
+    format!("the fixed-point loop (Algorithm {})", if model.pv2.is_some() { 1 } else { 3 })
+}
+
+/// The error of a fixed-point loop that reached solver.max_outer.
+fn outer_cap(
+    model: &ContactModel,
+    solution: &ContactSolution,
+    max_outer: usize,
+    method: &dyn InnerMethod,
+) -> Error {
+    Error::NotConverged {
+        what: outer_loop_name(model),
+        iterations: solution.outer_iterations,
+        criterion: solution.outer_history.last().copied().unwrap_or(f64::NAN),
+        tolerance: method.outer_tolerance(),
+        history: tail(&solution.outer_history),
+        hint: format!(
+            "raise solver.max_outer (now {max_outer}); a criterion that stalls means the lagged \
+             contact terms (h_ν, ψ) are too strong for the fixed point"
+        ),
+    }
+}
+
+/// The error for an inner loop that stopped without converging: the one place where stops
+/// become errors, with the method's hints.
+fn inner_failure(context: &StopContext, inner: &InnerResult) -> Option<Error> {
+    let StopContext { what, tolerance, cap_hint, hint } = context.clone();
+    let history = tail(&inner.history);
+    let iteration = inner.iterations;
+    match &inner.stop {
+        Stop::Converged => None,
+        Stop::Cap => Some(Error::NotConverged {
+            what,
+            iterations: iteration,
+            criterion: inner.history.last().copied().unwrap_or(f64::NAN),
+            tolerance,
+            history,
+            hint: cap_hint,
+        }),
+        Stop::Diverged => Some(Error::Diverged { what, iteration, history, hint }),
+        Stop::NotFinite(cause) => {
+            Some(Error::NumericalFailure { what, iteration, cause: cause.clone(), hint })
+        }
+    }
+}
+
 /// The last values of a criterion history, for messages.
-fn tail(history: &[f64]) -> String {
+pub(crate) fn tail(history: &[f64]) -> String {
     let start = history.len().saturating_sub(5);
     let values: Vec<String> = history[start..].iter().map(|v| format!("{v:.3e}")).collect();
     values.join(", ")
@@ -532,8 +473,7 @@ fn tail(history: &[f64]) -> String {
 /// A non-finite outer criterion or friction bound, or a growing outer criterion.
 fn outer_failure(model: &ContactModel, solution: &ContactSolution) -> Option<Error> {
     let n = solution.outer_iterations;
-    let what =
-        format!("the fixed-point loop (Algorithm {})", if model.pv2.is_some() { 1 } else { 3 });
+    let what = outer_loop_name(model);
     let last = *solution.outer_history.last()?;
     let hint = "the lagged contact terms are too strong for the fixed point: reduce \
                 conductivity.ke, contact.c_nu or contact.penetration";
@@ -550,52 +490,72 @@ fn outer_failure(model: &ContactModel, solution: &ContactSolution) -> Option<Err
     })
 }
 
-/// µ on each Γ3 node: the case's µ, or the mean of the µ of the parts a node belongs to.
-fn nodal_mu(problem: &Problem, surface: &ContactSurface, friction: &Friction) -> Vec<f64> {
-    let mut sum = vec![0.0; surface.len()];
-    let mut count = vec![0usize; surface.len()];
-    let index: std::collections::HashMap<usize, usize> =
-        surface.nodes.iter().enumerate().map(|(i, &n)| (n, i)).collect();
-    for &(part, mu) in &friction.mu_parts {
-        let mut nodes: Vec<usize> = problem.mesh.part_facets(part).flatten().copied().collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        for i in nodes.iter().filter_map(|n| index.get(n)) {
-            sum[*i] += mu;
-            count[*i] += 1;
-        }
-    }
-    (0..surface.len())
-        .map(|i| if count[i] > 0 { sum[i] / count[i] as f64 } else { friction.mu })
-        .collect()
-}
-
-/// State of a Γ3 node at the solution.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum NodeStatus {
-    /// σ_ν = 0: no contact force.
-    Separated,
-    /// σ_ν < 0 in PV1.
-    Contact,
-    /// PV2, σ_ν < 0 and ‖λ_f‖ < s: u_τ = 0.
-    Stick,
-    /// PV2, σ_ν < 0 and ‖λ_f‖ = s.
-    Slip,
-}
-
-impl NodeStatus {
-    /// The name used in outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Separated => "separated",
-            Self::Contact => "contact",
-            Self::Stick => "stick",
-            Self::Slip => "slip",
-        }
-    }
+/// ‖a − b‖ / ‖a‖ in the L2(Ω) norm of (6.15).
+fn relative_change(problem: &Problem, dofs: &DofMap, mass: &MassNorm, a: &[f64], b: &[f64]) -> f64 {
+    let difference: Vec<f64> = a.iter().zip(b).map(|(p, q)| p - q).collect();
+    let norm = mass.squared(problem, dofs, a);
+    if norm > 0.0 { (mass.squared(problem, dofs, &difference) / norm).sqrt() } else { 0.0 }
 }
 
 impl ContactSolution {
+    /// The state before the first outer step: x_0 = 0, λ = 0, s_0 = 0.
+    fn start(surface: ContactSurface, n_total: usize) -> Self {
+        let n3 = surface.len();
+        Self {
+            kkt: KktResidual::default(),
+            balance: Balance::default(),
+            condensed_nodes: 0,
+            x: vec![0.0; n_total],
+            dofs: DofMap::default(),
+            surface,
+            state: ContactState::cold(n3),
+            s_used: vec![0.0; n3],
+            s: vec![0.0; n3],
+            sigma_nu: vec![0.0; n3],
+            converged: false,
+            failure: None,
+            outer_iterations: 0,
+            inner_iterations: Vec::new(),
+            outer_history: Vec::new(),
+            inner_history: Vec::new(),
+            timings: Timings::default(),
+        }
+    }
+
+    /// Takes the inner result of a step solved with the friction bound `s_n`: x_{n+1}, λ,
+    /// σ_ν and s_{n+1} = µ|Rσ_ν(x_{n+1})|. Returns x_n.
+    fn record(
+        &mut self,
+        inner: InnerResult,
+        s_n: Vec<f64>,
+        lags: bool,
+        model: &ContactModel,
+        fixed: &Fixed,
+        system: &CoupledSystem,
+    ) -> Vec<f64> {
+        self.inner_iterations.push(inner.iterations);
+        self.inner_history.push(inner.history);
+        let x_previous = std::mem::replace(&mut self.x, inner.x);
+        self.state = inner.state;
+        self.sigma_nu = normal_stress(system.dofs(), &self.surface, model, &self.x, &self.state);
+        self.s = match &model.pv2 {
+            Some(_) => friction_bound(&fixed.mu, &fixed.mollifier, &self.sigma_nu),
+            None => vec![0.0; self.surface.len()],
+        };
+        // A method that solves friction at the solution used s_{n+1} itself.
+        self.s_used = if lags { s_n } else { self.s.clone() };
+        x_previous
+    }
+
+    /// ‖s_{n+1} − s_n‖ / ‖s_{n+1}‖ in L2(Γ3), (6.13); `None` when s ≡ 0.
+    fn friction_bound_change(&self) -> Option<f64> {
+        let w = &self.surface.weight;
+        let s_norm: f64 = self.s.iter().zip(w).map(|(s, w)| w * s.powi(2)).sum();
+        let ds: f64 =
+            self.s.iter().zip(&self.s_used).zip(w).map(|((s, t), w)| w * (s - t).powi(2)).sum();
+        (s_norm > 0.0).then(|| (ds / s_norm).sqrt())
+    }
+
     /// The status of Γ3 node i: separated when σ_ν = 0; in PV2 slip when λ_f is on the
     /// friction bound s_n of the last Uzawa loop (to a relative 1e−9), stick otherwise.
     pub fn status(&self, i: usize, pv2: bool) -> NodeStatus {
@@ -607,132 +567,5 @@ impl ContactSolution {
         }
         let traction = self.state.lambda_f[i].iter().map(|v| v * v).sum::<f64>().sqrt();
         if traction >= self.s_used[i] * (1.0 - 1e-9) { NodeStatus::Slip } else { NodeStatus::Stick }
-    }
-}
-
-/// r M on the Γ3 nodes: r w_i I with friction (Algorithm 2), r w_i ν_i ν_iᵀ without (Algorithm 4).
-fn step1_blocks(surface: &ContactSurface, r: f64, friction: bool) -> Vec<NodalBlock> {
-    (0..surface.len())
-        .map(|i| {
-            let (w, n) = (surface.weight[i], surface.normal[i]);
-            let mut block = [[0.0; 3]; 3];
-            for a in 0..surface.dim() {
-                for b in 0..surface.dim() {
-                    let identity = if a == b && friction { 1.0 } else { 0.0 };
-                    block[a][b] = r * w * if friction { identity } else { n[a] * n[b] };
-                }
-            }
-            block
-        })
-        .collect()
-}
-
-/// −j̃1(x_n, ·) − ľ(x_n, ·) on the free DOFs (nodal quadrature on Γ3): −w h_ν p_ν ν on the u
-/// rows; + w ψ φ_L on the ϕ row (PV2 only).
-fn lagged_loads(
-    dofs: &DofMap,
-    surface: &ContactSurface,
-    model: &ContactModel,
-    x: &[f64],
-) -> Vec<f64> {
-    let mut base = vec![0.0; dofs.n_free()];
-    for i in 0..surface.len() {
-        let (u_nu, _) = surface.split(dofs, x, i);
-        let phi = surface.phi(dofs, x, i);
-        let (w, node) = (surface.weight[i], surface.nodes[i]);
-        let pressure = model.compliance.pressure(u_nu, phi, surface.gap[i]);
-        for c in 0..surface.dim() {
-            let k = dofs.free_index(dofs.u(node, c));
-            if k != CONSTRAINED {
-                base[k] -= w * pressure * surface.normal[i][c];
-            }
-        }
-        if let Some((_, conduction)) = &model.pv2 {
-            let k = dofs.free_index(dofs.phi(node));
-            if k != CONSTRAINED {
-                base[k] += w * conduction.flux(u_nu, phi, surface.gap[i]);
-            }
-        }
-    }
-    base
-}
-
-/// σ_ν = −(λ_c + h_ν(ϕ − ϕ0) p_ν(u_ν − g_a)) on the Γ3 nodes (model §6).
-pub fn normal_stress(
-    dofs: &DofMap,
-    surface: &ContactSurface,
-    model: &ContactModel,
-    x: &[f64],
-    state: &ContactState,
-) -> Vec<f64> {
-    (0..surface.len())
-        .map(|i| {
-            let (u_nu, _) = surface.split(dofs, x, i);
-            let phi = surface.phi(dofs, x, i);
-            -(state.lambda_c[i] + model.compliance.pressure(u_nu, phi, surface.gap[i]))
-        })
-        .collect()
-}
-
-/// ‖a − b‖ / ‖a‖ in the L2(Ω) norm of (6.15).
-fn relative_change(problem: &Problem, dofs: &DofMap, mass: &MassNorm, a: &[f64], b: &[f64]) -> f64 {
-    let difference: Vec<f64> = a.iter().zip(b).map(|(p, q)| p - q).collect();
-    let norm = mass.squared(problem, dofs, a);
-    if norm > 0.0 { (mass.squared(problem, dofs, &difference) / norm).sqrt() } else { 0.0 }
-}
-
-/// The regularisation R of the friction bound as a sparse averaging operator on the Γ3 nodes.
-pub struct Mollifier {
-    /// For each node, (j, weight) with weights summing to 1; empty for R = identity.
-    rows: Vec<Vec<(usize, f64)>>,
-}
-
-impl Mollifier {
-    fn new(problem: &Problem, surface: &ContactSurface, model: &ContactModel) -> Result<Self> {
-        let Some((Friction { regularization: Regularization::Mollifier { radius }, .. }, _)) =
-            &model.pv2
-        else {
-            return Ok(Self { rows: Vec::new() });
-        };
-        // Neighbourhoods by radius queries in a k-d tree of the Γ3 nodes, not all pairs.
-        let points: Vec<[f64; 3]> =
-            (0..surface.len()).map(|i| surface.position3(problem, i)).collect();
-        let tree = ImmutableKdTree::new_from_slice(&points).map_err(|e| {
-            Error::Input(format!("friction.regularization: the k-d tree of the Γ3 nodes: {e:?}"))
-        })?;
-        let rows = points
-            .iter()
-            .map(|xi| {
-                let mut row: Vec<(usize, f64)> = tree
-                    .query(xi)
-                    .within::<SquaredEuclidean<f64>>(radius * radius)
-                    .unsorted()
-                    .execute()
-                    .into_iter()
-                    .filter_map(|found| {
-                        let (j, t) = (found.item as usize, found.distance / (radius * radius));
-                        (t < 1.0).then(|| (j, surface.weight[j] * (1.0 - t).powi(2)))
-                    })
-                    .collect();
-                row.sort_by_key(|&(j, _)| j);
-                let total: f64 = row.iter().map(|(_, w)| w).sum();
-                row.iter_mut().for_each(|(_, w)| *w /= total);
-                row
-            })
-            .collect();
-        Ok(Self { rows })
-    }
-
-    /// R σ_ν on the Γ3 nodes.
-    pub fn apply(&self, sigma_nu: &[f64]) -> Vec<f64> {
-        if self.rows.is_empty() {
-            return sigma_nu.to_vec();
-        }
-        self.rows.iter().map(|row| row.iter().map(|&(j, w)| w * sigma_nu[j]).sum()).collect()
-    }
-
-    /// Row i of R: (j, R_ij).
-    pub fn row(&self, i: usize) -> Vec<(usize, f64)> {
-        self.rows.get(i).cloned().unwrap_or_else(|| vec![(i, 1.0)])
     }
 }

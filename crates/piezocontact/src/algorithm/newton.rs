@@ -1,38 +1,29 @@
 //! The exact contact solver (model §11): a semismooth Newton method on the problem condensed
-//! onto the Γ3 unknowns.
+//! onto the Γ3 unknowns, as an [`InnerMethod`].
 //!
-//! Every nonlinearity but Hencky's lives on the Γ3 nodes. With the Γ3 unknowns x_c (u and ϕ
-//! of each Γ3 node) ordered last, the trailing block of the LDLᵀ factor of B̌ is the LDLᵀ of
-//! the Schur complement S = K_cc − K_ci K_ii⁻¹ K_ic, read off the factor once per
-//! factorisation. The u unknowns of node i are turned into its local coordinates
-//! (u_ν, u_τ) = Q_i u, and S with them. One solve without contact forces gives x̂ and the
-//! condensed load g = S x̂_c; the discrete problem on Γ3 is then, with r = S x_c − g the
-//! contact forces on the Γ3 rows (r_ν = w σ_ν, r_τ = −w λ_f, r_ϕ = w ψ φ_L):
-//!
-//! ```text
-//! λ_c = −σ_ν − h_ν(ϕ − ϕ0) p_ν(u_ν − g_a)
-//! E_n = λ_c − max(0, λ_c + c_i (u_ν − ρ))                     (contact, every node)
-//! E_t = λ_f − P_{B(0,s)}(λ_f + c_i u_τ),  s = µ |R σ_ν|       (Coulomb, PV2; PV1: λ_f)
-//! E_ϕ = r_ϕ − w ψ(u_ν − g_a) φ_L(ϕ − ϕ0)                       (conduction, PV2; PV1: r_ϕ)
-//! ```
-//!
-//! All of it is semismooth in x_c. Each Newton step solves J δ = −E with a generalised
-//! Jacobian J: on a node in contact (λ_c + c(u_ν − ρ) > 0) the normal row is
-//! −c δu_ν = −E_n, on a sticking node (‖λ_f + c u_τ‖ < s) the tangential rows are
-//! −c δu_τ = −E_t; these fix their unknowns, and the dense LU runs on the others only. On
-//! slipping nodes the derivative of the projection uses λ_f / max(s, ‖λ_f‖) in place of its
-//! direction (Hüeber, Stadler and Wohlmuth's relaxation: exact at a slip solution, a descent
-//! direction elsewhere), and a backtracking line search on ‖E‖ (each equation scaled by the
-//! stiffness it sees) keeps the iteration from cycling. The constant c_i = (r/E)·S_νν,i/w_i
-//! scales the case's r by the stiffness that node i sees; the answer does not depend on it.
-//! The iteration stops when the sets no longer change and the step is at round-off; one solve
-//! with the contact forces then recovers the interior.
+//! The equations are model §11's; here is how the code holds them. With the Γ3 unknowns x_c
+//! ([`Condensed`]) kept last by the backend ([`crate::linalg::SchurComplement`]), the Schur
+//! complement S comes from the factor once per factorisation. The u unknowns of node i are
+//! turned into its local coordinates (u_ν, u_τ) = Q_i u, and S with them. One solve without
+//! contact forces gives x̂ and the condensed load b = S x̂_c; F = S x_c − b are then the contact
+//! forces on the Γ3 rows (F_ν = w σ_ν, F_τ = −w λ_f, F_ϕ = w ψ φ_L), and the residual E
+//! (E_n contact, E_t Coulomb, E_ϕ conduction) is evaluated by `Local::evaluate`, its
+//! generalised Jacobian column by column by `Local::gradient`. Rows of nodes in contact (normal)
+//! or sticking (tangential) fix their unknowns; the dense LU runs on the others. On slipping
+//! nodes the projection's derivative uses λ_f / max(s, ‖λ_f‖) (Hüeber, Stadler and Wohlmuth's
+//! relaxation), and a backtracking line search on the scaled ‖E‖ keeps the iteration from
+//! cycling. The constant c_i = (r/E_Y)·S_νν,i/w_i scales the case's r by the stiffness node i
+//! sees (E_Y: Young's modulus). The iteration stops when the sets no longer change and the
+//! step is at round-off; one solve with the contact forces recovers the interior.
 
-use super::{ContactState, InnerResult, Progress, Step, Stop};
-use crate::contact::ContactSurface;
-use crate::dofs::{CONSTRAINED, DofMap};
+use super::condensed::{Condensed, Phi};
+use super::residual::KktResidual;
+use super::{InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
+use crate::assembly::NodalBlock;
+use crate::contact::ContactState;
+use crate::contact::model::node_bound;
 use crate::error::{Error, Result};
-use crate::linalg::DenseMatrix;
+use crate::linalg::{DenseMatrix, LinearSolver};
 use crate::solver::CoupledSystem;
 
 /// A relative Newton step below this, with unchanged sets, is round-off.
@@ -44,204 +35,12 @@ const HALVINGS: usize = 8;
 /// Condensed problems solved in one outer step, at most (each after a factorisation).
 const MAX_ROUNDS: usize = 10;
 
-/// The Γ3 unknowns kept by the condensation, in the order of the Schur complement.
-#[derive(Clone, Debug)]
-pub struct Condensed {
-    /// Free indices of the condensed unknowns.
-    pub free: Vec<usize>,
-    /// Global indices of the condensed unknowns.
-    global: Vec<usize>,
-    /// Per Γ3 node: the positions of its u components in the condensed vector (in local
-    /// coordinates during the iteration: normal first, then tangents).
-    u: Vec<[usize; 3]>,
-    /// Per Γ3 node: its ϕ.
-    phi: Vec<Phi>,
-    /// Per Γ3 node: whether it is condensed. A node whose normal misses the foundation (an
-    /// infinite gap) cannot touch it, and stays with the interior, as do the nodes left out
-    /// of a Γ3 too large to condense whole.
-    kept: Vec<bool>,
-    /// Whether ϕ of the nodes is condensed.
-    with_phi: bool,
-}
-
-/// ϕ of a Γ3 node in the condensed problem.
-#[derive(Clone, Copy, Debug)]
-enum Phi {
-    /// An unknown, at this position of the condensed vector.
-    Unknown(usize),
-    /// Prescribed (the node is on Γa): its global index.
-    Prescribed(usize),
-    /// Not condensed: without penetration (g_p = 0) the laws that read ϕ, p_ν and ψ at
-    /// u_ν − g_a, vanish on every admissible state, and ϕ stays with the interior.
-    Interior,
-}
-
-impl Condensed {
-    /// The Γ3 nodes within the foundation's reach, at most `max_nodes` of them: all when
-    /// they are that few, else the `max_nodes` nearest to the foundation (smallest gap; the
-    /// first of equal ones), which [`Condensed::grown`] corrects. A node's u is condensed, and its ϕ when
-    /// `with_phi` (the laws that read ϕ can act: a penetration g_p > 0); a prescribed ϕ (a
-    /// Γ3 node on Γa) is not an unknown.
-    pub fn new(dofs: &DofMap, surface: &ContactSurface, with_phi: bool, max_nodes: usize) -> Self {
-        let gap = &surface.gap;
-        let mut reach: Vec<usize> = (0..surface.len()).filter(|&i| gap[i].is_finite()).collect();
-        if reach.len() > max_nodes {
-            reach.sort_by(|&a, &b| gap[a].total_cmp(&gap[b]).then(a.cmp(&b)));
-            reach.truncate(max_nodes);
-        }
-        let mut kept = vec![false; surface.len()];
-        reach.into_iter().for_each(|i| kept[i] = true);
-        Self::with_nodes(dofs, surface, with_phi, kept)
-    }
-
-    /// The unknowns of the `kept` nodes.
-    fn with_nodes(
-        dofs: &DofMap,
-        surface: &ContactSurface,
-        with_phi: bool,
-        kept: Vec<bool>,
-    ) -> Self {
-        let mut this = Self {
-            free: Vec::new(),
-            global: Vec::new(),
-            u: Vec::new(),
-            phi: Vec::new(),
-            kept: Vec::new(),
-            with_phi,
-        };
-        let push = |this: &mut Self, g: usize| {
-            this.free.push(dofs.free_index(g));
-            this.global.push(g);
-            this.free.len() - 1
-        };
-        for (i, &node) in surface.nodes.iter().enumerate() {
-            if !kept[i] {
-                this.u.push([usize::MAX; 3]);
-                this.phi.push(Phi::Interior);
-                continue;
-            }
-            let mut u = [0; 3];
-            for (k, slot) in u.iter_mut().enumerate().take(surface.dim()) {
-                *slot = push(&mut this, dofs.u(node, k));
-            }
-            this.u.push(u);
-            let g = dofs.phi(node);
-            let phi = if !with_phi {
-                Phi::Interior
-            } else if dofs.free_index(g) == CONSTRAINED {
-                Phi::Prescribed(g)
-            } else {
-                Phi::Unknown(push(&mut this, g))
-            };
-            this.phi.push(phi);
-        }
-        this.kept = kept;
-        this
-    }
-
-    /// The active-set check of the nodes left out (model §11): at the solution `x` of the
-    /// condensed problem, a left-out node carries no contact force, which is its law only
-    /// while u_ν ≤ g_a. `None` when every left-out node is there. Else the condensation
-    /// with those that pass it added, and with them the left-out nodes as near to touching
-    /// (u_ν − g_a above minus the largest excess e), deepest first. When that would exceed
-    /// `max_nodes`, condensed nodes clear of the foundation make room, the clearest first;
-    /// an error when none can.
-    pub fn grown(
-        &self,
-        dofs: &DofMap,
-        surface: &ContactSurface,
-        x: &[f64],
-        max_nodes: usize,
-    ) -> Result<Option<Self>> {
-        let excess = |i: usize| {
-            let nu = surface.frame(i)[0];
-            let u_nu: f64 =
-                (0..surface.dim()).map(|k| nu[k] * x[dofs.u(surface.nodes[i], k)]).sum();
-            u_nu - surface.gap[i]
-        };
-        let reach = |i: &usize| surface.gap[*i].is_finite();
-        let ranked = |kept: bool| {
-            let mut nodes: Vec<(usize, f64)> = (0..surface.len())
-                .filter(|i| reach(i) && self.kept[*i] == kept)
-                .map(|i| (i, excess(i)))
-                .collect();
-            nodes.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-            nodes
-        };
-        let mut left_out = ranked(false);
-        let touching = left_out.iter().filter(|(_, v)| *v > 0.0).count();
-        if touching == 0 {
-            return Ok(None);
-        }
-        let largest = left_out[0].1;
-        left_out.retain(|(_, v)| *v > -largest);
-        let mut kept = self.kept.clone();
-        let count = self.node_count();
-        let short = (count + left_out.len()).saturating_sub(max_nodes);
-        let clear = ranked(true).into_iter().rev().take_while(|(_, v)| *v < 0.0).take(short);
-        clear.for_each(|(i, _)| kept[i] = false);
-        let room = max_nodes - kept.iter().filter(|k| **k).count();
-        if room == 0 {
-            return Err(Error::Input(format!(
-                "the contact zone is larger than solver.max_condensed = {max_nodes} nodes: with that many Γ3 nodes condensed and touching, {touching} more still touch the foundation; raise solver.max_condensed to at least {} (its dense matrices grow as its square), or use solver.method = \"uzawa\"",
-                count + touching
-            )));
-        }
-        left_out.into_iter().take(room).for_each(|(i, _)| kept[i] = true);
-        Ok(Some(Self::with_nodes(dofs, surface, self.with_phi, kept)))
-    }
-
-    /// Number of condensed Γ3 nodes.
-    pub fn node_count(&self) -> usize {
-        self.kept.iter().filter(|k| **k).count()
-    }
-
-    /// Checks that the dense work of the condensation — the Schur complement, its factor
-    /// block and the Newton systems, about 5 dense m × m matrices — fits in `available`
-    /// bytes.
-    pub fn check_memory(&self, available: f64) -> Result<()> {
-        let m = self.len() as f64;
-        let bytes = 5.0 * 8.0 * m * m;
-        if bytes > available {
-            return Err(Error::Input(format!(
-                "the exact solver condenses {} unknowns of Γ3 into dense matrices of about {:.1} GiB, more than the {:.1} GiB available; use solver.method = \"uzawa\", or name a smaller contact part (boundary.contact)",
-                self.len(),
-                bytes / 2f64.powi(30),
-                available / 2f64.powi(30)
-            )));
-        }
-        Ok(())
-    }
-
-    /// Number of condensed unknowns.
-    pub fn len(&self) -> usize {
-        self.free.len()
-    }
-
-    /// Whether there is none.
-    pub fn is_empty(&self) -> bool {
-        self.free.is_empty()
-    }
-}
-
-/// One semismooth Newton solve of the condensed problem of an outer step.
-pub struct Newton<'a> {
-    /// The outer step.
-    pub step: &'a Step<'a>,
-    /// The Γ3 unknowns, last in the factorisation's ordering.
-    pub condensed: &'a Condensed,
-    /// r/E: the complementarity constant relative to the local stiffness [-].
-    pub c_factor: f64,
-    /// Cap on Newton steps.
-    pub max_iterations: usize,
-}
-
 /// The condensed problem in local coordinates.
 struct Local<'a> {
-    newton: &'a Newton<'a>,
+    semismooth: &'a Semismooth<'a>,
     /// Q S Qᵀ.
     schur: DenseMatrix,
-    /// Q g.
+    /// Q b: the condensed load in local coordinates.
     load: Vec<f64>,
     /// Per node: Q_i (rows ν, τ1, τ2).
     frames: Vec<[[f64; 3]; 3]>,
@@ -263,7 +62,7 @@ struct Evaluation {
     fixed: Vec<bool>,
     /// λ_c, λ_f (local tangential components).
     multipliers: ContactState,
-    /// r = S x_c − g in local coordinates.
+    /// F = S x_c − b in local coordinates: the contact forces on the Γ3 rows.
     forces: Vec<f64>,
     /// σ_ν per node and R σ_ν.
     sigma_nu: Vec<f64>,
@@ -271,66 +70,190 @@ struct Evaluation {
 }
 
 /// What the exact solver reads from `solver.*`.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Parameters {
-    /// r/E: the complementarity constant relative to the local stiffness [-].
-    pub c_factor: f64,
+    /// r > 0 [stress/length]: the constant of the KKT residual; the Newton method uses
+    /// c_i = (r/E)·S_νν,i/w_i, r scaled by the stiffness of Γ3 node i. The answer does not
+    /// depend on it.
+    pub r: f64,
+    /// The run stops when the KKT residual is at most this [-].
+    pub tol: f64,
     /// Cap on Newton steps per condensed problem.
-    pub max_iterations: usize,
-    /// The most Γ3 nodes condensed.
+    pub max_inner: usize,
+    /// The most Γ3 nodes condensed into the dense problem. A Γ3 with more nodes within the
+    /// foundation's reach starts from the nodes nearest to it, and trades clear nodes for
+    /// left-out nodes that turn out to touch (model §11).
     pub max_condensed: usize,
 }
 
-/// Solves an outer step with the factorised `system` (ordered with `condensed` last),
-/// growing the condensation until no node left out touches (model §11). Each growth orders
-/// the new condensed unknowns last, factorises B̌ with the moduli `g` again, and restarts
-/// Newton from the last solution; the steps and histories of all rounds are summed.
-pub fn solve(
-    step: &Step,
+/// The exact solver as an inner method: it owns its condensation, and the outer loop only
+/// updates Hencky's secant moduli around it.
+#[derive(Clone, Debug)]
+pub struct Newton {
     parameters: Parameters,
-    condensed: &mut Condensed,
-    system: &mut CoupledSystem,
-    g: &[f64],
-) -> Result<InnerResult> {
-    let Parameters { c_factor, max_iterations, max_condensed } = parameters;
-    let mut result = Newton { step, condensed, c_factor, max_iterations }.run(system)?;
-    let mut rounds = 1;
-    while matches!(result.stop, Stop::Converged)
-        && let Some(grown) =
-            condensed.grown(system.dofs(), step.surface, &result.x, max_condensed)?
-    {
-        if rounds == MAX_ROUNDS {
-            return Err(Error::Input(format!(
-                "the exact solver's condensation of Γ3 did not settle in {MAX_ROUNDS} factorisations (solver.max_condensed = {max_condensed} nodes, {} condensed): raise solver.max_condensed, or use solver.method = \"uzawa\"",
-                condensed.node_count()
-            )));
-        }
-        rounds += 1;
-        grown.check_memory(crate::limits::available_memory())?;
-        *condensed = grown;
-        system.put_last(&condensed.free)?;
-        system.factorize(step.problem, g, &[])?;
-        let warm = Step { start: &result.x, ..*step };
-        let next = Newton { step: &warm, condensed, c_factor, max_iterations }.run(system)?;
-        let history = [std::mem::take(&mut result.history), next.history].concat();
-        result = InnerResult { iterations: result.iterations + next.iterations, history, ..next };
-    }
-    Ok(result)
+    /// r/E: the complementarity constant relative to the local stiffness [-].
+    c_factor: f64,
+    /// The Γ3 unknowns, last in the factorisation's ordering.
+    condensed: Option<Condensed>,
+    /// Outer steps solved so far: the first starts from the solve without contact, the next
+    /// ones from x_n.
+    solved: usize,
 }
 
-impl Newton<'_> {
+impl Newton {
+    /// The method with `parameters`.
+    pub fn new(parameters: Parameters) -> Self {
+        Self { parameters, c_factor: 0.0, condensed: None, solved: 0 }
+    }
+}
+
+impl InnerMethod for Newton {
+    fn name(&self) -> &'static str {
+        "newton"
+    }
+
+    fn fresh(&self) -> Box<dyn InnerMethod> {
+        Box::new(Self::new(self.parameters))
+    }
+
+    fn lags_contact(&self) -> bool {
+        false
+    }
+
+    fn complementarity_constant(&self) -> f64 {
+        self.parameters.r
+    }
+
+    fn outer_tolerance(&self) -> f64 {
+        self.parameters.tol
+    }
+
+    fn prepare(&mut self, setup: Setup, solver: Box<dyn LinearSolver>) -> Result<CoupledSystem> {
+        let Setup { problem, dofs, surface, model } = setup;
+        let with_phi = model.compliance.penetration > 0.0;
+        let condensed = Condensed::new(&dofs, surface, with_phi, self.parameters.max_condensed);
+        condensed.check_memory(crate::limits::available_memory())?;
+        let system = CoupledSystem::with_last(problem, dofs, &condensed.free, solver)?;
+        self.c_factor = self.parameters.r / problem.material.elasticity.young();
+        self.condensed = Some(condensed);
+        Ok(system)
+    }
+
+    fn blocks(&self) -> &[NodalBlock] {
+        &[]
+    }
+
+    fn solve(&mut self, step: &Step, system: &mut CoupledSystem) -> Result<InnerResult> {
+        let mut condensed = self.condensed.take().ok_or_else(|| {
+            Error::LinearAlgebra("the exact solver solved before it was prepared".into())
+        })?;
+        let result = self.solve_growing(step, &mut condensed, system);
+        self.condensed = Some(condensed);
+        self.solved += 1;
+        result
+    }
+
+    fn stop_context(&self, outer_step: usize, _pv2: bool) -> StopContext {
+        let hint = "the active set cycles or the Jacobian is singular: check that Γ3 can touch \
+                    the foundation only where the body is held, and report the case if it \
+                    persists"
+            .to_string();
+        StopContext {
+            what: format!("the semismooth Newton method of outer step {outer_step}"),
+            tolerance: STEP_TOLERANCE,
+            cap_hint: format!("raise solver.max_inner (now {}); {hint}", self.parameters.max_inner),
+            hint,
+        }
+    }
+
+    fn accept(&self, kkt: &KktResidual, outer_history: &[f64]) -> Option<Error> {
+        let tol = self.parameters.tol;
+        (kkt.max > tol || kkt.max.is_nan()).then(|| Error::NotConverged {
+            what: "the exact solver".into(),
+            iterations: outer_history.len(),
+            criterion: kkt.max,
+            tolerance: tol,
+            history: super::tail(outer_history),
+            hint: "the KKT residual stays above solver.tol: round-off of an ill-conditioned \
+                   problem, or a tolerance below what double precision reaches here"
+                .into(),
+        })
+    }
+
+    fn condensed_nodes(&self) -> usize {
+        self.condensed.as_ref().map_or(0, Condensed::node_count)
+    }
+}
+
+impl Newton {
+    /// Solves an outer step with the factorised `system` (ordered with `condensed` last),
+    /// growing the condensation until no node left out touches (model §11). Each growth
+    /// orders the new condensed unknowns last, factorises B̌ with the step's moduli again,
+    /// and restarts Newton from the last solution; the steps and histories of all rounds are
+    /// summed.
+    fn solve_growing(
+        &self,
+        step: &Step,
+        condensed: &mut Condensed,
+        system: &mut CoupledSystem,
+    ) -> Result<InnerResult> {
+        let Parameters { max_inner, max_condensed, .. } = self.parameters;
+        let c_factor = self.c_factor;
+        let start = (self.solved > 0).then_some(step.previous);
+        let first = Semismooth { step, condensed, c_factor, max_inner, start };
+        let mut result = first.run(system)?;
+        let mut rounds = 1;
+        while matches!(result.stop, Stop::Converged)
+            && let Some(grown) =
+                condensed.grown(system.dofs(), step.surface, &result.x, max_condensed)?
+        {
+            if rounds == MAX_ROUNDS {
+                return Err(Error::Input(format!(
+                    "the exact solver's condensation of Γ3 did not settle in {MAX_ROUNDS} factorisations (solver.max_condensed = {max_condensed} nodes, {} condensed): raise solver.max_condensed, or use solver.method = \"uzawa\"",
+                    condensed.node_count()
+                )));
+            }
+            rounds += 1;
+            grown.check_memory(crate::limits::available_memory())?;
+            *condensed = grown;
+            system.put_last(&condensed.free)?;
+            system.factorize(step.problem, step.moduli, &[])?;
+            let start = Some(result.x.as_slice());
+            let next = Semismooth { step, condensed, c_factor, max_inner, start }.run(system)?;
+            let history = [std::mem::take(&mut result.history), next.history].concat();
+            result =
+                InnerResult { iterations: result.iterations + next.iterations, history, ..next };
+        }
+        Ok(result)
+    }
+}
+
+/// One semismooth Newton solve of the condensed problem of an outer step.
+struct Semismooth<'a> {
+    /// The outer step.
+    step: &'a Step<'a>,
+    /// The Γ3 unknowns, last in the factorisation's ordering.
+    condensed: &'a Condensed,
+    /// r/E: the complementarity constant relative to the local stiffness [-].
+    c_factor: f64,
+    /// Cap on Newton steps.
+    max_inner: usize,
+    /// The iterate to start from (global); `None`: the solve without contact forces.
+    start: Option<&'a [f64]>,
+}
+
+impl Semismooth<'_> {
     /// Solves the condensed problem with the factorised `system` (ordered with the condensed
     /// unknowns last) and recovers the whole solution.
     pub fn run(&self, system: &mut CoupledSystem) -> Result<InnerResult> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;
-        let local = Local::new(self, system.schur_complement(cond.len())?, x_hat);
-        let warm = self.step.start.iter().any(|v| *v != 0.0);
-        let mut y = local.gather(if warm { self.step.start } else { &local.x_hat });
+        let local = Local::new(self, system.schur_complement()?, x_hat);
+        let mut y = local.gather(self.start.unwrap_or(&local.x_hat));
         let mut history = Vec::new();
         let mut previous_sets: Option<Vec<u8>> = None;
-        let (mut stop, mut iterations) = (Stop::Cap, self.max_iterations);
-        for k in 0..self.max_iterations {
+        let (mut stop, mut iterations) = (Stop::Cap, self.max_inner);
+        for k in 0..self.max_inner {
             let eval = local.evaluate(&y);
             let delta = match local.newton_step(&y, &eval) {
                 Ok(delta) => delta,
@@ -371,7 +294,7 @@ impl Newton<'_> {
                 state.lambda_c[i] = 0.0;
             }
         }
-        if self.step.friction.is_none() {
+        if self.step.model.pv2.is_none() {
             // Frictionless: σ_τ = 0 by the law; the tangential rows hold it to round-off.
             state.lambda_f.iter_mut().for_each(|l| *l = [0.0; 3]);
         }
@@ -387,8 +310,8 @@ impl Newton<'_> {
 
 impl<'a> Local<'a> {
     /// Turns S and the load into local coordinates and sets the constants.
-    fn new(newton: &'a Newton<'a>, mut schur: DenseMatrix, x_hat: Vec<f64>) -> Self {
-        let (cond, surface) = (newton.condensed, newton.step.surface);
+    fn new(semismooth: &'a Semismooth<'a>, mut schur: DenseMatrix, x_hat: Vec<f64>) -> Self {
+        let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
         let dim = surface.dim();
         let frames: Vec<[[f64; 3]; 3]> = (0..surface.len()).map(|i| surface.frame(i)).collect();
         let m = cond.len();
@@ -409,7 +332,7 @@ impl<'a> Local<'a> {
             }
         }
         let mut this = Self {
-            newton,
+            semismooth,
             schur,
             load: Vec::new(),
             frames,
@@ -424,7 +347,7 @@ impl<'a> Local<'a> {
                 if !cond.kept[i] {
                     return 0.0;
                 }
-                newton.c_factor * this.schur.get(k, k).abs() / surface.weight[i]
+                semismooth.c_factor * this.schur.get(k, k).abs() / surface.weight[i]
             })
             .collect();
         this.scale = (0..m)
@@ -438,9 +361,9 @@ impl<'a> Local<'a> {
 
     /// The condensed entries of a global vector, in local coordinates.
     fn gather(&self, x: &[f64]) -> Vec<f64> {
-        let cond = self.newton.condensed;
-        let mut y: Vec<f64> = cond.global.iter().map(|&g| x[g]).collect();
-        let dim = self.newton.step.surface.dim();
+        let cond = self.semismooth.condensed;
+        let mut y: Vec<f64> = cond.global.iter().map(|&dof| x[dof]).collect();
+        let dim = self.semismooth.step.surface.dim();
         for (i, q) in self.frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
             let idx = &cond.u[i][..dim];
             let u: Vec<f64> = idx.iter().map(|&k| y[k]).collect();
@@ -453,8 +376,8 @@ impl<'a> Local<'a> {
 
     /// A condensed vector from local to global coordinates.
     fn to_global(&self, local: &[f64]) -> Vec<f64> {
-        let cond = self.newton.condensed;
-        let dim = self.newton.step.surface.dim();
+        let cond = self.semismooth.condensed;
+        let dim = self.semismooth.step.surface.dim();
         let mut v = local.to_vec();
         for (i, q) in self.frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
             let idx = &cond.u[i][..dim];
@@ -467,7 +390,7 @@ impl<'a> Local<'a> {
 
     /// ϕ at node i, or `None` when the laws that read it are off.
     fn phi(&self, y: &[f64], i: usize) -> Option<f64> {
-        match self.newton.condensed.phi[i] {
+        match self.semismooth.condensed.phi[i] {
             Phi::Unknown(p) => Some(y[p]),
             Phi::Prescribed(global) => Some(self.x_hat[global]),
             Phi::Interior => None,
@@ -476,8 +399,8 @@ impl<'a> Local<'a> {
 
     /// The compliance pressure h_ν p_ν at node i (0 with the laws off).
     fn pressure(&self, u_nu: f64, phi: Option<f64>, i: usize) -> f64 {
-        let (step, gap) = (self.newton.step, self.newton.step.surface.gap[i]);
-        phi.map_or(0.0, |phi| step.compliance.pressure(u_nu, phi, gap))
+        let (step, gap) = (self.semismooth.step, self.semismooth.step.surface.gap[i]);
+        phi.map_or(0.0, |phi| step.model.pressure(u_nu, phi, gap))
     }
 
     /// ‖scaled E‖².
@@ -487,15 +410,15 @@ impl<'a> Local<'a> {
 
     /// E, the sets and the multipliers at the condensed iterate y (local coordinates).
     fn evaluate(&self, y: &[f64]) -> Evaluation {
-        let (step, cond) = (self.newton.step, self.newton.condensed);
-        let (surface, law) = (step.surface, step.compliance);
+        let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
+        let (surface, law) = (step.surface, &step.model.compliance);
         let (n3, dim) = (surface.len(), surface.dim());
         let mut forces = self.schur.mul(y);
-        forces.iter_mut().zip(&self.load).for_each(|(r, g)| *r -= g);
+        forces.iter_mut().zip(&self.load).for_each(|(f, b)| *f -= b);
         let sigma_nu: Vec<f64> = (0..n3)
             .map(|i| if cond.kept[i] { forces[cond.u[i][0]] / surface.weight[i] } else { 0.0 })
             .collect();
-        let r_sigma = step.friction.map_or_else(|| sigma_nu.clone(), |(_, r)| r.apply(&sigma_nu));
+        let r_sigma = step.friction().map_or_else(|| sigma_nu.clone(), |(_, r)| r.apply(&sigma_nu));
         let mut eval = Evaluation {
             residual: vec![0.0; y.len()],
             sets: vec![0; n3],
@@ -520,10 +443,10 @@ impl<'a> Local<'a> {
             }
             let lambda_f: Vec<f64> = (1..dim).map(|a| -eval.forces[u[a]] / w).collect();
             (0..dim - 1).for_each(|a| eval.multipliers.lambda_f[i][a] = lambda_f[a]);
-            match step.friction {
+            match step.friction() {
                 None => (1..dim).for_each(|a| eval.residual[u[a]] = lambda_f[a - 1]),
                 Some((mu, _)) => {
-                    let s = mu[i] * eval.r_sigma[i].abs();
+                    let s = node_bound(mu[i], eval.r_sigma[i]);
                     let z: Vec<f64> = (1..dim).map(|a| lambda_f[a - 1] + c * y[u[a]]).collect();
                     let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
                     if norm < s {
@@ -542,9 +465,7 @@ impl<'a> Local<'a> {
             }
             if let (Phi::Unknown(p), Some(phi)) = (cond.phi[i], phi) {
                 eval.residual[p] = eval.forces[p];
-                if let Some(conduction) = step.conduction {
-                    eval.residual[p] -= w * conduction.flux(u_nu, phi, gap);
-                }
+                eval.residual[p] -= w * step.model.flux(u_nu, phi, gap);
             }
         }
         eval
@@ -553,7 +474,7 @@ impl<'a> Local<'a> {
     /// The Newton step δ at y: the fixed unknowns from their own rows, the others from the
     /// dense system of the remaining rows.
     fn newton_step(&self, y: &[f64], eval: &Evaluation) -> Result<Vec<f64>> {
-        let (step, cond) = (self.newton.step, self.newton.condensed);
+        let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
         let dim = step.surface.dim();
         let m = y.len();
         let mut delta = vec![0.0; m];
@@ -590,8 +511,8 @@ impl<'a> Local<'a> {
 
     /// The gradient of the equation of unknown k (node i) with respect to y, added to `out`.
     fn gradient(&self, y: &[f64], eval: &Evaluation, i: usize, k: usize, out: &mut [f64]) {
-        let (step, cond) = (self.newton.step, self.newton.condensed);
-        let (surface, law) = (step.surface, step.compliance);
+        let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
+        let surface = step.surface;
         let (w, u, c, dim) = (surface.weight[i], cond.u[i], self.c[i], surface.dim());
         let (u_nu, phi) = (y[u[0]], self.phi(y, i));
         let phi_position = match cond.phi[i] {
@@ -603,8 +524,8 @@ impl<'a> Local<'a> {
         };
         if let (true, Some(phi)) = (Some(k) == phi_position, phi) {
             add(out, k, 1.0);
-            if let Some(conduction) = step.conduction {
-                let (d_u, d_phi) = conduction.flux_derivative(u_nu, phi, surface.gap[i]);
+            if step.model.pv2.is_some() {
+                let (d_u, d_phi) = step.model.flux_derivative(u_nu, phi, surface.gap[i]);
                 out[u[0]] -= w * d_u;
                 out[k] -= w * d_phi;
             }
@@ -612,7 +533,7 @@ impl<'a> Local<'a> {
         }
         if k == u[0] {
             // Not in contact: E_n = λ_c = −σ_ν − q.
-            let derivative = |phi| law.pressure_derivative(u_nu, phi, surface.gap[i]);
+            let derivative = |phi| step.model.pressure_derivative(u_nu, phi, surface.gap[i]);
             let (dq_du, dq_dphi) = phi.map_or((0.0, 0.0), derivative);
             add(out, u[0], -1.0 / w);
             out[u[0]] -= dq_du;
@@ -623,7 +544,7 @@ impl<'a> Local<'a> {
         }
         // A tangential equation, component a = k's place among the tangents.
         let a = (1..dim).find(|&a| u[a] == k).unwrap_or(1);
-        let Some((mu, mollifier)) = step.friction else {
+        let Some((mu, mollifier)) = step.friction() else {
             add(out, k, -1.0 / w); // E_t = λ_f = −r_τ / w.
             return;
         };
@@ -631,7 +552,7 @@ impl<'a> Local<'a> {
         let lambda_f: Vec<f64> = (1..dim).map(|b| eval.multipliers.lambda_f[i][b - 1]).collect();
         let z: Vec<f64> = (1..dim).map(|b| lambda_f[b - 1] + c * y[u[b]]).collect();
         let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let s = mu[i] * eval.r_sigma[i].abs();
+        let s = node_bound(mu[i], eval.r_sigma[i]);
         let z_hat: Vec<f64> = z.iter().map(|v| if norm > 0.0 { v / norm } else { 0.0 }).collect();
         let lambda_norm = lambda_f.iter().map(|v| v * v).sum::<f64>().sqrt();
         let bound = s.max(lambda_norm).max(f64::MIN_POSITIVE);
@@ -671,22 +592,141 @@ impl<'a> Local<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::assembly::{MassNorm, secant_moduli};
+    use crate::case::Case;
+    use crate::contact::model::nodal_mu;
+    use crate::contact::{ContactModel, ContactSurface, Mollifier};
+    use crate::dofs::DofMap;
+    use crate::linalg::default_solver;
+    use crate::problem::Problem;
+
+    const PAPER_72: &str = include_str!("../../../../cases/paper-7.2.toml");
+
+    /// Checks `Local::gradient` against central differences of `Local::evaluate` on every
+    /// equation that does not fix its unknown, at the point `y`; `skip_slip` leaves out the
+    /// tangential rows of slipping nodes, whose derivative is relaxed away from a solution.
+    fn check_gradient(local: &Local, y: &[f64], skip_slip: bool) -> usize {
+        let eval = local.evaluate(y);
+        let cond = local.semismooth.condensed;
+        let (m, dim) = (y.len(), local.semismooth.step.surface.dim());
+        let mut node_of = vec![0; m];
+        let mut slip_row = vec![false; m];
+        for (i, u) in cond.u.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
+            u[..dim].iter().for_each(|&k| node_of[k] = i);
+            if let Phi::Unknown(p) = cond.phi[i] {
+                node_of[p] = i;
+            }
+            let slipping = eval.sets[i] < 2 && local.semismooth.step.model.pv2.is_some();
+            u[1..dim].iter().for_each(|&k| slip_row[k] = slipping);
+        }
+        // Steps relative to the size of each kind of unknown (u and ϕ differ by far).
+        let size = |k: usize| {
+            let same_kind = |j: &usize| {
+                matches!(cond.phi[node_of[*j]], Phi::Unknown(p) if p == *j)
+                    == matches!(cond.phi[node_of[k]], Phi::Unknown(p) if p == k)
+            };
+            (0..m).filter(same_kind).map(|j| y[j].abs()).fold(0.0, f64::max).max(1e-12)
+        };
+        let mut checked = 0;
+        for k in (0..m).filter(|&k| !(eval.fixed[k] || skip_slip && slip_row[k])) {
+            let mut gradient = vec![0.0; m];
+            local.gradient(y, &eval, node_of[k], k, &mut gradient);
+            let scale = gradient.iter().zip(y).map(|(g, _)| g.abs()).fold(0.0, f64::max);
+            for j in 0..m {
+                let h = 1e-7 * size(j);
+                let (mut plus, mut minus) = (y.to_vec(), y.to_vec());
+                plus[j] += h;
+                minus[j] -= h;
+                let (e_plus, e_minus) = (local.evaluate(&plus), local.evaluate(&minus));
+                if e_plus.sets != eval.sets || e_minus.sets != eval.sets {
+                    continue; // a kink within the step
+                }
+                let difference = (e_plus.residual[k] - e_minus.residual[k]) / (2.0 * h);
+                let error = (difference - gradient[j]).abs();
+                assert!(
+                    error <= 1e-5 * scale + 1e-9 * difference.abs().max(scale),
+                    "row {k} column {j}: gradient {} against difference {difference}",
+                    gradient[j]
+                );
+            }
+            checked += 1;
+        }
+        checked
+    }
 
     #[test]
-    fn a_condensed_problem_too_large_for_memory_is_refused() {
-        let many = Condensed {
-            free: vec![0; 30_000],
-            global: Vec::new(),
-            u: Vec::new(),
-            phi: Vec::new(),
-            kept: Vec::new(),
-            with_phi: false,
-        };
-        assert!(many.check_memory(64.0 * 2f64.powi(30)).is_ok());
-        let e = many.check_memory(16.0 * 2f64.powi(30)).unwrap_err().to_string();
-        assert!(
-            e.contains("30000 unknowns") && e.contains("33.5 GiB") && e.contains("uzawa"),
-            "{e}"
+    fn the_newton_jacobian_matches_difference_quotients() {
+        for regularization in ["identity", "mollifier"] {
+            let overrides: Vec<String> = [
+                "mesh.nx=24",
+                "mesh.ny=4",
+                "material.law=\"linear\"",
+                "contact.penetration=0.05",
+                "solver.method=\"newton\"",
+                "conductivity.ke=0.5",
+                "friction.radius=1.0",
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .chain([format!("friction.regularization=\"{regularization}\"")])
+            .collect();
+            let case = Case::from_text("paper-7.2.toml".as_ref(), PAPER_72, &overrides).unwrap();
+            let built = case.build().unwrap();
+            let (problem, model) = (&built.problem, built.model.as_ref().unwrap());
+            let checked = jacobian_case(problem, model);
+            assert!(checked > 20, "{regularization}: {checked} rows checked");
+        }
+    }
+
+    /// Prepares the exact solver on `problem`, solves one step, and checks the Jacobian at
+    /// the start (x̂, slip rows left out) and at the solution (every row). Returns the number
+    /// of rows checked.
+    fn jacobian_case(problem: &Problem, model: &ContactModel) -> usize {
+        let dofs = DofMap::new(problem).unwrap();
+        let surface = ContactSurface::new(problem, &dofs).unwrap().with_gaps(
+            problem,
+            &model.foundation,
+            model.compliance.gap,
         );
+        let parameters = Parameters { r: 14.7, tol: 1e-10, max_inner: 100, max_condensed: 2000 };
+        let mut method = Newton::new(parameters);
+        let setup = Setup { problem, dofs, surface: &surface, model };
+        let mut system = method.prepare(setup, default_solver()).unwrap();
+        let moduli = secant_moduli(problem, system.dofs(), &vec![0.0; system.dofs().n_total()]);
+        let moduli = moduli.unwrap();
+        system.factorize(problem, &moduli, &[]).unwrap();
+        let friction = &model.pv2.as_ref().unwrap().0;
+        let (mass, mu) = (MassNorm::new(problem).unwrap(), nodal_mu(problem, &surface, friction));
+        let mollifier = Mollifier::new(problem, &surface, model).unwrap();
+        let zero = vec![0.0; system.dofs().n_total()];
+        let step = Step {
+            problem,
+            mass: &mass,
+            surface: &surface,
+            model,
+            mu: &mu,
+            mollifier: &mollifier,
+            previous: &zero,
+            friction_bound: &vec![0.0; surface.len()],
+            moduli: &moduli,
+            progress: &|_| {},
+        };
+        let condensed = method.condensed.clone().unwrap();
+        let semismooth = Semismooth {
+            step: &step,
+            condensed: &condensed,
+            c_factor: method.c_factor,
+            max_inner: 100,
+            start: None,
+        };
+        let result = semismooth.run(&mut system).unwrap();
+        assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
+        let x_hat = system.solve(None).unwrap();
+        let local = Local::new(&semismooth, system.schur_complement().unwrap(), x_hat);
+        let start = local.gather(&local.x_hat);
+        let solution = local.gather(&result.x);
+        let contact = local.evaluate(&solution).sets.iter().filter(|s| **s > 0).count();
+        assert!(contact > 3, "the bar touches the foundation at {contact} nodes");
+        check_gradient(&local, &start, true) + check_gradient(&local, &solution, false)
     }
 }

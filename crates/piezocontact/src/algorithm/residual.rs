@@ -12,11 +12,12 @@
 //! ```
 //!
 //! The last two are the complementarity and Coulomb conditions written as projections, with the
-//! method's constant c ([`super::Method::complementarity_constant`], r for Uzawa); their
+//! method's constant c ([`super::InnerMethod::complementarity_constant`], the case's r); their
 //! defects divided by c are lengths, reported relative to max ‖u‖.
 
-use super::{ContactModel, ContactSolution, Settings};
+use super::ContactSolution;
 use crate::assembly::{internal_force, load_vector, secant_moduli};
+use crate::contact::ContactModel;
 use crate::contact::law::project_ball;
 use crate::dofs::CONSTRAINED;
 use crate::error::Result;
@@ -52,16 +53,16 @@ pub struct Balance {
     pub imbalance: f64,
 }
 
-/// Residuals and balance of a contact solution.
+/// Residuals and balance of a contact solution, with the complementarity constant c =
+/// `constant` [stress/length].
 pub fn assess(
     problem: &Problem,
     model: &ContactModel,
-    settings: &Settings,
+    constant: f64,
     solution: &ContactSolution,
 ) -> Result<(KktResidual, Balance)> {
     let dofs = &solution.dofs;
     let (surface, state, x) = (&solution.surface, &solution.state, &solution.x);
-    let constant = settings.method.complementarity_constant();
     let dim = problem.mesh.dim();
     let g = secant_moduli(problem, dofs, x)?;
     let (f_int, scale) = internal_force(problem, dofs, x, &g)?;
@@ -85,8 +86,8 @@ pub fn assess(
             (lambda_c - (lambda_c + constant * (u_nu - rho)).max(0.0)).abs() / constant / max_u,
         );
         kkt.penetration = kkt.penetration.max(u_nu - rho);
-        if let Some((_, conduction)) = &model.pv2 {
-            contact_force[dofs.phi(node)] += w * conduction.flux(u_nu, phi, surface.gap[i]);
+        if model.pv2.is_some() {
+            contact_force[dofs.phi(node)] += w * model.flux(u_nu, phi, surface.gap[i]);
             let z = [0, 1, 2].map(|k| state.lambda_f[i][k] + constant * u_tau[k]);
             let p = project_ball(z, solution.s[i]);
             let defect = (0..3).map(|k| (state.lambda_f[i][k] - p[k]).powi(2)).sum::<f64>().sqrt();

@@ -11,11 +11,97 @@
 //! The matrix of Step 1 was factorised by the caller; every iteration is one solve plus
 //! O(|Γ3|) work. Every call starts cold (p = λ = 0, x⁰ = 0), as model §7 requires.
 
-use super::{ContactState, DIVERGENCE, InnerResult, Progress, Step, Stop};
+use super::{DIVERGENCE, InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
+use crate::assembly::NodalBlock;
 use crate::contact::law::project_ball;
+use crate::contact::{ContactModel, ContactState, ContactSurface};
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::Result;
+use crate::linalg::LinearSolver;
 use crate::solver::CoupledSystem;
+
+/// What the Uzawa method reads from `solver.*`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Parameters {
+    /// r > 0: the augmented Lagrangian parameter [stress/length] (paper: 0.25 E).
+    pub r: f64,
+    /// ε of (6.12)/(6.16) [-] (paper: 1e−4).
+    pub eps: f64,
+    /// ε_fp of the fixed-point rules (6.13)/(6.15) [-] (paper: 1e−4).
+    pub eps_fp: f64,
+    /// Cap on Uzawa iterations per outer step.
+    pub max_inner: usize,
+}
+
+/// The augmented Lagrangian Uzawa block relaxation as an inner method: every outer step
+/// starts cold, with the contact terms lagged at x_n by the outer loop.
+#[derive(Clone, Debug)]
+pub struct Uzawa {
+    parameters: Parameters,
+    /// r M on the Γ3 nodes, added to B̌.
+    blocks: Vec<NodalBlock>,
+}
+
+impl Uzawa {
+    /// The method with `parameters`.
+    pub fn new(parameters: Parameters) -> Self {
+        Self { parameters, blocks: Vec::new() }
+    }
+}
+
+impl InnerMethod for Uzawa {
+    fn name(&self) -> &'static str {
+        "uzawa"
+    }
+
+    fn fresh(&self) -> Box<dyn InnerMethod> {
+        Box::new(Self::new(self.parameters))
+    }
+
+    fn lags_contact(&self) -> bool {
+        true
+    }
+
+    fn complementarity_constant(&self) -> f64 {
+        self.parameters.r
+    }
+
+    fn outer_tolerance(&self) -> f64 {
+        self.parameters.eps_fp
+    }
+
+    fn prepare(&mut self, setup: Setup, solver: Box<dyn LinearSolver>) -> Result<CoupledSystem> {
+        let friction = setup.model.pv2.is_some();
+        self.blocks = step1_blocks(setup.surface, self.parameters.r, friction);
+        CoupledSystem::new(setup.problem, setup.dofs, &setup.surface.nodes, solver)
+    }
+
+    fn blocks(&self) -> &[NodalBlock] {
+        &self.blocks
+    }
+
+    fn solve(&mut self, step: &Step, system: &mut CoupledSystem) -> Result<InnerResult> {
+        let base = lagged_loads(system.dofs(), step.surface, step.model, step.previous);
+        let Parameters { r, eps, max_inner, .. } = self.parameters;
+        Loop { step, base: &base, r, eps, max_inner }.run(system)
+    }
+
+    fn stop_context(&self, outer_step: usize, pv2: bool) -> StopContext {
+        let Parameters { r, eps, max_inner, .. } = self.parameters;
+        let algorithm = if pv2 { 2 } else { 4 };
+        let hint = format!(
+            "r too small or too large for this problem: try solver.r = {:.4e} or {:.4e} (now {r:.4e}; the paper uses 0.25 E)",
+            2.0 * r,
+            0.5 * r,
+        );
+        StopContext {
+            what: format!("the Uzawa loop (Algorithm {algorithm}) of outer step {outer_step}"),
+            tolerance: eps,
+            cap_hint: format!("raise solver.max_inner (now {max_inner}), or {hint}"),
+            hint,
+        }
+    }
+}
 
 /// The multipliers with Uzawa's auxiliary displacements on the Γ3 nodes.
 #[derive(Clone, Debug)]
@@ -29,18 +115,20 @@ struct Iterate {
 }
 
 /// One Uzawa loop: the outer step's data and the method's parameters.
-pub struct Uzawa<'a> {
+struct Loop<'a> {
     /// The outer step.
-    pub step: &'a Step<'a>,
+    step: &'a Step<'a>,
+    /// f_{1,n} − f̌ on the free DOFs: the lagged −j̃1(x_n) − ľ(x_n).
+    base: &'a [f64],
     /// r > 0 [stress/length].
-    pub r: f64,
+    r: f64,
     /// ε of (6.12).
-    pub eps: f64,
+    eps: f64,
     /// Cap on iterations.
-    pub max_inner: usize,
+    max_inner: usize,
 }
 
-impl Uzawa<'_> {
+impl Loop<'_> {
     /// Runs the loop with the factorised `system`, starting cold.
     pub fn run(&self, system: &mut CoupledSystem) -> Result<InnerResult> {
         let (step, r) = (self.step, self.r);
@@ -76,10 +164,11 @@ impl Uzawa<'_> {
                 let (u_nu, u_tau) = surface.split(dofs, &x_new, i);
                 let w = surface.weight[i];
                 let (lambda, next_lambda) = (&state.multipliers, &mut next.multipliers);
-                let rho = step.compliance.stop(surface.gap[i]);
+                let rho = step.model.compliance.stop(surface.gap[i]);
                 next.p_c[i] = (u_nu + lambda.lambda_c[i] / r).min(rho);
                 next_lambda.lambda_c[i] = (lambda.lambda_c[i] + r * (u_nu - rho)).max(0.0);
-                if let Some(s) = step.friction_bound {
+                if step.model.pv2.is_some() {
+                    let s = step.friction_bound;
                     let z = [0, 1, 2].map(|c| lambda.lambda_f[i][c] + r * u_tau[c]);
                     next_lambda.lambda_f[i] = project_ball(z, s[i]);
                     next.p_f[i] = [0, 1, 2].map(|c| (z[c] - next_lambda.lambda_f[i][c]) / r);
@@ -120,7 +209,7 @@ impl Uzawa<'_> {
     fn right_hand_side(&self, dofs: &DofMap, state: &Iterate) -> Vec<f64> {
         let (surface, r) = (self.step.surface, self.r);
         let lambda = &state.multipliers;
-        let mut rhs = self.step.base.to_vec();
+        let mut rhs = self.base.to_vec();
         for i in 0..surface.len() {
             let w = surface.weight[i];
             let normal = w * (r * state.p_c[i] - lambda.lambda_c[i]);
@@ -138,4 +227,51 @@ impl Uzawa<'_> {
 
 fn squared_distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     (0..3).map(|c| (a[c] - b[c]).powi(2)).sum()
+}
+
+/// r M on the Γ3 nodes: r w_i I with friction (Algorithm 2), r w_i ν_i ν_iᵀ without (Algorithm 4).
+fn step1_blocks(surface: &ContactSurface, r: f64, friction: bool) -> Vec<NodalBlock> {
+    (0..surface.len())
+        .map(|i| {
+            let (w, n) = (surface.weight[i], surface.normal[i]);
+            let mut block = [[0.0; 3]; 3];
+            for a in 0..surface.dim() {
+                for b in 0..surface.dim() {
+                    let identity = if a == b && friction { 1.0 } else { 0.0 };
+                    block[a][b] = r * w * if friction { identity } else { n[a] * n[b] };
+                }
+            }
+            block
+        })
+        .collect()
+}
+
+/// −j̃1(x_n, ·) − ľ(x_n, ·) on the free DOFs (nodal quadrature on Γ3): −w h_ν p_ν ν on the u
+/// rows; + w ψ φ_L on the ϕ row (PV2 only).
+fn lagged_loads(
+    dofs: &DofMap,
+    surface: &ContactSurface,
+    model: &ContactModel,
+    x: &[f64],
+) -> Vec<f64> {
+    let mut base = vec![0.0; dofs.n_free()];
+    for i in 0..surface.len() {
+        let (u_nu, _) = surface.split(dofs, x, i);
+        let phi = surface.phi(dofs, x, i);
+        let (w, node) = (surface.weight[i], surface.nodes[i]);
+        let pressure = model.pressure(u_nu, phi, surface.gap[i]);
+        for c in 0..surface.dim() {
+            let k = dofs.free_index(dofs.u(node, c));
+            if k != CONSTRAINED {
+                base[k] -= w * pressure * surface.normal[i][c];
+            }
+        }
+        if model.pv2.is_some() {
+            let k = dofs.free_index(dofs.phi(node));
+            if k != CONSTRAINED {
+                base[k] += w * model.flux(u_nu, phi, surface.gap[i]);
+            }
+        }
+    }
+    base
 }

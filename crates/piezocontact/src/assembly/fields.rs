@@ -30,29 +30,30 @@ pub fn cell_gradients<const D: usize, const N: usize>(
     Ok((eps, grad_phi))
 }
 
-/// The internal force F_int = Σ_e K_e(g_e) x_e on the global DOFs, and the row scale
+/// The internal force F_int = Σ_e K_e(g_e) x_e on the global DOFs, with the secant `moduli`
+/// g_e, and the row scale
 /// Σ_e |K_e x_e| (to make residuals relative). With g_e = g(‖ε^D(u)‖²) of x itself this is
 /// the exact nonlinear internal force of (6.2): Fε is linear in ε at a fixed g.
 pub fn internal_force(
     problem: &Problem,
     dofs: &DofMap,
     x: &[f64],
-    g: &[f64],
+    moduli: &[f64],
 ) -> Result<(Vec<f64>, Vec<f64>)> {
-    with_simplex!(problem.mesh.dim(), internal_force_on(problem, dofs, x, g))
+    with_simplex!(problem.mesh.dim(), internal_force_on(problem, dofs, x, moduli))
 }
 
 fn internal_force_on<const D: usize, const N: usize>(
     problem: &Problem,
     dofs: &DofMap,
     x: &[f64],
-    g: &[f64],
+    moduli: &[f64],
 ) -> Result<(Vec<f64>, Vec<f64>)> {
     let m = N * (D + 1);
     let mut force = vec![0.0; dofs.n_total()];
     let mut scale = vec![0.0; dofs.n_total()];
     for c in 0..problem.mesh.n_cells() {
-        let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, g[c]);
+        let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, moduli[c]);
         let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
         for p in 0..m {
             for q in 0..m {

@@ -73,14 +73,14 @@ pub fn element_matrix<const D: usize, const N: usize>(
 
 /// Global DOF indices of the element's local DOFs.
 pub fn local_dofs<const D: usize, const N: usize>(dofs: &DofMap, cell: &[usize]) -> [usize; M_MAX] {
-    let mut g = [0; M_MAX];
+    let mut global = [0; M_MAX];
     for (a, &node) in cell.iter().enumerate() {
         for i in 0..D {
-            g[a * D + i] = dofs.u(node, i);
+            global[a * D + i] = dofs.u(node, i);
         }
-        g[N * D + a] = dofs.phi(node);
+        global[N * D + a] = dofs.phi(node);
     }
-    g
+    global
 }
 
 /// The geometry of cell `c`, or an error naming it (the mesh check makes this unreachable).

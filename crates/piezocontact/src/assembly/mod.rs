@@ -118,13 +118,13 @@ impl Assembler {
         &self.pattern
     }
 
-    /// The matrix of B̌(x_n) for per-element secant moduli `g` [stress], plus the nodal
+    /// The matrix of B̌(x_n) for per-element secant `moduli` g_e [stress], plus the nodal
     /// `blocks` (one per block node, or none at all), and the Dirichlet lifting −K_fc x_c
     /// (free DOFs) to add to the right-hand side.
     pub fn matrix(
         &self,
         problem: &Problem,
-        g: &[f64],
+        moduli: &[f64],
         blocks: &[NodalBlock],
     ) -> Result<(SymmetricMatrix, Vec<f64>)> {
         if !blocks.is_empty() && blocks.len() != self.block_nodes.len() {
@@ -134,11 +134,11 @@ impl Assembler {
                 got: blocks.len(),
             });
         }
-        if g.len() != problem.mesh.n_cells() {
+        if moduli.len() != problem.mesh.n_cells() {
             return Err(Error::Length {
                 what: "secant moduli".into(),
                 expected: problem.mesh.n_cells(),
-                got: g.len(),
+                got: moduli.len(),
             });
         }
         let dim = problem.mesh.dim();
@@ -148,7 +148,7 @@ impl Assembler {
             group.par_chunks(PER_TASK).try_for_each(|cells| {
                 cells.iter().try_for_each(|&c| {
                     let slots = &self.cell_slots[self.cell_offsets[c]..self.cell_offsets[c + 1]];
-                    with_simplex!(dim, add_cell(problem, &self.dofs, g[c], c, slots, &sums))
+                    with_simplex!(dim, add_cell(problem, &self.dofs, moduli[c], c, slots, &sums))
                 })
             })?;
         }
@@ -168,8 +168,8 @@ impl Assembler {
     /// The entries of a global vector at the free DOFs.
     pub fn restrict(&self, global: &[f64]) -> Vec<f64> {
         let mut free = vec![0.0; self.dofs.n_free()];
-        for (g, v) in global.iter().enumerate() {
-            let k = self.dofs.free_index(g);
+        for (dof, v) in global.iter().enumerate() {
+            let k = self.dofs.free_index(dof);
             if k != CONSTRAINED {
                 free[k] = *v;
             }
@@ -277,19 +277,20 @@ fn lower_pattern(mesh: &Mesh, dofs: &DofMap) -> Result<SymmetricPattern> {
     let (ptr, neighbours) = node_neighbours(mesh);
     let (dim, n) = (mesh.dim(), dofs.n_free());
     let mut global_of_free = vec![0usize; n];
-    for g in 0..dofs.n_total() {
-        if dofs.free_index(g) != CONSTRAINED {
-            global_of_free[dofs.free_index(g)] = g;
+    for dof in 0..dofs.n_total() {
+        if dofs.free_index(dof) != CONSTRAINED {
+            global_of_free[dofs.free_index(dof)] = dof;
         }
     }
-    let node_of =
-        |g: usize| if g < dim * mesh.n_nodes() { g / dim } else { g - dim * mesh.n_nodes() };
+    let node_of = |dof: usize| {
+        if dof < dim * mesh.n_nodes() { dof / dim } else { dof - dim * mesh.n_nodes() }
+    };
     let rows_of = |j: usize| {
         let a = node_of(global_of_free[j]);
         let near = &neighbours[ptr[a]..ptr[a + 1]];
         let u = near.iter().flat_map(move |&b| (0..dim).map(move |i| dofs.u(b, i)));
         let phi = near.iter().map(|&b| dofs.phi(b));
-        u.chain(phi).map(|g| dofs.free_index(g)).filter(move |&k| k != CONSTRAINED && k >= j)
+        u.chain(phi).map(|dof| dofs.free_index(dof)).filter(move |&k| k != CONSTRAINED && k >= j)
     };
     let counts: Vec<usize> = (0..n).into_par_iter().map(|j| rows_of(j).count()).collect();
     let col_ptr = offsets(&counts);

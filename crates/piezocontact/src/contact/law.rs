@@ -23,8 +23,6 @@ pub struct NormalCompliance {
     pub n_nu: f64,
     /// S: the potential difference at which h_ν saturates (128 in [P]) [potential].
     pub h_nu_range: f64,
-    /// ϕ0: potential of the foundation [potential].
-    pub phi0: f64,
 }
 
 impl NormalCompliance {
@@ -48,16 +46,16 @@ impl NormalCompliance {
         }
     }
 
-    /// The compliance pressure h_ν(ϕ − ϕ0) p_ν(u_ν − g_a,i) at a node of gap g_a,i [stress].
-    pub fn pressure(&self, u_nu: f64, phi: f64, gap: f64) -> f64 {
-        self.h_nu(phi - self.phi0) * self.p_nu(u_nu - gap)
+    /// The compliance pressure h_ν(t) p_ν(s) [stress] at s = u_ν − g_a,i, t = ϕ − ϕ0
+    /// ([`super::ContactModel::arguments`]).
+    pub fn pressure(&self, s: f64, t: f64) -> f64 {
+        self.h_nu(t) * self.p_nu(s)
     }
 
-    /// A generalised derivative of the pressure: (∂/∂u_ν, ∂/∂ϕ) [stress/length,
-    /// stress/potential]. The pieces' one-sided derivatives at the kinks are taken from the
-    /// side where the function is not constant.
-    pub fn pressure_derivative(&self, u_nu: f64, phi: f64, gap: f64) -> (f64, f64) {
-        let (s, t) = (u_nu - gap, phi - self.phi0);
+    /// A generalised derivative of the pressure: (∂/∂s, ∂/∂t) = (∂/∂u_ν, ∂/∂ϕ)
+    /// [stress/length, stress/potential]. The pieces' one-sided derivatives at the kinks are
+    /// taken from the side where the function is not constant.
+    pub fn pressure_derivative(&self, s: f64, t: f64) -> (f64, f64) {
         let dp = if (0.0..=self.n_nu).contains(&s) { 1.0 } else { 0.0 };
         let dh = if t.abs() <= self.h_nu_range {
             self.c_nu * (self.alpha_nu - 1.0) / self.h_nu_range * t.signum()
@@ -74,8 +72,6 @@ impl NormalCompliance {
 pub struct Conduction {
     /// k_e ≥ 0 [charge/(potential·length^d)].
     pub ke: f64,
-    /// ϕ0: potential of the foundation [potential].
-    pub phi0: f64,
     /// δ > 0 [1/length].
     pub delta: f64,
     /// L > 0 [potential].
@@ -93,14 +89,14 @@ impl Conduction {
         s.clamp(-self.truncation, self.truncation)
     }
 
-    /// The normal charge flux ψ(u_ν − g_a) φ_L(ϕ − ϕ0) [charge/length^(d−1)].
-    pub fn flux(&self, u_nu: f64, phi: f64, gap: f64) -> f64 {
-        self.psi(u_nu - gap) * self.phi_l(phi - self.phi0)
+    /// The normal charge flux ψ(s) φ_L(t) [charge/length^(d−1)] at s = u_ν − g_a,i,
+    /// t = ϕ − ϕ0.
+    pub fn flux(&self, s: f64, t: f64) -> f64 {
+        self.psi(s) * self.phi_l(t)
     }
 
-    /// A generalised derivative of the flux: (∂/∂u_ν, ∂/∂ϕ).
-    pub fn flux_derivative(&self, u_nu: f64, phi: f64, gap: f64) -> (f64, f64) {
-        let (s, t) = (u_nu - gap, phi - self.phi0);
+    /// A generalised derivative of the flux: (∂/∂s, ∂/∂t) = (∂/∂u_ν, ∂/∂ϕ).
+    pub fn flux_derivative(&self, s: f64, t: f64) -> (f64, f64) {
         let dpsi = if (0.0..=1.0 / self.delta).contains(&s) { self.ke * self.delta } else { 0.0 };
         let dphi_l = if t.abs() <= self.truncation { 1.0 } else { 0.0 };
         (dpsi * self.phi_l(t), self.psi(s) * dphi_l)
@@ -152,7 +148,6 @@ mod tests {
             alpha_nu: 3.0,
             n_nu: 0.2,
             h_nu_range: 128.0,
-            phi0: 32.0,
         }
     }
 
@@ -165,8 +160,8 @@ mod tests {
         assert_eq!(law.h_nu(-64.0), 2.0 * (1.0 + 2.0 * 0.5));
         assert_eq!(law.h_nu(500.0), 6.0);
         // h_ν(0) p_ν(0.55 − 0.5) = 2 × 0.05.
-        assert!((law.pressure(0.55, 32.0, law.gap) - 0.1).abs() < 1e-15);
-        let c = Conduction { ke: 2.0, phi0: 32.0, delta: 4.0, truncation: 10.0 };
+        assert!((law.pressure(0.55 - law.gap, 0.0) - 0.1).abs() < 1e-15);
+        let c = Conduction { ke: 2.0, delta: 4.0, truncation: 10.0 };
         assert_eq!((c.psi(-1.0), c.psi(0.125), c.psi(1.0)), (0.0, 1.0, 2.0));
         assert_eq!((c.phi_l(-20.0), c.phi_l(3.0), c.phi_l(20.0)), (-10.0, 3.0, 10.0));
     }
@@ -174,17 +169,18 @@ mod tests {
     #[test]
     fn derivatives_match_difference_quotients_away_from_kinks() {
         let law = law();
-        let c = Conduction { ke: 2.0, phi0: 32.0, delta: 4.0, truncation: 10.0 };
+        let c = Conduction { ke: 2.0, delta: 4.0, truncation: 10.0 };
         let h = 1e-7;
+        // (s, t) = (u_ν − g_a, ϕ − ϕ0) with g_a = 0.5, ϕ0 = 32.
         for (u, phi) in [(0.55, 40.0), (0.6, 20.0), (0.3, 0.0), (0.9, 500.0), (0.52, 35.0)] {
-            let (du, dphi) = law.pressure_derivative(u, phi, 0.5);
-            let fd_u = (law.pressure(u + h, phi, 0.5) - law.pressure(u - h, phi, 0.5)) / (2.0 * h);
-            let fd_phi =
-                (law.pressure(u, phi + h, 0.5) - law.pressure(u, phi - h, 0.5)) / (2.0 * h);
+            let (s, t) = (u - 0.5, phi - 32.0);
+            let (du, dphi) = law.pressure_derivative(s, t);
+            let fd_u = (law.pressure(s + h, t) - law.pressure(s - h, t)) / (2.0 * h);
+            let fd_phi = (law.pressure(s, t + h) - law.pressure(s, t - h)) / (2.0 * h);
             assert!((du - fd_u).abs() < 1e-6 && (dphi - fd_phi).abs() < 1e-6, "{u}, {phi}");
-            let (du, dphi) = c.flux_derivative(u, phi, 0.5);
-            let fd_u = (c.flux(u + h, phi, 0.5) - c.flux(u - h, phi, 0.5)) / (2.0 * h);
-            let fd_phi = (c.flux(u, phi + h, 0.5) - c.flux(u, phi - h, 0.5)) / (2.0 * h);
+            let (du, dphi) = c.flux_derivative(s, t);
+            let fd_u = (c.flux(s + h, t) - c.flux(s - h, t)) / (2.0 * h);
+            let fd_phi = (c.flux(s, t + h) - c.flux(s, t - h)) / (2.0 * h);
             assert!((du - fd_u).abs() < 1e-5 && (dphi - fd_phi).abs() < 1e-6, "{u}, {phi}");
         }
     }

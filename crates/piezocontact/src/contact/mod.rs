@@ -9,11 +9,15 @@
 
 pub mod foundation;
 pub mod law;
+pub mod model;
+pub mod mollifier;
 
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
 pub use foundation::Foundation;
+pub use model::{ContactModel, ContactState, NodeStatus};
+pub use mollifier::Mollifier;
 use std::collections::BTreeMap;
 
 /// Γ3 with its nodal geometry. Vectors are stored with 3 components (the first d used).

@@ -1,5 +1,6 @@
-//! Result files: ParaView `.vtu` ([`vtu`]) and safe writing ([`files`]: atomic files, claimed
-//! output directories).
+//! Result files: ParaView `.vtu` ([`vtu`]), figures ([`plot`]) and safe writing ([`files`]:
+//! atomic files, claimed output directories).
 
 pub mod files;
+pub mod plot;
 pub mod vtu;

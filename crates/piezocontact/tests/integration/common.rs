@@ -1,4 +1,6 @@
-use piezocontact::algorithm::{ContactModel, Method, Settings};
+use piezocontact::algorithm::Settings;
+use piezocontact::algorithm::uzawa::{self, Uzawa};
+use piezocontact::contact::ContactModel;
 use piezocontact::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
 use piezocontact::material::{
     ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants,
@@ -148,7 +150,6 @@ pub fn paper_model(pv2: Option<(f64, f64)>, penetration: f64, units: Units) -> C
         alpha_nu: 2.0,
         n_nu: 1.0,
         h_nu_range: units.potential(128.0),
-        phi0,
     };
     let pv2 = pv2.map(|(mu, ke)| {
         (
@@ -156,22 +157,19 @@ pub fn paper_model(pv2: Option<(f64, f64)>, penetration: f64, units: Units) -> C
             // ψ φ_L is a charge density: ψ scales inversely to the potential unit.
             Conduction {
                 ke: ke * units.potential / 1e9,
-                phi0,
                 delta: 1.0,
                 truncation: units.potential(1000.0),
             },
         )
     });
-    ContactModel { compliance, pv2, foundation: Default::default() }
+    ContactModel { compliance, pv2, foundation: Default::default(), phi0 }
 }
 
 /// The paper's settings (r = 0.25 E) with tolerances `eps` = `eps_fp`.
 pub fn paper_settings(units: Units, eps: f64) -> Settings {
-    Settings {
-        method: Method::Uzawa { r: units.stress(0.25 * 58.7102), eps, max_inner: 100_000 },
-        eps_fp: eps,
-        max_outer: 200,
-    }
+    let r = units.stress(0.25 * 58.7102);
+    let parameters = uzawa::Parameters { r, eps, eps_fp: eps, max_inner: 100_000 };
+    Settings::new(Uzawa::new(parameters), 200)
 }
 
 /// The arch of `meshes/arch.msh`: a block on a curved contact face (Γ3), clamped at its

@@ -7,9 +7,12 @@ use super::common::{
     PAPER_UNITS, arch_problem, paper_model, paper_problem, paper_problem_with_contact,
     paper_settings, pzt, read_mesh,
 };
-use piezocontact::algorithm::{ContactModel, ContactSolution, Method, Settings, solve_contact};
+use piezocontact::algorithm::newton::{self, Newton};
+use piezocontact::algorithm::{ContactSolution, Settings, solve_contact};
+use piezocontact::contact::ContactModel;
 use piezocontact::contact::law::Regularization;
 use piezocontact::dofs::DofMap;
+use piezocontact::linalg::default_solver;
 use piezocontact::material::ElasticLaw;
 use piezocontact::problem::{BodyLoads, Boundary, Problem, constant_vector};
 use piezocontact::solver::CoupledSystem;
@@ -22,16 +25,9 @@ fn newton(r_per_young: f64) -> Settings {
 /// Newton as [`newton`], condensing at most `max_condensed` Γ3 nodes.
 fn condensing(r_per_young: f64, max_condensed: usize) -> Settings {
     let young = PAPER_UNITS.stress(58.7102);
-    Settings {
-        method: Method::Newton {
-            r: r_per_young * young,
-            tol: 1e-10,
-            max_inner: 100,
-            max_condensed,
-        },
-        eps_fp: 1e-10,
-        max_outer: 100,
-    }
+    let r = r_per_young * young;
+    let parameters = newton::Parameters { r, tol: 1e-10, max_inner: 100, max_condensed };
+    Settings::new(Newton::new(parameters), 100)
 }
 
 fn solve(problem: &Problem, model: &ContactModel, settings: &Settings) -> ContactSolution {
@@ -252,10 +248,10 @@ fn the_schur_complement_read_off_the_factor_is_the_schur_complement() {
         .map(|g| dofs.free_index(g))
         .filter(|&k| k != piezocontact::dofs::CONSTRAINED)
         .collect();
-    let mut system = CoupledSystem::with_last(&problem, dofs, &last).unwrap();
+    let mut system = CoupledSystem::with_last(&problem, dofs, &last, default_solver()).unwrap();
     let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
     system.factorize(&problem, &g, &[]).unwrap();
-    let schur = system.schur_complement(last.len()).unwrap();
+    let schur = system.schur_complement().unwrap();
     // K in dense form, then S = K_cc − K_ci K_ii⁻¹ K_ic by Gaussian elimination of the
     // interior block.
     let matrix = system.matrix().unwrap();

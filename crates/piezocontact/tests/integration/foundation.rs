@@ -3,7 +3,9 @@
 //! face (negative gaps) is pushed out of the body.
 
 use super::common::{PAPER_UNITS, paper_model, paper_problem};
-use piezocontact::algorithm::{ContactModel, ContactSolution, Method, Settings, solve_contact};
+use piezocontact::algorithm::newton::{self, Newton};
+use piezocontact::algorithm::{ContactSolution, Settings, solve_contact};
+use piezocontact::contact::ContactModel;
 use piezocontact::contact::Foundation;
 use piezocontact::material::ElasticLaw;
 use piezocontact::problem::Problem;
@@ -11,11 +13,9 @@ use piezocontact::problem::Problem;
 /// Newton condensing at most `max_condensed` Γ3 nodes.
 fn newton(max_condensed: usize) -> Settings {
     let young = PAPER_UNITS.stress(58.7102);
-    Settings {
-        method: Method::Newton { r: 0.25 * young, tol: 1e-10, max_inner: 100, max_condensed },
-        eps_fp: 1e-10,
-        max_outer: 10,
-    }
+    let parameters =
+        newton::Parameters { r: 0.25 * young, tol: 1e-10, max_inner: 100, max_condensed };
+    Settings::new(Newton::new(parameters), 10)
 }
 
 fn solve_with(problem: &Problem, model: &ContactModel, settings: &Settings) -> ContactSolution {

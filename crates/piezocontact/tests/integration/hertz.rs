@@ -19,7 +19,9 @@
 //! refinement (the committed meshes differ in their element size hc at the origin).
 
 use super::common::{EPS0, read_mesh};
-use piezocontact::algorithm::{ContactModel, Method, Settings, solve_contact};
+use piezocontact::algorithm::newton::{self, Newton};
+use piezocontact::algorithm::{Settings, solve_contact};
+use piezocontact::contact::ContactModel;
 use piezocontact::contact::Foundation;
 use piezocontact::contact::law::NormalCompliance;
 use piezocontact::material::{
@@ -62,16 +64,14 @@ fn indent(mesh_name: &str, depth: f64) -> (f64, f64) {
             alpha_nu: 2.0,
             n_nu: 1.0,
             h_nu_range: 128.0,
-            phi0: 0.0,
         },
         pv2: None,
         foundation: Foundation::Sphere { center, radius: 1.0 },
+        phi0: 0.0,
     };
-    let settings = Settings {
-        method: Method::Newton { r: 0.25 * YOUNG, tol: 1e-10, max_inner: 100, max_condensed: 2000 },
-        eps_fp: 1e-10,
-        max_outer: 10,
-    };
+    let parameters =
+        newton::Parameters { r: 0.25 * YOUNG, tol: 1e-10, max_inner: 100, max_condensed: 2000 };
+    let settings = Settings::new(Newton::new(parameters), 10);
     let solution = solve_contact(&problem, &model, &settings).unwrap();
     assert!(solution.converged && solution.kkt.max <= 1e-10, "{:?}", solution.failure);
     // The foundation pushes the body down: P is the magnitude of that force.

@@ -4,6 +4,7 @@
 use super::common::{PAPER_UNITS, SI, paper_problem, perturbed_square, pzt, read_mesh};
 use piezocontact::assembly::{Assembler, internal_force};
 use piezocontact::dofs::DofMap;
+use piezocontact::linalg::default_solver;
 use piezocontact::material::ElasticLaw;
 use piezocontact::mesh::Mesh;
 use piezocontact::problem::{BodyLoads, Boundary, Problem, constant_vector};
@@ -87,7 +88,9 @@ fn parallel_assembly_equals_serial_assembly_to_the_last_bit() {
 #[test]
 fn one_numeric_factorisation_serves_many_solves() {
     let problem = clamped_problem(read_mesh("paper-rectangle.msh"), "clamp", "load");
-    let mut system = CoupledSystem::new(&problem, DofMap::new(&problem).unwrap(), &[]).unwrap();
+    let mut system =
+        CoupledSystem::new(&problem, DofMap::new(&problem).unwrap(), &[], default_solver())
+            .unwrap();
     let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
     system.factorize(&problem, &g, &[]).unwrap();
     let first = system.solve(None).unwrap();

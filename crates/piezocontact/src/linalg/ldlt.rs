@@ -1,33 +1,12 @@
-//! Sparse symmetric linear algebra: the only module that names faer.
-//!
-//! The matrix of Step 1 of Algorithms 2 and 4 ([P] Section 6) is symmetric quasi-definite,
-//! `[K_uu G; Gᵀ −K_ϕϕ]` with K_uu and K_ϕϕ positive definite once the Dirichlet rows are
-//! removed ([model §5](../../../docs/model.md)). Such a matrix has an LDLᵀ factorisation for
-//! every symmetric ordering without pivoting, with d_k > 0 on u rows and d_k < 0 on ϕ rows. We
-//! therefore use faer's sparse LDLᵀ (supernodal or simplicial as faer chooses) and not:
-//! - LLᵀ (Cholesky), which fails on the indefinite matrix (pinned by a test below);
-//! - LU, which ignores symmetry: on this matrix it takes several times the time and memory
-//!   (`piezocontact bench --lu` prints both).
-//!
-//! Work is split as the algorithms need it (model §7):
-//! - [`SymmetricPattern`]: the sparsity pattern, built once, into which the assembly writes
-//!   new values;
-//! - [`LinearSolver`]: the seam between the coupled system and a factorisation —
-//!   [`LinearSolver::analyze`] (symbolic analysis with a caller-chosen [`Ordering`], once per
-//!   run), [`LinearSolver::factorize`] (whenever the values change) and
-//!   [`LinearSolver::solve_in_place`] (as often as needed), with counts and timings;
-//! - [`LdltSolver`]: faer's sparse LDLᵀ behind that seam.
-//!
-//! [`LdltSolver`] scales the matrix symmetrically by its diagonal, `S A S` with
-//! `S = diag(|a_ii|^{-1/2})`, so that the u and ϕ blocks, whose entries differ by many orders
-//! of magnitude and depend on the case's unit system (model §9), meet on equal terms. A pivot
-//! that is tiny (below 1e-12 after scaling) or has the wrong sign for a quasi-definite matrix
-//! is reported as [`Error::SingularSystem`], never silently regularised.
+//! [`LdltSolver`]: faer's sparse LDLᵀ (supernodal or simplicial as faer chooses) behind the
+//! [`LinearSolver`] seam, with the [`SchurComplement`] capability read off the factor's
+//! trailing block.
 
+use super::SymmetricPattern;
+use super::{DenseMatrix, LinearSolver, Ordering, SchurComplement, SolverStats, SymmetricMatrix};
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
-use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::perm::PermRef;
 use faer::sparse::linalg::SupernodalThreshold;
@@ -37,7 +16,6 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
-use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Accum, Conj, MatMut, Par, Side};
 use std::time::Instant;
 
@@ -46,198 +24,8 @@ const PIVOT_THRESHOLD: f64 = 1e-12;
 /// faer replaces a tiny or wrongly signed pivot by ±this marker, which no pivot of a scaled
 /// matrix can reach; finding it in the factor reports the failure.
 const PIVOT_MARKER: f64 = 1e300;
-/// The lower-triangle sparsity pattern of a symmetric matrix.
-#[derive(Debug)]
-pub struct SymmetricPattern {
-    symbolic: SymbolicSparseColMat<usize>,
-}
 
-impl SymmetricPattern {
-    /// The pattern of an n × n matrix from its columns: the rows of column j are
-    /// `row_idx[col_ptr[j]..col_ptr[j + 1]]`, strictly increasing, each ≥ j and < n.
-    pub fn from_columns(n: usize, col_ptr: Vec<usize>, row_idx: Vec<usize>) -> Result<Self> {
-        let bad = |what: String| Error::LinearAlgebra(format!("sparsity pattern: {what}"));
-        if col_ptr.len() != n + 1 || col_ptr[0] != 0 || col_ptr[n] != row_idx.len() {
-            return Err(bad(format!("{} column pointers for {n} columns", col_ptr.len())));
-        }
-        for j in 0..n {
-            if col_ptr[j] > col_ptr[j + 1] {
-                return Err(bad(format!("column {j} ends before it starts")));
-            }
-            let rows = &row_idx[col_ptr[j]..col_ptr[j + 1]];
-            if rows.iter().any(|&r| r < j || r >= n) || rows.windows(2).any(|w| w[0] >= w[1]) {
-                return Err(bad(format!("the rows of column {j} are not increasing in {j}..{n}")));
-            }
-        }
-        Ok(Self { symbolic: SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx) })
-    }
-
-    /// The pattern of the (row, column) positions, row ≥ column, repetitions allowed.
-    pub fn from_positions(n: usize, positions: &[(usize, usize)]) -> Result<Self> {
-        if let Some(&(r, c)) = positions.iter().find(|&&(r, c)| r >= n || c > r) {
-            return Err(Error::LinearAlgebra(format!(
-                "position ({r}, {c}) is outside the lower triangle of a {n} × {n} matrix"
-            )));
-        }
-        let mut columns = vec![Vec::new(); n];
-        positions.iter().for_each(|&(r, c)| columns[c].push(r));
-        let mut col_ptr = vec![0];
-        let mut row_idx = Vec::new();
-        for mut rows in columns {
-            rows.sort_unstable();
-            rows.dedup();
-            row_idx.extend(rows);
-            col_ptr.push(row_idx.len());
-        }
-        Self::from_columns(n, col_ptr, row_idx)
-    }
-
-    /// Order of the matrix.
-    pub fn n(&self) -> usize {
-        self.symbolic.nrows()
-    }
-
-    /// Stored entries of the lower triangle.
-    pub fn nnz(&self) -> usize {
-        self.symbolic.row_idx().len()
-    }
-
-    /// The index of entry (row, column) in the matrix's values, if the pattern has it.
-    pub fn position(&self, row: usize, col: usize) -> Option<usize> {
-        if col >= self.n() {
-            return None;
-        }
-        let range = self.symbolic.col_range(col);
-        let rows = &self.symbolic.row_idx()[range.clone()];
-        rows.binary_search(&row).ok().map(|k| range.start + k)
-    }
-
-    /// The matrix with this pattern and `values` (one per stored entry, column by column).
-    pub fn matrix(&self, values: Vec<f64>) -> Result<SymmetricMatrix> {
-        if values.len() != self.nnz() {
-            return Err(Error::Length {
-                what: "matrix values".into(),
-                expected: self.nnz(),
-                got: values.len(),
-            });
-        }
-        Ok(SymmetricMatrix { lower: SparseColMat::new(self.symbolic.clone(), values) })
-    }
-}
-
-/// A symmetric sparse matrix stored by its lower triangle.
-#[derive(Clone, Debug)]
-pub struct SymmetricMatrix {
-    lower: SparseColMat<usize, f64>,
-}
-
-impl SymmetricMatrix {
-    /// Order of the matrix.
-    pub fn n(&self) -> usize {
-        self.lower.nrows()
-    }
-
-    /// Lower-triangle entries (row, column, value) with row ≥ column.
-    pub fn lower_entries(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
-        let (symbolic, values) = (self.lower.symbolic(), self.lower.val());
-        (0..self.n()).flat_map(move |j| {
-            let range = symbolic.col_range(j);
-            symbolic.row_idx()[range.clone()]
-                .iter()
-                .zip(&values[range])
-                .map(move |(&i, &v)| (i, j, v))
-        })
-    }
-
-    /// y = A x.
-    pub fn mul(&self, x: &[f64]) -> Vec<f64> {
-        let mut y = vec![0.0; self.n()];
-        for (i, j, v) in self.lower_entries() {
-            y[i] += v * x[j];
-            if i != j {
-                y[j] += v * x[i];
-            }
-        }
-        y
-    }
-
-    /// The diagonal (the first stored entry of each column, whose rows are sorted).
-    pub fn diagonal(&self) -> Vec<f64> {
-        let (symbolic, values) = (self.lower.symbolic(), self.lower.val());
-        (0..self.n())
-            .map(|j| {
-                let k = symbolic.col_ptr()[j];
-                if k < symbolic.col_ptr()[j + 1] && symbolic.row_idx()[k] == j {
-                    values[k]
-                } else {
-                    0.0
-                }
-            })
-            .collect()
-    }
-
-    /// The principal sub-matrix of rows and columns `range`, multiplied by `factor`.
-    pub fn block(&self, range: std::ops::Range<usize>, factor: f64) -> Result<Self> {
-        let triplets: Vec<Triplet<usize, usize, f64>> = self
-            .lower_entries()
-            .filter(|(i, j, _)| range.contains(i) && range.contains(j))
-            .map(|(i, j, v)| Triplet::new(i - range.start, j - range.start, factor * v))
-            .collect();
-        let lower = SparseColMat::try_new_from_triplets(range.len(), range.len(), &triplets)
-            .map_err(|e| Error::LinearAlgebra(format!("block: {e:?}")))?;
-        Ok(Self { lower })
-    }
-
-    /// Whether the matrix is positive definite (its sparse LLᵀ factorisation exists).
-    pub fn is_positive_definite(&self) -> Result<bool> {
-        let symbolic = symbolic_cholesky(self.lower.symbolic(), SymmetricOrdering::Amd)?;
-        let mut l_values = vec![0.0; symbolic.len_val()];
-        let mut mem = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-        )
-        .map_err(|_| Error::LinearAlgebra("out of memory for the LLᵀ workspace".into()))?;
-        let result = symbolic.factorize_numeric_llt(
-            &mut l_values,
-            self.lower.as_ref(),
-            Side::Lower,
-            LltRegularization::default(),
-            Par::Seq,
-            MemStack::new(&mut mem),
-            Default::default(),
-        );
-        Ok(result.is_ok())
-    }
-
-    /// Symbolic and numeric LU of the full matrix and one solve, timed, for comparison in
-    /// benchmarks: (symbolic, numeric, solve) seconds.
-    pub fn time_lu(&self, rhs: &[f64]) -> Result<[f64; 3]> {
-        use faer::linalg::solvers::Solve;
-        use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-        let mut triplets = Vec::new();
-        for (i, j, v) in self.lower_entries() {
-            triplets.push(Triplet::new(i, j, v));
-            if i != j {
-                triplets.push(Triplet::new(j, i, v));
-            }
-        }
-        let full = SparseColMat::try_new_from_triplets(self.n(), self.n(), &triplets)
-            .map_err(|e| Error::LinearAlgebra(format!("{e:?}")))?;
-        let t = std::time::Instant::now();
-        let symbolic = SymbolicLu::try_new(full.symbolic())
-            .map_err(|e| Error::LinearAlgebra(format!("{e:?}")))?;
-        let t_symbolic = t.elapsed().as_secs_f64();
-        let t = std::time::Instant::now();
-        let lu = Lu::try_new_with_symbolic(symbolic, full.as_ref())
-            .map_err(|e| Error::SingularSystem { detail: format!("LU: {e:?}") })?;
-        let t_numeric = t.elapsed().as_secs_f64();
-        let mut x = rhs.to_vec();
-        let t = std::time::Instant::now();
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, self.n(), 1));
-        Ok([t_symbolic, t_numeric, t.elapsed().as_secs_f64()])
-    }
-}
-
-fn symbolic_cholesky(
+pub(super) fn symbolic_cholesky(
     pattern: faer::sparse::SymbolicSparseColMatRef<'_, usize>,
     ordering: SymmetricOrdering<'_, usize>,
 ) -> Result<SymbolicCholesky<usize>> {
@@ -260,7 +48,7 @@ fn symbolic_cholesky(
 /// approximate minimum degree ordering of the whole matrix gives them, and then the unknowns
 /// of `last` in the given order. (Ordering the rest by its own minimum degree gave 5 % more
 /// fill on the paper's bar with Γ3 last.)
-pub fn ordering_with_last(pattern: &SymmetricPattern, last: &[usize]) -> Result<Ordering> {
+fn ordering_with_last(pattern: &SymmetricPattern, last: &[usize]) -> Result<Ordering> {
     let n = pattern.n();
     let mut is_last = vec![false; n];
     for &i in last {
@@ -269,7 +57,7 @@ pub fn ordering_with_last(pattern: &SymmetricPattern, last: &[usize]) -> Result<
         }
         is_last[i] = true;
     }
-    let a = pattern.symbolic.as_ref();
+    let a = pattern.symbolic();
     let (mut order, mut inverse) = (vec![0usize; n], vec![0usize; n]);
     let mut mem = MemBuffer::try_new(amd::order_scratch::<usize>(n, a.row_idx().len()))
         .map_err(|_| Error::LinearAlgebra("out of memory for the ordering".into()))?;
@@ -278,131 +66,6 @@ pub fn ordering_with_last(pattern: &SymmetricPattern, last: &[usize]) -> Result<
     order.retain(|&i| !is_last[i]);
     order.extend_from_slice(last);
     Ok(Ordering::Custom(order))
-}
-
-/// A dense square matrix, for the condensed contact problem.
-#[derive(Clone, Debug)]
-pub struct DenseMatrix {
-    mat: faer::Mat<f64>,
-}
-
-impl DenseMatrix {
-    /// The n × n zero matrix.
-    pub fn zeros(n: usize) -> Self {
-        Self { mat: faer::Mat::zeros(n, n) }
-    }
-
-    /// Order of the matrix.
-    pub fn n(&self) -> usize {
-        self.mat.nrows()
-    }
-
-    /// Entry (i, j).
-    pub fn get(&self, i: usize, j: usize) -> f64 {
-        self.mat[(i, j)]
-    }
-
-    /// Sets entry (i, j).
-    pub fn set(&mut self, i: usize, j: usize, value: f64) {
-        self.mat[(i, j)] = value;
-    }
-
-    /// Column j.
-    pub fn col(&self, j: usize) -> &[f64] {
-        self.mat.col(j).try_as_col_major().map(|c| c.as_slice()).unwrap_or(&[])
-    }
-
-    /// Column j, to write.
-    pub fn col_mut(&mut self, j: usize) -> &mut [f64] {
-        self.mat.col_mut(j).try_as_col_major_mut().map(|c| c.as_slice_mut()).unwrap_or(&mut [])
-    }
-
-    /// y = A x.
-    pub fn mul(&self, x: &[f64]) -> Vec<f64> {
-        let mut y = vec![0.0; self.n()];
-        for (j, &xj) in x.iter().enumerate() {
-            if xj != 0.0 {
-                y.iter_mut().zip(self.col(j)).for_each(|(yi, a)| *yi += a * xj);
-            }
-        }
-        y
-    }
-
-    /// Solves Aᵀ x = b by LU with partial pivoting (the matrix is stored by the columns of
-    /// Aᵀ, that is by the rows of A).
-    pub fn solve_transposed(&self, b: &[f64]) -> Result<Vec<f64>> {
-        use faer::linalg::solvers::Solve;
-        let n = self.n();
-        if b.len() != n {
-            return Err(Error::Length {
-                what: "right-hand side".into(),
-                expected: n,
-                got: b.len(),
-            });
-        }
-        let lu = self.mat.transpose().partial_piv_lu();
-        let mut x = b.to_vec();
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, n, 1));
-        if let Some(k) = x.iter().position(|v| !v.is_finite()) {
-            return Err(Error::SingularSystem {
-                detail: format!("the dense Newton system is singular (component {k})"),
-            });
-        }
-        Ok(x)
-    }
-}
-
-/// The fill-reducing ordering of a symbolic analysis.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub enum Ordering {
-    /// Approximate minimum degree, chosen by the factorisation.
-    #[default]
-    Amd,
-    /// The caller's: `order[k]` is the unknown eliminated k-th (a permutation of 0..n). The
-    /// exact contact solver puts the Γ3 unknowns last this way.
-    Custom(Vec<usize>),
-}
-
-/// Counts and wall-clock times of a linear solver.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct SolverStats {
-    /// Symbolic analysis [s].
-    pub symbolic_seconds: f64,
-    /// All numeric factorisations [s].
-    pub numeric_seconds: f64,
-    /// Number of numeric factorisations.
-    pub numeric_count: usize,
-    /// All solves [s].
-    pub solve_seconds: f64,
-    /// Number of solves.
-    pub solve_count: usize,
-    /// Stored values of the factor (a measure of its memory).
-    pub factor_len: usize,
-}
-
-/// The seam between a symmetric system and its factorisation: analyse the pattern once,
-/// factorise whenever the values change, solve as often as needed.
-pub trait LinearSolver: std::fmt::Debug + Send {
-    /// Symbolic analysis of `pattern` with the `ordering`; `signs` are the expected pivot
-    /// signs (+1 for u rows, −1 for ϕ rows) of a quasi-definite matrix.
-    fn analyze(
-        &mut self,
-        pattern: &SymmetricPattern,
-        signs: &[i8],
-        ordering: &Ordering,
-    ) -> Result<()>;
-    /// Numeric factorisation of `matrix`, which has the analysed pattern.
-    fn factorize(&mut self, matrix: &SymmetricMatrix) -> Result<()>;
-    /// Solves A x = b in place (b on entry, x on exit) with the current factorisation.
-    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()>;
-    /// Counts and timings so far.
-    fn stats(&self) -> SolverStats;
-    /// The Schur complement S = K_cc − K_ci K_ii⁻¹ K_ic of the last `m` unknowns of the
-    /// analysed ordering (rows and columns in that order), from the current factorisation.
-    fn schur_complement(&self, m: usize) -> Result<DenseMatrix> {
-        let _ = m;
-        Err(Error::LinearAlgebra("this linear solver gives no Schur complement".into()))
-    }
 }
 
 /// Sparse LDLᵀ of a symmetric quasi-definite matrix (faer's supernodal or simplicial LDLᵀ).
@@ -416,12 +79,22 @@ pub struct LdltSolver {
     l_values: Vec<f64>,
     factorized: bool,
     stats: SolverStats,
+    /// The ordering of the next analysis.
+    ordering: Ordering,
+    /// The number of trailing unknowns kept for the Schur complement (0: none).
+    last: usize,
 }
 
 impl LdltSolver {
-    /// A solver with nothing analysed yet.
+    /// A solver with AMD and nothing analysed yet.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// A solver whose analyses use `ordering` (a [`Ordering::Custom`] must be a permutation
+    /// of the unknowns of the pattern it analyses).
+    pub fn with_ordering(ordering: Ordering) -> Self {
+        Self { ordering, ..Self::default() }
     }
 
     /// The entries of D (supernodal: the diagonals of the supernodes' blocks), or every
@@ -468,8 +141,9 @@ fn permutation(order: &[usize], n: usize) -> Result<(Vec<usize>, Vec<usize>)> {
     Ok((order.to_vec(), inverse))
 }
 
-impl LinearSolver for LdltSolver {
-    fn analyze(
+impl LdltSolver {
+    /// The symbolic analysis of `pattern` with `ordering`.
+    fn analyze_ordered(
         &mut self,
         pattern: &SymmetricPattern,
         signs: &[i8],
@@ -485,11 +159,11 @@ impl LinearSolver for LdltSolver {
         }
         let t = Instant::now();
         let symbolic = match ordering {
-            Ordering::Amd => symbolic_cholesky(pattern.symbolic.as_ref(), SymmetricOrdering::Amd)?,
+            Ordering::Amd => symbolic_cholesky(pattern.symbolic(), SymmetricOrdering::Amd)?,
             Ordering::Custom(order) => {
                 let (forward, inverse) = permutation(order, n)?;
                 let perm = PermRef::new_checked(&forward, &inverse, n);
-                symbolic_cholesky(pattern.symbolic.as_ref(), SymmetricOrdering::Custom(perm))?
+                symbolic_cholesky(pattern.symbolic(), SymmetricOrdering::Custom(perm))?
             }
         };
         self.l_values = vec![0.0; symbolic.len_val()];
@@ -500,6 +174,18 @@ impl LinearSolver for LdltSolver {
         self.stats.symbolic_seconds += t.elapsed().as_secs_f64();
         self.stats.factor_len = self.l_values.len();
         Ok(())
+    }
+}
+
+impl LinearSolver for LdltSolver {
+    fn name(&self) -> &str {
+        "ldlt"
+    }
+
+    fn analyze(&mut self, pattern: &SymmetricPattern, signs: &[i8]) -> Result<()> {
+        self.last = 0;
+        let ordering = self.ordering.clone();
+        self.analyze_ordered(pattern, signs, &ordering)
     }
 
     fn factorize(&mut self, matrix: &SymmetricMatrix) -> Result<()> {
@@ -512,9 +198,9 @@ impl LinearSolver for LdltSolver {
             }
         }
         self.scaling = diagonal.iter().map(|d| 1.0 / d.abs().sqrt()).collect();
-        let mut scaled = matrix.lower.clone();
+        let mut scaled = matrix.lower().to_owned();
         {
-            let symbolic = matrix.lower.symbolic();
+            let symbolic = matrix.lower().symbolic();
             let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
             let values = scaled.val_mut();
             for j in 0..matrix.n() {
@@ -599,16 +285,34 @@ impl LinearSolver for LdltSolver {
         self.stats
     }
 
+    fn schur(&mut self) -> Option<&mut dyn SchurComplement> {
+        Some(self)
+    }
+}
+
+impl SchurComplement for LdltSolver {
+    fn analyze_with_last(
+        &mut self,
+        pattern: &SymmetricPattern,
+        signs: &[i8],
+        last: &[usize],
+    ) -> Result<()> {
+        let ordering = ordering_with_last(pattern, last)?;
+        self.analyze_ordered(pattern, signs, &ordering)?;
+        self.last = last.len();
+        Ok(())
+    }
+
     /// Reads L22 and D2 of the trailing block of P S A S Pᵀ = L D Lᵀ (S the diagonal scaling)
     /// and returns S⁻¹ L22 D2 L22ᵀ S⁻¹ on the trailing unknowns.
-    fn schur_complement(&self, m: usize) -> Result<DenseMatrix> {
-        let symbolic = self.symbolic()?;
+    fn schur_complement(&self) -> Result<DenseMatrix> {
+        let (symbolic, m) = (self.symbolic()?, self.last);
         let n = self.signs.len();
         let (Some(perm), SymbolicCholeskyRaw::Supernodal(supernodal), true) =
             (symbolic.perm(), symbolic.raw(), self.factorized && m <= n)
         else {
             return Err(Error::LinearAlgebra(
-                "a Schur complement needs a factorisation with a caller's ordering".into(),
+                "a Schur complement needs a factorisation analysed with unknowns last".into(),
             ));
         };
         let first = n - m;
@@ -667,7 +371,7 @@ impl LinearSolver for LdltSolver {
 /// The floor for benchmarks: faer's own numeric LDLᵀ and one solve of `matrix` (AMD, no
 /// scaling, no checks), timed: (numeric, solve) seconds.
 pub fn bare_ldlt_seconds(matrix: &SymmetricMatrix, rhs: &[f64]) -> Result<[f64; 2]> {
-    let symbolic = symbolic_cholesky(matrix.lower.symbolic(), SymmetricOrdering::Amd)?;
+    let symbolic = symbolic_cholesky(matrix.lower().symbolic(), SymmetricOrdering::Amd)?;
     let mut l_values = vec![0.0; symbolic.len_val()];
     let params = Default::default();
     let t = Instant::now();
@@ -677,7 +381,7 @@ pub fn bare_ldlt_seconds(matrix: &SymmetricMatrix, rhs: &[f64]) -> Result<[f64; 
     symbolic
         .factorize_numeric_ldlt(
             &mut l_values,
-            matrix.lower.as_ref(),
+            matrix.lower().as_ref(),
             Side::Lower,
             LdltRegularization::default(),
             Par::Seq,
@@ -726,8 +430,8 @@ mod tests {
     }
 
     fn analyzed(pattern: &SymmetricPattern, signs: &[i8], ordering: &Ordering) -> LdltSolver {
-        let mut solver = LdltSolver::new();
-        solver.analyze(pattern, signs, ordering).unwrap();
+        let mut solver = LdltSolver::with_ordering(ordering.clone());
+        solver.analyze(pattern, signs).unwrap();
         solver
     }
 
@@ -870,8 +574,8 @@ mod seam_tests {
         let (pattern, a) = super::tests::build(n, &positions, &values).unwrap();
         let b: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
         let solve = |ordering: &Ordering| {
-            let mut solver = LdltSolver::new();
-            solver.analyze(&pattern, &signs, ordering).unwrap();
+            let mut solver = LdltSolver::with_ordering(ordering.clone());
+            solver.analyze(&pattern, &signs).unwrap();
             solver.factorize(&a).unwrap();
             let mut x = b.clone();
             solver.solve_in_place(&mut x).unwrap();
@@ -885,7 +589,7 @@ mod seam_tests {
             assert!((r[i] - b[i]).abs() < 1e-13, "{i}");
         }
         for bad in [vec![0, 1, 2], vec![0, 0, 1, 2, 3, 4, 5, 6, 7]] {
-            let e = LdltSolver::new().analyze(&pattern, &signs, &Ordering::Custom(bad));
+            let e = LdltSolver::with_ordering(Ordering::Custom(bad)).analyze(&pattern, &signs);
             assert!(e.is_err());
         }
     }

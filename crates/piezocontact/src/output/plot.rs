@@ -1,12 +1,13 @@
 //! Figures drawn by the program with plotters, as PNG and SVG. Text uses DejaVu Sans
 //! embedded in the binary (the `dejavu` crate), so labels render on machines without fonts.
 
-use anyhow::{Result, anyhow};
-use piezocontact::algorithm::NodeStatus;
-use piezocontact::contact::Foundation;
-use piezocontact::output::files::write_atomic;
-use piezocontact::run::ContactRun;
+use crate::contact::Foundation;
+use crate::contact::NodeStatus;
+use crate::error::{Error, Result};
+use crate::output::files::write_atomic;
+use crate::run::ContactRun;
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
@@ -55,8 +56,8 @@ pub struct LinePlot {
     pub legend: SeriesLabelPosition,
 }
 
-fn err<E: std::fmt::Debug>(e: E) -> anyhow::Error {
-    anyhow!("drawing failed: {e:?}")
+fn err<E: std::fmt::Debug>(e: E) -> Error {
+    Error::Io { what: "drawing a figure failed".into(), cause: format!("{e:?}") }
 }
 
 /// Writes `stem.png` and `stem.svg` for a drawing function generic over the back end.
@@ -74,13 +75,13 @@ macro_rules! both_backends {
         write_atomic(&stem.with_extension("svg"), svg.as_bytes())?;
         // plotters encodes the PNG into a file: a temporary one, renamed when complete.
         let png = stem.with_extension("png");
-        let tmp = piezocontact::output::files::temporary(&png);
+        let tmp = crate::output::files::temporary(&png);
         {
             let root = BitMapBackend::new(&tmp, size).into_drawing_area();
             $draw(&root)?;
             root.present().map_err(err)?;
         }
-        Ok(piezocontact::output::files::commit(&tmp, &png)?)
+        crate::output::files::commit(&tmp, &png)
     }};
 }
 
@@ -246,14 +247,7 @@ fn draw_body<DB: DrawingBackend>(
     let (main, bar) = root.split_horizontally(1060);
     let all = (0..mesh.n_nodes()).map(deformed).chain(stop.iter().copied());
     let pts: Vec<(f64, f64)> = all.collect();
-    let (x0, x1) = range(pts.iter().map(|p| p.0), 0.03);
-    let (y0, y1) = range(pts.iter().map(|p| p.1), 0.25);
-    // Equal scales on both axes.
-    let (w, h) = (1060.0 - 140.0, 520.0 - 120.0);
-    let scale = ((x1 - x0) / w).max((y1 - y0) / h);
-    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
-    let (x0, x1, y0, y1) =
-        (cx - scale * w / 2.0, cx + scale * w / 2.0, cy - scale * h / 2.0, cy + scale * h / 2.0);
+    let (x0, x1, y0, y1) = equal_scales(&pts, (1060.0 - 140.0, 520.0 - 120.0));
     let mut chart = ChartBuilder::on(&main)
         .caption(labels.title, (FONT, 22))
         .margin(14)
@@ -292,39 +286,11 @@ fn draw_body<DB: DrawingBackend>(
             _ => "rigid stop (foundation + penetration)".to_string(),
         })
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2)));
-    // Contact force on the body, t = σ_ν ν + σ_τ, drawn from the foundation side.
     let peak = run.rows.iter().map(|r| r.sigma_nu.abs().hypot(r.sigma_tau[0])).fold(0.0, f64::max);
     let arrow_length = 0.12 * (y1 - y0) / peak.max(f64::MIN_POSITIVE);
-    let step = (surface.len() / 24).max(1);
-    for i in (0..surface.len()).step_by(step) {
-        let (row, n) = (&run.rows[i], surface.normal[i]);
-        let t = surface.tangent(i);
-        let force = (
-            row.sigma_nu * n[0] + row.sigma_tau[0] * t[0],
-            row.sigma_nu * n[1] + row.sigma_tau[0] * t[1],
-        );
-        if force.0.hypot(force.1) == 0.0 {
-            continue;
-        }
-        let head = deformed(surface.nodes[i]);
-        let tail = (head.0 - arrow_length * force.0, head.1 - arrow_length * force.1);
-        chart.draw_series(std::iter::once(arrow(tail, head, RGBColor(200, 0, 0)))).map_err(err)?;
-    }
+    draw_forces(&mut chart, run, &deformed, arrow_length)?;
     if run.model.pv2.is_some() {
-        for (status, color, name) in [
-            (NodeStatus::Stick, RGBColor(31, 119, 180), "stick"),
-            (NodeStatus::Slip, RGBColor(255, 127, 14), "slip"),
-        ] {
-            let nodes: Vec<(f64, f64)> = (0..surface.len())
-                .filter(|&i| run.rows[i].status == status)
-                .map(|i| deformed(surface.nodes[i]))
-                .collect();
-            chart
-                .draw_series(nodes.into_iter().map(move |p| Circle::new(p, 4, color.filled())))
-                .map_err(err)?
-                .label(format!("{name} nodes"))
-                .legend(move |(x, y)| Circle::new((x + 12, y), 4, color.filled()));
-        }
+        draw_statuses(&mut chart, run, &deformed)?;
     }
     chart
         .draw_series(std::iter::once(PathElement::new(
@@ -349,6 +315,70 @@ fn draw_body<DB: DrawingBackend>(
         .draw()
         .map_err(err)?;
     color_bar(&bar, phi_lo, phi_hi, &format!("ϕ [{}]", labels.potential))
+}
+
+/// The plot ranges that hold `points` with equal scales on both axes, in a plot area of
+/// `(width, height)` pixels.
+fn equal_scales(points: &[(f64, f64)], (w, h): (f64, f64)) -> (f64, f64, f64, f64) {
+    let (x0, x1) = range(points.iter().map(|p| p.0), 0.03);
+    let (y0, y1) = range(points.iter().map(|p| p.1), 0.25);
+    let scale = ((x1 - x0) / w).max((y1 - y0) / h);
+    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    (cx - scale * w / 2.0, cx + scale * w / 2.0, cy - scale * h / 2.0, cy + scale * h / 2.0)
+}
+
+/// A 2D chart in plot coordinates.
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The contact force on the body, t = σ_ν ν + σ_τ, as arrows drawn from the foundation side
+/// at every few Γ3 nodes, `arrow_length` per unit of stress.
+fn draw_forces<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    run: &ContactRun,
+    deformed: &dyn Fn(usize) -> (f64, f64),
+    arrow_length: f64,
+) -> Result<()> {
+    let surface = &run.solution.surface;
+    let step = (surface.len() / 24).max(1);
+    for i in (0..surface.len()).step_by(step) {
+        let (row, n) = (&run.rows[i], surface.normal[i]);
+        let t = surface.tangent(i);
+        let force = (
+            row.sigma_nu * n[0] + row.sigma_tau[0] * t[0],
+            row.sigma_nu * n[1] + row.sigma_tau[0] * t[1],
+        );
+        if force.0.hypot(force.1) == 0.0 {
+            continue;
+        }
+        let head = deformed(surface.nodes[i]);
+        let tail = (head.0 - arrow_length * force.0, head.1 - arrow_length * force.1);
+        chart.draw_series(std::iter::once(arrow(tail, head, RGBColor(200, 0, 0)))).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// The stick and slip nodes of Γ3 as dots, with their legend entries.
+fn draw_statuses<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    run: &ContactRun,
+    deformed: &dyn Fn(usize) -> (f64, f64),
+) -> Result<()> {
+    let surface = &run.solution.surface;
+    for (status, color, name) in [
+        (NodeStatus::Stick, RGBColor(31, 119, 180), "stick"),
+        (NodeStatus::Slip, RGBColor(255, 127, 14), "slip"),
+    ] {
+        let nodes: Vec<(f64, f64)> = (0..surface.len())
+            .filter(|&i| run.rows[i].status == status)
+            .map(|i| deformed(surface.nodes[i]))
+            .collect();
+        chart
+            .draw_series(nodes.into_iter().map(move |p| Circle::new(p, 4, color.filled())))
+            .map_err(err)?
+            .label(format!("{name} nodes"))
+            .legend(move |(x, y)| Circle::new((x + 12, y), 4, color.filled()));
+    }
+    Ok(())
 }
 
 /// An arrow from `tail` to `head` in chart coordinates.
@@ -419,7 +449,7 @@ fn draw_map<DB: DrawingBackend>(
     let mut mean = [0.0; 3];
     surface.normal.iter().for_each(|n| (0..3).for_each(|k| mean[k] += n[k]));
     let norm = mean.iter().map(|v| v * v).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
-    let frame = piezocontact::contact::frame(mean.map(|v| v / norm), 3);
+    let frame = crate::contact::frame(mean.map(|v| v / norm), 3);
     let axes = [frame[1], frame[2]];
     let points: Vec<(f64, f64)> = run
         .rows
@@ -455,7 +485,7 @@ fn draw_map<DB: DrawingBackend>(
             .label_style((FONT, 13))
             .draw()
             .map_err(err)?;
-        let color = |r: &piezocontact::report::Row| match (k, r.status) {
+        let color = |r: &crate::report::Row| match (k, r.status) {
             (0, _) => colormap(-r.sigma_nu / peak),
             (_, NodeStatus::Separated) => RGBColor(190, 190, 190),
             (_, NodeStatus::Slip) => PALETTE[2],

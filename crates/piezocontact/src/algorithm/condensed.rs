@@ -1,0 +1,208 @@
+//! The Γ3 unknowns that the exact solver condenses (model §11): which nodes, where their
+//! unknowns sit in the condensed vector, and the active-set check that grows the set when a
+//! node left out touches the foundation.
+
+use crate::contact::ContactSurface;
+use crate::dofs::{CONSTRAINED, DofMap};
+use crate::error::{Error, Result};
+
+/// The Γ3 unknowns kept by the condensation, in the order of the Schur complement.
+#[derive(Clone, Debug)]
+pub struct Condensed {
+    /// Free indices of the condensed unknowns.
+    pub free: Vec<usize>,
+    /// Global indices of the condensed unknowns.
+    pub(super) global: Vec<usize>,
+    /// Per Γ3 node: the positions of its u components in the condensed vector (in local
+    /// coordinates during the iteration: normal first, then tangents).
+    pub(super) u: Vec<[usize; 3]>,
+    /// Per Γ3 node: its ϕ.
+    pub(super) phi: Vec<Phi>,
+    /// Per Γ3 node: whether it is condensed. A node whose normal misses the foundation (an
+    /// infinite gap) cannot touch it, and stays with the interior, as do the nodes left out
+    /// of a Γ3 too large to condense whole.
+    pub(super) kept: Vec<bool>,
+    /// Whether ϕ of the nodes is condensed.
+    with_phi: bool,
+}
+
+/// ϕ of a Γ3 node in the condensed problem.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Phi {
+    /// An unknown, at this position of the condensed vector.
+    Unknown(usize),
+    /// Prescribed (the node is on Γa): its global index.
+    Prescribed(usize),
+    /// Not condensed: without penetration (g_p = 0) the laws that read ϕ, p_ν and ψ at
+    /// u_ν − g_a, vanish on every admissible state, and ϕ stays with the interior.
+    Interior,
+}
+
+impl Condensed {
+    /// The Γ3 nodes within the foundation's reach, at most `max_nodes` of them: all when
+    /// they are that few, else the `max_nodes` nearest to the foundation (smallest gap; the
+    /// first of equal ones), which [`Condensed::grown`] corrects. A node's u is condensed, and its ϕ when
+    /// `with_phi` (the laws that read ϕ can act: a penetration g_p > 0); a prescribed ϕ (a
+    /// Γ3 node on Γa) is not an unknown.
+    pub fn new(dofs: &DofMap, surface: &ContactSurface, with_phi: bool, max_nodes: usize) -> Self {
+        let gap = &surface.gap;
+        let mut reach: Vec<usize> = (0..surface.len()).filter(|&i| gap[i].is_finite()).collect();
+        if reach.len() > max_nodes {
+            reach.sort_by(|&a, &b| gap[a].total_cmp(&gap[b]).then(a.cmp(&b)));
+            reach.truncate(max_nodes);
+        }
+        let mut kept = vec![false; surface.len()];
+        reach.into_iter().for_each(|i| kept[i] = true);
+        Self::with_nodes(dofs, surface, with_phi, kept)
+    }
+
+    /// The unknowns of the `kept` nodes.
+    fn with_nodes(
+        dofs: &DofMap,
+        surface: &ContactSurface,
+        with_phi: bool,
+        kept: Vec<bool>,
+    ) -> Self {
+        let mut this = Self {
+            free: Vec::new(),
+            global: Vec::new(),
+            u: Vec::new(),
+            phi: Vec::new(),
+            kept: Vec::new(),
+            with_phi,
+        };
+        let push = |this: &mut Self, dof: usize| {
+            this.free.push(dofs.free_index(dof));
+            this.global.push(dof);
+            this.free.len() - 1
+        };
+        for (i, &node) in surface.nodes.iter().enumerate() {
+            if !kept[i] {
+                this.u.push([usize::MAX; 3]);
+                this.phi.push(Phi::Interior);
+                continue;
+            }
+            let mut u = [0; 3];
+            for (k, slot) in u.iter_mut().enumerate().take(surface.dim()) {
+                *slot = push(&mut this, dofs.u(node, k));
+            }
+            this.u.push(u);
+            let dof = dofs.phi(node);
+            let phi = if !with_phi {
+                Phi::Interior
+            } else if dofs.free_index(dof) == CONSTRAINED {
+                Phi::Prescribed(dof)
+            } else {
+                Phi::Unknown(push(&mut this, dof))
+            };
+            this.phi.push(phi);
+        }
+        this.kept = kept;
+        this
+    }
+
+    /// The active-set check of the nodes left out (model §11): at the solution `x` of the
+    /// condensed problem, a left-out node carries no contact force, which is its law only
+    /// while u_ν ≤ g_a. `None` when every left-out node is there. Else the condensation
+    /// with those that pass it added, and with them the left-out nodes as near to touching
+    /// (u_ν − g_a above minus the largest excess e), deepest first. When that would exceed
+    /// `max_nodes`, condensed nodes clear of the foundation make room, the clearest first;
+    /// an error when none can.
+    pub fn grown(
+        &self,
+        dofs: &DofMap,
+        surface: &ContactSurface,
+        x: &[f64],
+        max_nodes: usize,
+    ) -> Result<Option<Self>> {
+        let excess = |i: usize| {
+            let nu = surface.frame(i)[0];
+            let u_nu: f64 =
+                (0..surface.dim()).map(|k| nu[k] * x[dofs.u(surface.nodes[i], k)]).sum();
+            u_nu - surface.gap[i]
+        };
+        let reach = |i: &usize| surface.gap[*i].is_finite();
+        let ranked = |kept: bool| {
+            let mut nodes: Vec<(usize, f64)> = (0..surface.len())
+                .filter(|i| reach(i) && self.kept[*i] == kept)
+                .map(|i| (i, excess(i)))
+                .collect();
+            nodes.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+            nodes
+        };
+        let mut left_out = ranked(false);
+        let touching = left_out.iter().filter(|(_, v)| *v > 0.0).count();
+        if touching == 0 {
+            return Ok(None);
+        }
+        let largest = left_out[0].1;
+        left_out.retain(|(_, v)| *v > -largest);
+        let mut kept = self.kept.clone();
+        let count = self.node_count();
+        let short = (count + left_out.len()).saturating_sub(max_nodes);
+        let clear = ranked(true).into_iter().rev().take_while(|(_, v)| *v < 0.0).take(short);
+        clear.for_each(|(i, _)| kept[i] = false);
+        let room = max_nodes - kept.iter().filter(|k| **k).count();
+        if room == 0 {
+            return Err(Error::Input(format!(
+                "the contact zone is larger than solver.max_condensed = {max_nodes} nodes: with that many Γ3 nodes condensed and touching, {touching} more still touch the foundation; raise solver.max_condensed to at least {} (its dense matrices grow as its square), or use solver.method = \"uzawa\"",
+                count + touching
+            )));
+        }
+        left_out.into_iter().take(room).for_each(|(i, _)| kept[i] = true);
+        Ok(Some(Self::with_nodes(dofs, surface, self.with_phi, kept)))
+    }
+
+    /// Number of condensed Γ3 nodes.
+    pub fn node_count(&self) -> usize {
+        self.kept.iter().filter(|k| **k).count()
+    }
+
+    /// Checks that the dense work of the condensation — the Schur complement, its factor
+    /// block and the Newton systems, about 5 dense m × m matrices — fits in `available`
+    /// bytes.
+    pub fn check_memory(&self, available: f64) -> Result<()> {
+        let m = self.len() as f64;
+        crate::limits::check_memory(
+            5.0 * 8.0 * m * m,
+            available,
+            &format!("the exact solver's dense matrices of {} condensed Γ3 unknowns", self.len()),
+            "use solver.method = \"uzawa\", lower solver.max_condensed, or name a smaller contact part (boundary.contact)",
+        )
+    }
+
+    /// Number of condensed unknowns.
+    pub fn len(&self) -> usize {
+        self.free.len()
+    }
+
+    /// Whether there is none.
+    pub fn is_empty(&self) -> bool {
+        self.free.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_condensed_problem_too_large_for_memory_is_refused() {
+        let many = Condensed {
+            free: vec![0; 30_000],
+            global: Vec::new(),
+            u: Vec::new(),
+            phi: Vec::new(),
+            kept: Vec::new(),
+            with_phi: false,
+        };
+        assert!(many.check_memory(64.0 * 2f64.powi(30)).is_ok());
+        let e = many.check_memory(16.0 * 2f64.powi(30)).unwrap_err().to_string();
+        assert!(
+            e.contains("30000 condensed Γ3 unknowns")
+                && e.contains("33.5 GiB")
+                && e.contains("uzawa"),
+            "{e}"
+        );
+    }
+}

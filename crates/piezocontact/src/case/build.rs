@@ -1,0 +1,378 @@
+//! From a validated case file to the objects the solver takes: the mesh, the material, the
+//! problem, the contact model and the settings of the algorithms.
+
+use super::schema::{
+    DiagonalKey, FoundationKind, LawKey, MethodKey, ProblemKey, RegularizationKey,
+};
+use super::validate::positive;
+use super::{Case, DEFAULTS};
+use crate::algorithm::Settings;
+use crate::algorithm::newton::{self, Newton};
+use crate::algorithm::uzawa::{self, Uzawa};
+use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
+use crate::contact::{ContactModel, Foundation};
+use crate::error::{Error, Result};
+use crate::material::{ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants};
+use crate::mesh::rectangle::{Diagonal, Rectangle, Segment};
+use crate::mesh::{Mesh, gmsh};
+use crate::problem::{BodyLoads, Boundary, Problem, constant_scalar, constant_vector};
+use std::path::Path;
+
+/// The parameters of each inner method the case file can name.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum MethodParameters {
+    /// solver.method = "uzawa".
+    Uzawa(uzawa::Parameters),
+    /// solver.method = "newton".
+    Newton(newton::Parameters),
+}
+
+impl Case {
+    /// Builds the mesh: the rectangle or the Gmsh file.
+    pub fn mesh(&self) -> Result<Mesh> {
+        let m = &self.file.mesh;
+        if let Some(file) = &m.file {
+            for (key, set) in [
+                ("mesh.x", m.x.is_some()),
+                ("mesh.y", m.y.is_some()),
+                ("mesh.nx", m.nx.is_some()),
+                ("mesh.ny", m.ny.is_some()),
+                ("mesh.segments", !m.segments.is_empty()),
+            ] {
+                if set {
+                    return Err(input!(
+                        "{}: {key} describes the built-in rectangle; remove it when mesh.file is given",
+                        self.locate(key)
+                    ));
+                }
+            }
+            let full = self.path.parent().unwrap_or(Path::new(".")).join(file);
+            let bytes = std::fs::read(&full).map_err(|e| Error::Io {
+                what: format!(
+                    "{}: cannot read mesh.file {}",
+                    self.locate("mesh.file"),
+                    full.display()
+                ),
+                cause: e.to_string(),
+            })?;
+            return gmsh::read(&bytes).map_err(|e| input!("{}: {e}", full.display()));
+        }
+        let need = |key: &str| {
+            input!(
+                "{}: {key} is missing: give the rectangle (mesh.x, mesh.y, mesh.nx, mesh.ny) or mesh.file",
+                self.path.display()
+            )
+        };
+        let rectangle = Rectangle {
+            x: m.x.ok_or_else(|| need("mesh.x"))?,
+            y: m.y.ok_or_else(|| need("mesh.y"))?,
+            nx: m.nx.ok_or_else(|| need("mesh.nx"))?,
+            ny: m.ny.ok_or_else(|| need("mesh.ny"))?,
+            diagonal: match m.diagonal {
+                Some(DiagonalKey::Left) => Diagonal::Left,
+                _ => Diagonal::Right,
+            },
+        };
+        self.check_memory(rectangle.nx, rectangle.ny)?;
+        let mut parts = Vec::new();
+        for (name, specs) in &m.segments {
+            let segments: Result<Vec<Segment>, _> = specs.iter().map(|s| s.parse()).collect();
+            parts.push((
+                name.clone(),
+                segments.map_err(|e| {
+                    input!("{}: {e}", self.locate(&format!("mesh.segments.{name}")))
+                })?,
+            ));
+        }
+        rectangle.mesh(&parts).map_err(|e| self.context(e))
+    }
+
+    /// Refuses a rectangle whose solve would not fit in memory, before allocating anything.
+    /// The estimate, about 12 KB per node growing like log n with the fill of the factor, is
+    /// measured on the paper's bar (1536 × 256 cells: 3.5 GB).
+    fn check_memory(&self, nx: usize, ny: usize) -> Result<()> {
+        let nodes = (nx as f64 + 1.0) * (ny as f64 + 1.0);
+        let bytes = nodes * 12e3 * (nodes.log2() / 18.0).max(1.0);
+        crate::limits::check_memory(
+            bytes,
+            crate::limits::available_memory(),
+            &format!(
+                "{}: mesh.nx × mesh.ny = {nx} × {ny} cells ({nodes:.3e} nodes, {:.3e} unknowns)",
+                self.locate("mesh.nx"),
+                3.0 * nodes
+            ),
+            "reduce mesh.nx and mesh.ny",
+        )
+    }
+
+    /// The material in dimension `dim`.
+    pub fn material(&self, dim: usize) -> Result<Material> {
+        let m = &self.file.material;
+        let law = match m.law {
+            LawKey::Hencky => ElasticLaw::Hencky { t0: m.t0 },
+            LawKey::Linear => ElasticLaw::Linear,
+        };
+        let elasticity =
+            Elasticity::from_young_poisson(m.young, m.poisson, law).map_err(|e| self.context(e))?;
+        if !(m.eps0.is_finite() && m.eps0 > 0.0) {
+            return Err(input!(
+                "{}: material.eps0 = {} must be > 0",
+                self.locate("material.eps0"),
+                m.eps0
+            ));
+        }
+        Material::new(
+            dim,
+            elasticity,
+            PiezoConstants { e31: m.e31, e33: m.e33, e15: m.e15 },
+            PermittivityConstants { beta11: m.beta11_rel * m.eps0, beta33: m.beta33_rel * m.eps0 },
+        )
+        .map_err(|e| self.context(e))
+    }
+
+    /// PV1 or PV2, as the case says or as its sections imply.
+    pub fn problem_kind(&self) -> ProblemKey {
+        let f = &self.file;
+        let implied = if f.friction.is_some() || f.conductivity.is_some() {
+            ProblemKey::PV2
+        } else {
+            ProblemKey::PV1
+        };
+        f.contact.as_ref().and_then(|c| c.problem).unwrap_or(implied)
+    }
+
+    /// The contact model of [P] on `problem`'s Γ3, or `None` without a `[contact]` table.
+    pub(super) fn contact_model(&self, problem: &Problem) -> Result<Option<ContactModel>> {
+        let f = &self.file;
+        let Some(c) = &f.contact else { return Ok(None) };
+        let conduction = f.conductivity.as_ref();
+        let phi0 = conduction.map_or(0.0, |k| k.phi0);
+        let compliance = NormalCompliance {
+            gap: c.gap,
+            penetration: c.penetration,
+            c_nu: c.c_nu,
+            alpha_nu: c.alpha_nu,
+            n_nu: c.n_nu,
+            h_nu_range: c.h_nu_range,
+        };
+        let pv2 = match self.problem_kind() {
+            ProblemKey::PV1 => None,
+            ProblemKey::PV2 => {
+                let fr = f.friction.clone().unwrap_or_default();
+                let mut mu_parts = Vec::new();
+                for (name, &mu) in &fr.mu_parts {
+                    let part = problem.mesh.part_index(name).map_err(|e| {
+                        input!(
+                            "{}: friction.mu_parts: {e}",
+                            self.locate(&format!("friction.mu_parts.{name}"))
+                        )
+                    })?;
+                    if !problem.boundary.contact.contains(&part) {
+                        return Err(input!(
+                            "{}: friction.mu_parts.{name}: part '{name}' is not a contact part (boundary.contact)",
+                            self.locate(&format!("friction.mu_parts.{name}"))
+                        ));
+                    }
+                    mu_parts.push((part, mu));
+                }
+                let regularization = match fr.regularization {
+                    RegularizationKey::Identity => Regularization::Identity,
+                    RegularizationKey::Mollifier => Regularization::Mollifier { radius: fr.radius },
+                };
+                let k = conduction.cloned().unwrap_or_default();
+                Some((
+                    Friction { mu: fr.mu, mu_parts, regularization },
+                    Conduction { ke: k.ke, delta: k.delta, truncation: k.truncation },
+                ))
+            }
+        };
+        let foundation = self.foundation(problem.mesh.dim())?;
+        Ok(Some(ContactModel { compliance, pv2, foundation, phi0 }))
+    }
+
+    /// The foundation of `[foundation]`, checked for a d-dimensional body.
+    pub fn foundation(&self, dim: usize) -> Result<Foundation> {
+        let Some(f) = &self.file.foundation else { return Ok(Foundation::ConstantGap) };
+        let vector = |key: &str, v: &Option<Vec<f64>>| -> Result<[f64; 3]> {
+            let full = format!("foundation.{key}");
+            let v = v.as_ref().ok_or_else(|| {
+                input!(
+                    "{}: {full} is missing: kind = \"{}\" needs it",
+                    self.locate("foundation"),
+                    kind_name(f.kind)
+                )
+            })?;
+            if v.len() != dim || v.iter().any(|x| !x.is_finite()) {
+                return Err(input!(
+                    "{}: {full} = {v:?} must have {dim} finite components (the mesh is {dim}D)",
+                    self.locate(&full)
+                ));
+            }
+            let mut out = [0.0; 3];
+            out[..dim].copy_from_slice(v);
+            Ok(out)
+        };
+        let misplaced = match f.kind {
+            FoundationKind::Plane => {
+                [("center", f.center.is_some()), ("radius", f.radius.is_some())]
+            }
+            FoundationKind::Sphere => {
+                [("point", f.point.is_some()), ("normal", f.normal.is_some())]
+            }
+        };
+        if let Some((key, _)) = misplaced.iter().find(|(_, set)| *set) {
+            return Err(input!(
+                "{}: foundation.{key} does not belong to kind = \"{}\"; remove it (a plane has point and normal, a sphere center and radius)",
+                self.locate(&format!("foundation.{key}")),
+                kind_name(f.kind)
+            ));
+        }
+        match f.kind {
+            FoundationKind::Plane => {
+                let (point, normal) = (vector("point", &f.point)?, vector("normal", &f.normal)?);
+                let norm = normal.iter().map(|v| v * v).sum::<f64>().sqrt();
+                if !(norm > 0.0 && norm.is_finite()) {
+                    return Err(input!(
+                        "{}: foundation.normal = {:?} is not allowed: a nonzero vector, out of the foundation toward the body",
+                        self.locate("foundation.normal"),
+                        f.normal.as_deref().unwrap_or_default()
+                    ));
+                }
+                Ok(Foundation::Plane { point, normal: normal.map(|v| v / norm) })
+            }
+            FoundationKind::Sphere => {
+                let center = vector("center", &f.center)?;
+                let radius = f.radius.ok_or_else(|| {
+                    input!(
+                        "{}: foundation.radius is missing: kind = \"sphere\" needs it",
+                        self.locate("foundation")
+                    )
+                })?;
+                if !positive(radius) {
+                    return Err(input!(
+                        "{}: foundation.radius = {radius} is not allowed: a radius > 0",
+                        self.locate("foundation.radius")
+                    ));
+                }
+                Ok(Foundation::Sphere { center, radius })
+            }
+        }
+    }
+
+    /// The algorithms' parameters with their [`DEFAULTS`], after [`Case::contact_settings`]
+    /// has checked their ranges.
+    pub(super) fn settings_checked(&self) -> Settings {
+        let max_outer = self.max_outer();
+        match self.method_parameters() {
+            MethodParameters::Uzawa(parameters) => Settings::new(Uzawa::new(parameters), max_outer),
+            MethodParameters::Newton(parameters) => {
+                Settings::new(Newton::new(parameters), max_outer)
+            }
+        }
+    }
+
+    /// The `solver.method` table: the chosen method's parameters from `[solver]` with the
+    /// defaults, before the range checks.
+    pub(super) fn method_parameters(&self) -> MethodParameters {
+        let (s, d) = (&self.file.solver, DEFAULTS);
+        let r = s.r.unwrap_or(d.r_per_young * self.file.material.young);
+        match s.method.unwrap_or(d.method) {
+            MethodKey::Uzawa => MethodParameters::Uzawa(uzawa::Parameters {
+                r,
+                eps: s.eps.unwrap_or(d.eps),
+                eps_fp: s.eps_fp.unwrap_or(d.eps_fp),
+                max_inner: s.max_inner.unwrap_or(d.max_uzawa),
+            }),
+            MethodKey::Newton => MethodParameters::Newton(newton::Parameters {
+                r,
+                tol: s.tol.unwrap_or(d.tol),
+                max_inner: s.max_inner.unwrap_or(d.max_newton),
+                max_condensed: s.max_condensed.unwrap_or(d.max_condensed),
+            }),
+        }
+    }
+
+    /// solver.max_outer with its default.
+    pub(super) fn max_outer(&self) -> usize {
+        self.file.solver.max_outer.unwrap_or(DEFAULTS.max_outer)
+    }
+
+    /// The problem, after [`Case::contact_settings`] has checked the ranges.
+    pub(super) fn problem_checked(&self) -> Result<Problem> {
+        let mesh = self.mesh()?;
+        let dim = mesh.dim();
+        let material = self.material(dim)?;
+        let b = &self.file.boundary;
+        let parts = |key: &str, names: &[String]| -> Result<Vec<usize>> {
+            names
+                .iter()
+                .map(|n| mesh.part_index(n).map_err(|e| input!("{}: {key}: {e}", self.locate(key))))
+                .collect()
+        };
+        let vector = |key: &str, v: &[f64]| -> Result<Vec<f64>> {
+            if v.len() != dim || v.iter().any(|x| !x.is_finite()) {
+                return Err(input!(
+                    "{}: {key} = {v:?} must have {dim} finite components (the mesh is {dim}D)",
+                    self.locate(key)
+                ));
+            }
+            Ok(v.to_vec())
+        };
+        let mut traction = Vec::new();
+        for t in &b.traction {
+            let f2 = vector("boundary.traction.f2", &t.f2)?;
+            for p in parts("boundary.traction.parts", &t.parts)? {
+                traction.push((p, constant_vector(f2.clone())));
+            }
+        }
+        let mut charge = Vec::new();
+        for c in &b.charge {
+            if !c.q2.is_finite() {
+                return Err(input!(
+                    "{}: boundary.charge.q2 = {} must be a finite number",
+                    self.locate("boundary.charge"),
+                    c.q2
+                ));
+            }
+            for p in parts("boundary.charge.parts", &c.parts)? {
+                charge.push((p, constant_scalar(c.q2)));
+            }
+        }
+        let boundary = Boundary {
+            clamped: parts("boundary.clamped", &b.clamped)?,
+            grounded: parts("boundary.grounded", &b.grounded)?,
+            contact: parts("boundary.contact", &b.contact)?,
+            traction,
+            charge,
+            ..Boundary::default()
+        };
+        let loads = BodyLoads {
+            f0: self
+                .file
+                .loads
+                .f0
+                .as_ref()
+                .map(|f| vector("loads.f0", f))
+                .transpose()?
+                .map(constant_vector),
+            q0: match self.file.loads.q0 {
+                Some(q) if !q.is_finite() => {
+                    return Err(input!(
+                        "{}: loads.q0 = {q} must be a finite number",
+                        self.locate("loads.q0")
+                    ));
+                }
+                q => q.map(constant_scalar),
+            },
+        };
+        Problem::new(mesh, material, boundary, loads).map_err(|e| self.context(e))
+    }
+}
+
+/// The case-file name of a foundation kind.
+fn kind_name(kind: FoundationKind) -> &'static str {
+    match kind {
+        FoundationKind::Plane => "plane",
+        FoundationKind::Sphere => "sphere",
+    }
+}

@@ -1,0 +1,431 @@
+//! The case file's schema: the raw serde view of a TOML case (ripgrep's "low args"), every
+//! key documented, unknown keys rejected; and every default in one table, [`DEFAULTS`].
+
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// Every default of a case file, in one table: the keys a file leaves out take these values.
+pub struct Defaults {
+    /// `[units]`: length, stress, charge, potential.
+    pub units: [&'static str; 4],
+    /// material.law.
+    pub law: LawKey,
+    /// material.t0: Hencky's elasticity limit (the paper's 1.8) [-].
+    pub t0: f64,
+    /// contact.c_nu [stress/length].
+    pub c_nu: f64,
+    /// contact.alpha_nu [-].
+    pub alpha_nu: f64,
+    /// contact.n_nu [length].
+    pub n_nu: f64,
+    /// contact.h_nu_range (the paper's 128) [potential].
+    pub h_nu_range: f64,
+    /// conductivity.delta [1/length].
+    pub delta: f64,
+    /// conductivity.L [potential].
+    pub truncation: f64,
+    /// solver.method.
+    pub method: MethodKey,
+    /// solver.r as a multiple of Young's modulus E (the paper's 0.25 E).
+    pub r_per_young: f64,
+    /// solver.eps (the paper's 1e−4).
+    pub eps: f64,
+    /// solver.eps_fp (the paper's 1e−4).
+    pub eps_fp: f64,
+    /// solver.tol: round-off for the exact solver.
+    pub tol: f64,
+    /// solver.max_inner under uzawa.
+    pub max_uzawa: usize,
+    /// solver.max_inner under newton.
+    pub max_newton: usize,
+    /// solver.max_outer.
+    pub max_outer: usize,
+    /// solver.max_condensed [nodes].
+    pub max_condensed: usize,
+}
+
+/// The defaults: the paper's values for its constants and for Uzawa, round-off for Newton,
+/// and generous caps.
+pub const DEFAULTS: Defaults = Defaults {
+    units: ["m", "Pa", "C", "V"],
+    law: LawKey::Hencky,
+    t0: 1.8,
+    c_nu: 1.0,
+    alpha_nu: 2.0,
+    n_nu: 1.0,
+    h_nu_range: 128.0,
+    delta: 1.0,
+    truncation: 1e3,
+    method: MethodKey::Newton,
+    r_per_young: 0.25,
+    eps: 1e-4,
+    eps_fp: 1e-4,
+    tol: 1e-10,
+    max_uzawa: 10_000,
+    max_newton: 100,
+    max_outer: 100,
+    max_condensed: 2000,
+};
+
+/// The case's consistent unit system, used for labels only (model §9): the numbers in the file
+/// are in these units and no conversion happens.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Units {
+    /// Unit of length (coordinates, displacements), e.g. "m".
+    #[serde(default = "default_length")]
+    pub length: String,
+    /// Unit of stress (E, σ, tractions), e.g. "GPa".
+    #[serde(default = "default_stress")]
+    pub stress: String,
+    /// Unit of electric charge, e.g. "C".
+    #[serde(default = "default_charge")]
+    pub charge: String,
+    /// Unit of electric potential (ϕ, ϕ0), e.g. "GV".
+    #[serde(default = "default_potential")]
+    pub potential: String,
+}
+
+fn default_length() -> String {
+    DEFAULTS.units[0].into()
+}
+fn default_stress() -> String {
+    DEFAULTS.units[1].into()
+}
+fn default_charge() -> String {
+    DEFAULTS.units[2].into()
+}
+fn default_potential() -> String {
+    DEFAULTS.units[3].into()
+}
+
+impl Default for Units {
+    fn default() -> Self {
+        Self {
+            length: default_length(),
+            stress: default_stress(),
+            charge: default_charge(),
+            potential: default_potential(),
+        }
+    }
+}
+
+/// `[mesh]`: a structured rectangle (x, y, nx, ny, diagonal, segments) or a Gmsh file.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSection {
+    /// Gmsh MSH 4.1 file, relative to the case file; replaces the rectangle.
+    pub file: Option<PathBuf>,
+    /// Rectangle: [x0, x1] [length].
+    pub x: Option<[f64; 2]>,
+    /// Rectangle: [y0, y1] [length].
+    pub y: Option<[f64; 2]>,
+    /// Rectangle: cells along x.
+    pub nx: Option<usize>,
+    /// Rectangle: cells along y.
+    pub ny: Option<usize>,
+    /// Rectangle: "right" (lower-left–upper-right diagonal, default) or "left".
+    pub diagonal: Option<DiagonalKey>,
+    /// Rectangle: boundary part name → segments such as "[0,2]x{0}".
+    #[serde(default)]
+    pub segments: BTreeMap<String, Vec<String>>,
+}
+
+/// Diagonal direction in the case file.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DiagonalKey {
+    Right,
+    Left,
+}
+
+/// Elastic law in the case file.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LawKey {
+    Hencky,
+    Linear,
+}
+
+/// `[material]`: Hencky elasticity and the piezoelectric ceramic, poled along the last axis.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSection {
+    /// "hencky" (the paper's g, default) or "linear" (g ≡ µ1).
+    #[serde(default = "default_law")]
+    pub law: LawKey,
+    /// E: Young's modulus [stress].
+    pub young: f64,
+    /// ν: Poisson's ratio [-].
+    pub poisson: f64,
+    /// t0: Hencky elasticity limit on ‖ε^D‖² [-] (paper: 1.8).
+    #[serde(default = "default_t0")]
+    pub t0: f64,
+    /// e31 = e32 [charge/length²].
+    #[serde(alias = "e32")]
+    pub e31: f64,
+    /// e33 [charge/length²].
+    pub e33: f64,
+    /// e15 = e24 [charge/length²].
+    #[serde(alias = "e24")]
+    pub e15: f64,
+    /// ε0: vacuum permittivity [charge/(potential·length)].
+    pub eps0: f64,
+    /// β11/ε0 = β22/ε0: relative permittivity across the poling axis [-].
+    #[serde(alias = "beta22_rel")]
+    pub beta11_rel: f64,
+    /// β33/ε0: relative permittivity along the poling axis [-].
+    pub beta33_rel: f64,
+}
+
+fn default_law() -> LawKey {
+    DEFAULTS.law
+}
+fn default_t0() -> f64 {
+    DEFAULTS.t0
+}
+
+/// A traction load on Γ2 parts.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionLoad {
+    /// Boundary parts carrying it.
+    pub parts: Vec<String>,
+    /// f2: traction density, d components [stress].
+    pub f2: Vec<f64>,
+}
+
+/// A surface charge on Γb parts.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChargeLoad {
+    /// Boundary parts carrying it.
+    pub parts: Vec<String>,
+    /// q2: surface charge density [charge/length^(d−1)].
+    pub q2: f64,
+}
+
+/// `[boundary]`: boundary part names by role ([P] (2.4)).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundarySection {
+    /// Γ1: u = 0.
+    #[serde(default)]
+    pub clamped: Vec<String>,
+    /// Γa: ϕ = 0.
+    #[serde(default)]
+    pub grounded: Vec<String>,
+    /// Γ3: contact surface.
+    #[serde(default)]
+    pub contact: Vec<String>,
+    /// Γ2: tractions.
+    #[serde(default)]
+    pub traction: Vec<TractionLoad>,
+    /// Γb: surface charges.
+    #[serde(default)]
+    pub charge: Vec<ChargeLoad>,
+}
+
+/// `[loads]`: body loads of (2.1).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadsSection {
+    /// f0: body force density, d components [stress/length].
+    pub f0: Option<Vec<f64>>,
+    /// q0: volume charge density [charge/length^d].
+    pub q0: Option<f64>,
+}
+
+/// Which problem of the paper a case solves.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+pub enum ProblemKey {
+    /// Frictionless contact, nonconductive foundation (Algorithms 3–4).
+    PV1,
+    /// Regularised Coulomb friction, conductive foundation (Algorithms 1–2).
+    PV2,
+}
+
+/// `[contact]`: normal compliance with finite penetration, (2.5) and model §9.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSection {
+    /// "PV1" or "PV2"; default PV2 when `[friction]` or `[conductivity]` is present, else PV1.
+    pub problem: Option<ProblemKey>,
+    /// g_a: gap, where compliance and conduction start (the paper's ρ) [length].
+    #[serde(default)]
+    pub gap: f64,
+    /// g_p ≥ 0: penetration before the rigid stop at u_ν = g_a + g_p [length].
+    #[serde(default)]
+    pub penetration: f64,
+    /// c_ν > 0 of h_ν [stress/length].
+    #[serde(default = "default_c_nu")]
+    pub c_nu: f64,
+    /// α_ν > 1 of h_ν [-].
+    #[serde(default = "default_alpha_nu")]
+    pub alpha_nu: f64,
+    /// n_ν > 0: saturation of p_ν [length].
+    #[serde(default = "default_n_nu")]
+    pub n_nu: f64,
+    /// The potential difference at which h_ν saturates (the paper's 128) [potential].
+    #[serde(default = "default_h_nu_range")]
+    pub h_nu_range: f64,
+}
+
+/// `[friction]`: regularised Coulomb friction of (2.7); µ = 0 switches it off (PV1).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSection {
+    /// µ ≥ 0: friction coefficient [-].
+    #[serde(default)]
+    pub mu: f64,
+    /// µ on particular Γ3 parts: part name → µ (a node on several parts takes their mean).
+    #[serde(default)]
+    pub mu_parts: BTreeMap<String, f64>,
+    /// R: "identity" (local Coulomb, default) or "mollifier" (nonlocal, radius `radius`).
+    #[serde(default)]
+    pub regularization: RegularizationKey,
+    /// Radius a of the mollifier [length].
+    #[serde(default)]
+    pub radius: f64,
+}
+
+/// The regularisation operator R in the case file.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum RegularizationKey {
+    /// Local Coulomb friction.
+    #[default]
+    Identity,
+    /// Nonlocal: a mollifier average over `friction.radius`.
+    Mollifier,
+}
+
+/// `[conductivity]`: conductive foundation of (2.7)–(2.8); k_e = 0 switches it off (PV1).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConductivitySection {
+    /// k_e ≥ 0: conductivity coefficient [charge/(potential·length^d)].
+    #[serde(default)]
+    pub ke: f64,
+    /// ϕ0: potential of the foundation [potential].
+    #[serde(default)]
+    pub phi0: f64,
+    /// δ > 0 of ψ0 [1/length].
+    #[serde(default = "default_delta")]
+    pub delta: f64,
+    /// L > 0: truncation of φ_L [potential].
+    #[serde(default = "default_truncation", rename = "L")]
+    pub truncation: f64,
+}
+
+impl Default for ConductivitySection {
+    /// k_e = 0 (no conduction) and the defaults of the other keys.
+    fn default() -> Self {
+        Self { ke: 0.0, phi0: 0.0, delta: default_delta(), truncation: default_truncation() }
+    }
+}
+
+fn default_c_nu() -> f64 {
+    DEFAULTS.c_nu
+}
+fn default_alpha_nu() -> f64 {
+    DEFAULTS.alpha_nu
+}
+fn default_n_nu() -> f64 {
+    DEFAULTS.n_nu
+}
+fn default_h_nu_range() -> f64 {
+    DEFAULTS.h_nu_range
+}
+fn default_delta() -> f64 {
+    DEFAULTS.delta
+}
+fn default_truncation() -> f64 {
+    DEFAULTS.truncation
+}
+
+/// The kind of foundation surface in the case file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum FoundationKind {
+    /// A rigid half-space: `point` and `normal`.
+    Plane,
+    /// A rigid ball (a disk in 2D), the body outside it: `center` and `radius`.
+    Sphere,
+}
+
+/// `[foundation]`: the foundation's surface (model §12); without it, the gap `contact.gap`
+/// is the same at every Γ3 node, as in the paper. With it, the gap of node i is the distance
+/// along ν_i to the surface, plus `contact.gap`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FoundationSection {
+    /// "plane" or "sphere".
+    pub kind: FoundationKind,
+    /// Plane: a point of it, d components [length].
+    pub point: Option<Vec<f64>>,
+    /// Plane: its normal, d components, out of the foundation toward the body (normalised).
+    pub normal: Option<Vec<f64>>,
+    /// Sphere: its centre, d components [length].
+    pub center: Option<Vec<f64>>,
+    /// Sphere: its radius [length].
+    pub radius: Option<f64>,
+}
+
+/// The inner contact method in the case file.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum MethodKey {
+    /// The exact solver: semismooth Newton on the condensed Γ3 problem (the default).
+    #[default]
+    Newton,
+    /// Algorithms 2 and 4: augmented Lagrangian Uzawa block relaxation (the paper's).
+    Uzawa,
+}
+
+/// `[solver]`: the algorithms' parameters (model §7). Defaults: [`DEFAULTS`].
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSection {
+    /// The inner method: "newton" (the exact solver, default) or "uzawa" (the paper's).
+    pub method: Option<MethodKey>,
+    /// r > 0: Uzawa's augmented Lagrangian parameter, or Newton's complementarity constant c
+    /// (which does not change the answer) [stress/length]; default 0.25 E.
+    pub r: Option<f64>,
+    /// ε of the Uzawa stopping rule (6.12) [-]; default 1e−4 (uzawa only).
+    pub eps: Option<f64>,
+    /// ε_fp of the fixed-point stopping rules (6.13), (6.15) [-]; default 1e−4 (uzawa only).
+    pub eps_fp: Option<f64>,
+    /// The largest KKT residual accepted [-]; default 1e−10 (newton only).
+    pub tol: Option<f64>,
+    /// Cap on Uzawa iterations (default 10000) or Newton steps (default 100) per outer step.
+    pub max_inner: Option<usize>,
+    /// Cap on fixed-point iterations; default 100.
+    pub max_outer: Option<usize>,
+    /// The most Γ3 nodes the exact solver condenses into its dense problem; default 2000
+    /// (newton only).
+    pub max_condensed: Option<usize>,
+}
+
+/// A whole case file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    /// Free-text title.
+    #[serde(default)]
+    pub title: String,
+    #[serde(default)]
+    pub units: Units,
+    pub mesh: MeshSection,
+    pub material: MaterialSection,
+    pub boundary: BoundarySection,
+    #[serde(default)]
+    pub loads: LoadsSection,
+    pub contact: Option<ContactSection>,
+    pub friction: Option<FrictionSection>,
+    pub conductivity: Option<ConductivitySection>,
+    pub foundation: Option<FoundationSection>,
+    #[serde(default)]
+    pub solver: SolverSection,
+}

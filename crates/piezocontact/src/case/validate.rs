@@ -1,0 +1,211 @@
+//! The checks of a case: every number finite and of moderate magnitude, every key within its
+//! range (with the file, the line, the key and the requirement in the message), and the
+//! paper's hypotheses and unused keys reported as warnings.
+
+use super::Case;
+use super::build::MethodParameters;
+use super::schema::{MethodKey, ProblemKey, RegularizationKey};
+use crate::error::{Error, Result};
+use crate::material::{ElasticLaw, Material};
+
+/// The largest magnitude of a number in a case file, and the smallest nonzero one: the model
+/// multiplies and squares its inputs, and beyond these bounds double precision overflows or
+/// underflows. Every physical constant lies well inside them in any sensible units.
+pub const MAGNITUDE: f64 = 1e30;
+/// The smallest magnitude of a nonzero number in a case file (1/[`MAGNITUDE`]).
+pub const MIN_MAGNITUDE: f64 = 1e-30;
+
+/// `key.name`, or `name` at the top.
+pub(super) fn dotted(key: &str, name: &str) -> String {
+    if key.is_empty() { name.to_string() } else { format!("{key}.{name}") }
+}
+
+impl Case {
+    /// Refuses every float of `item` (at dotted key `key`) that is not finite, or whose
+    /// magnitude lies outside [MIN_MAGNITUDE, MAGNITUDE] without being zero.
+    pub(super) fn check_magnitudes(&self, key: &str, item: &toml_edit::Item) -> Result<()> {
+        let tables = |t: &toml_edit::Table| {
+            t.iter().try_for_each(|(k, v)| self.check_magnitudes(&dotted(key, k), v))
+        };
+        match item {
+            toml_edit::Item::Table(table) => tables(table),
+            toml_edit::Item::Value(value) => self.check_value(key, value),
+            toml_edit::Item::ArrayOfTables(array) => array.iter().try_for_each(tables),
+            toml_edit::Item::None => Ok(()),
+        }
+    }
+
+    /// [`Case::check_magnitudes`] for one value (arrays and inline tables too).
+    fn check_value(&self, key: &str, value: &toml_edit::Value) -> Result<()> {
+        match value {
+            toml_edit::Value::Float(f) => {
+                let v = *f.value();
+                if v == 0.0 || (v.abs() <= MAGNITUDE && v.abs() >= MIN_MAGNITUDE) {
+                    return Ok(());
+                }
+                Err(input!(
+                    "{}: {key} = {v:e} is out of range: a number must be finite, and 0 or of magnitude between {MIN_MAGNITUDE:e} and {MAGNITUDE:e} (the model multiplies and squares its inputs, which would overflow or underflow double precision beyond); express it in units that make it moderate ([units])",
+                    self.locate(key)
+                ))
+            }
+            toml_edit::Value::Array(array) => {
+                array.iter().try_for_each(|v| self.check_value(key, v))
+            }
+            toml_edit::Value::InlineTable(table) => {
+                table.iter().try_for_each(|(k, v)| self.check_value(&dotted(key, k), v))
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// Checks the ranges of the contact, friction, conductivity and solver keys, and returns
+    /// them as `(key, value)` lines for reports. The contact algorithms use them.
+    pub fn contact_settings(&self) -> Result<Vec<(String, f64)>> {
+        let f = &self.file;
+        let mut rules: Vec<Rule> = Vec::new();
+        if let Some(c) = &f.contact {
+            rules.extend([
+                Rule("contact.gap", c.gap, f64::is_finite, "a finite length"),
+                Rule("contact.penetration", c.penetration, nonnegative, "g_p ≥ 0"),
+                Rule("contact.c_nu", c.c_nu, positive, "c_ν > 0"),
+                Rule("contact.alpha_nu", c.alpha_nu, |v| v.is_finite() && v > 1.0, "α_ν > 1"),
+                Rule("contact.n_nu", c.n_nu, positive, "n_ν > 0"),
+                Rule("contact.h_nu_range", c.h_nu_range, positive, "a positive potential"),
+            ]);
+        }
+        if let Some(fr) = &f.friction {
+            rules.push(Rule("friction.mu", fr.mu, nonnegative, "µ ≥ 0"));
+            if fr.regularization == RegularizationKey::Mollifier {
+                rules.push(Rule(
+                    "friction.radius",
+                    fr.radius,
+                    positive,
+                    "a mollifier radius a > 0",
+                ));
+            }
+            for (name, &mu) in &fr.mu_parts {
+                if !nonnegative(mu) {
+                    return Err(input!(
+                        "{}: friction.mu_parts.{name} = {mu} is not allowed: µ ≥ 0",
+                        self.locate(&format!("friction.mu_parts.{name}"))
+                    ));
+                }
+            }
+        }
+        if let Some(c) = &f.conductivity {
+            rules.extend([
+                Rule("conductivity.ke", c.ke, nonnegative, "k_e ≥ 0"),
+                Rule("conductivity.phi0", c.phi0, f64::is_finite, "a finite potential"),
+                Rule("conductivity.delta", c.delta, positive, "δ > 0"),
+                Rule("conductivity.L", c.truncation, positive, "L > 0"),
+            ]);
+        }
+        let at_least_one = |v: f64| v >= 1.0;
+        match self.method_parameters() {
+            MethodParameters::Uzawa(p) => rules.extend([
+                Rule("solver.r", p.r, positive, "r > 0"),
+                Rule("solver.eps", p.eps, positive, "ε > 0"),
+                Rule("solver.eps_fp", p.eps_fp, positive, "ε_fp > 0"),
+                Rule("solver.max_inner", p.max_inner as f64, at_least_one, "at least 1"),
+            ]),
+            MethodParameters::Newton(p) => rules.extend([
+                Rule("solver.r", p.r, positive, "r > 0"),
+                Rule("solver.tol", p.tol, positive, "a tolerance > 0"),
+                Rule("solver.max_inner", p.max_inner as f64, at_least_one, "at least 1"),
+                Rule("solver.max_condensed", p.max_condensed as f64, at_least_one, "at least 1"),
+            ]),
+        }
+        rules.push(Rule("solver.max_outer", self.max_outer() as f64, at_least_one, "at least 1"));
+        let mut lines = Vec::new();
+        for Rule(key, value, ok, requirement) in rules {
+            if !ok(value) {
+                return Err(input!(
+                    "{}: {key} = {value} is not allowed: {requirement}",
+                    self.locate(key)
+                ));
+            }
+            lines.push((key.to_string(), value));
+        }
+        Ok(lines)
+    }
+
+    /// The paper's hypotheses (h1)–(h6) checked on this case's data, as warnings with the
+    /// numbers (Section 2 of [P]); an empty list when all hold.
+    pub fn hypothesis_warnings(&self, material: &Material) -> Vec<String> {
+        let el = material.elasticity;
+        let d = material.dim as f64;
+        let mut warnings = Vec::new();
+        if el.mu1 > 0.5 * d * el.k0 {
+            warnings.push(format!(
+                "(h1)(a) fails: g(0) = µ1 = {:.4e} exceeds d·k0/2 = {:.4e} (Poisson's ratio {} is below the bound of (h1)(a) in {}D)",
+                el.mu1, 0.5 * d * el.k0, self.file.material.poisson, material.dim
+            ));
+        }
+        if let ElasticLaw::Hencky { t0 } = el.law {
+            let e = std::f64::consts::E;
+            warnings.push(format!(
+                "(h1)(b) holds only for ‖ε^D‖² < e·t0 = {:.4e}: beyond it g + 2g't = µ1 (t0/t)(1 − ln(t/t0)) < 0 (the law softens), and g(t) → 0 as t → ∞ (g(100 t0) = {:.4e}), so (h1)(a) has no g0 > 0 for unbounded strains; results whose strains exceed e·t0 are outside the paper's theory",
+                e * t0,
+                el.g(100.0 * t0)
+            ));
+        }
+        warnings
+    }
+
+    /// Keys of `[solver]` that the chosen method does not read, as warnings.
+    pub fn setting_warnings(&self) -> Vec<String> {
+        let s = &self.file.solver;
+        let (method, other, unused) = match s.method.unwrap_or_default() {
+            MethodKey::Newton => {
+                ("newton", "uzawa", [("eps", s.eps.is_some()), ("eps_fp", s.eps_fp.is_some())])
+            }
+            MethodKey::Uzawa => (
+                "uzawa",
+                "newton",
+                [("tol", s.tol.is_some()), ("max_condensed", s.max_condensed.is_some())],
+            ),
+        };
+        unused
+            .iter()
+            .filter(|(_, set)| *set)
+            .map(|(key, _)| {
+                format!(
+                    "{}: solver.{key} is not used by solver.method = \"{method}\" (only {other} reads it; newton stops on solver.tol, uzawa on solver.eps and solver.eps_fp)",
+                    self.locate(&format!("solver.{key}"))
+                )
+            })
+            .collect()
+    }
+
+    /// The bounds and Lipschitz constants of p_ν and h_ν ((h5), (h6)) and the quantity that
+    /// Theorem 3.1 needs small for uniqueness.
+    pub fn uniqueness_note(&self) -> Option<String> {
+        let c = self.file.contact.as_ref()?;
+        let (m_h, l_h) = (c.c_nu * c.alpha_nu, c.c_nu * (c.alpha_nu - 1.0) / c.h_nu_range);
+        let (m_p, l_p) = (c.n_nu, 1.0);
+        let psi = match (&self.file.conductivity, self.problem_kind()) {
+            (Some(k), ProblemKey::PV2) => format!(
+                "; ψ is bounded by M_ψ = k_e = {} with Lipschitz constant k_e·δ = {} and φ_L by L = {}",
+                k.ke,
+                k.ke * k.delta,
+                k.truncation
+            ),
+            _ => String::new(),
+        };
+        Some(format!(
+            "p_ν is bounded by M_p = {m_p} with Lipschitz constant {l_p}, h_ν by M_h = {m_h} with {l_h:.4e}: M_h·L_p + L_h·M_p = {:.4e} must be below the L* of Theorem 3.1 for uniqueness (the paper does not give L*){psi}",
+            m_h * l_p + l_h * m_p
+        ))
+    }
+}
+
+/// A range rule: key, value, test, and the requirement stated in the error.
+struct Rule(&'static str, f64, fn(f64) -> bool, &'static str);
+
+pub(super) fn positive(v: f64) -> bool {
+    v.is_finite() && v > 0.0
+}
+
+pub(super) fn nonnegative(v: f64) -> bool {
+    v.is_finite() && v >= 0.0
+}

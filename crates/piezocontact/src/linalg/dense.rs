@@ -1,0 +1,76 @@
+//! Dense square matrices, for the condensed contact problem (model §11).
+
+use crate::error::{Error, Result};
+use faer::MatMut;
+
+/// A dense square matrix, for the condensed contact problem.
+#[derive(Clone, Debug)]
+pub struct DenseMatrix {
+    pub(super) mat: faer::Mat<f64>,
+}
+
+impl DenseMatrix {
+    /// The n × n zero matrix.
+    pub fn zeros(n: usize) -> Self {
+        Self { mat: faer::Mat::zeros(n, n) }
+    }
+
+    /// Order of the matrix.
+    pub fn n(&self) -> usize {
+        self.mat.nrows()
+    }
+
+    /// Entry (i, j).
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        self.mat[(i, j)]
+    }
+
+    /// Sets entry (i, j).
+    pub fn set(&mut self, i: usize, j: usize, value: f64) {
+        self.mat[(i, j)] = value;
+    }
+
+    /// Column j.
+    pub fn col(&self, j: usize) -> &[f64] {
+        self.mat.col(j).try_as_col_major().map(|c| c.as_slice()).unwrap_or(&[])
+    }
+
+    /// Column j, to write.
+    pub fn col_mut(&mut self, j: usize) -> &mut [f64] {
+        self.mat.col_mut(j).try_as_col_major_mut().map(|c| c.as_slice_mut()).unwrap_or(&mut [])
+    }
+
+    /// y = A x.
+    pub fn mul(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; self.n()];
+        for (j, &xj) in x.iter().enumerate() {
+            if xj != 0.0 {
+                y.iter_mut().zip(self.col(j)).for_each(|(yi, a)| *yi += a * xj);
+            }
+        }
+        y
+    }
+
+    /// Solves Aᵀ x = b by LU with partial pivoting (the matrix is stored by the columns of
+    /// Aᵀ, that is by the rows of A).
+    pub fn solve_transposed(&self, b: &[f64]) -> Result<Vec<f64>> {
+        use faer::linalg::solvers::Solve;
+        let n = self.n();
+        if b.len() != n {
+            return Err(Error::Length {
+                what: "right-hand side".into(),
+                expected: n,
+                got: b.len(),
+            });
+        }
+        let lu = self.mat.transpose().partial_piv_lu();
+        let mut x = b.to_vec();
+        lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, n, 1));
+        if let Some(k) = x.iter().position(|v| !v.is_finite()) {
+            return Err(Error::SingularSystem {
+                detail: format!("the dense Newton system is singular (component {k})"),
+            });
+        }
+        Ok(x)
+    }
+}

@@ -1,0 +1,127 @@
+//! Sparse symmetric linear algebra and the seam between the coupled system and a linear-solver
+//! backend (model §5, §7, §11). The only module that names faer.
+//!
+//! The matrix of Step 1 of Algorithms 2 and 4 ([P] Section 6) is symmetric quasi-definite,
+//! `[K_uu G; Gᵀ −K_ϕϕ]` with K_uu and K_ϕϕ positive definite once the Dirichlet rows are
+//! removed (model §5). The default backend, [`LdltSolver`], is faer's sparse LDLᵀ: it exists
+//! for every symmetric ordering without pivoting, with d_k > 0 on u rows and d_k < 0 on ϕ
+//! rows; LLᵀ fails on the indefinite matrix (pinned by a test) and LU ignores symmetry (several
+//! times the time and memory: `piezocontact bench --lu` prints both).
+//!
+//! ## The seam
+//!
+//! A backend is a value the caller hands to the coupled system
+//! ([`crate::solver::CoupledSystem::new`]), never one the system builds. Its capabilities are
+//! separate traits:
+//! - [`LinearSolver`], which every backend has: [`LinearSolver::analyze`] (symbolic analysis
+//!   of a [`SymmetricPattern`], once per pattern), [`LinearSolver::factorize`] (whenever the
+//!   values change), [`LinearSolver::solve_in_place`] (as often as needed), with counts and
+//!   timings;
+//! - [`SchurComplement`], which backends that can condense have and announce through
+//!   [`LinearSolver::schur`]: "the Schur complement of this list of unknowns". The backend
+//!   chooses its own fill-reducing ordering with those unknowns last. A method that needs it
+//!   (the exact solver) asks for it when the run is set up and refuses a backend without it
+//!   there, with a message, never in the middle of a solve.
+//!
+//! ## A distributed backend
+//!
+//! The traits are shaped so that a backend whose rows live on several processes (PETSc with
+//! MUMPS under `mpirun`) fits without changes to its callers:
+//! - every process runs the same program on the same mesh and assembles the same pattern and
+//!   values (assembly is cheap next to the factorisation); the backend keeps the rows it owns
+//!   (a contiguous block per process) and hands them to the distributed matrix at
+//!   [`LinearSolver::factorize`];
+//! - vectors cross the seam whole on every process: `solve_in_place` reads the whole
+//!   right-hand side, scatters the owned rows into the distributed vector, solves, and gathers
+//!   the solution back to every process, so that the contact algorithms (O(|Γ3|) work) run
+//!   redundantly and identically everywhere;
+//! - [`SchurComplement::schur_complement`] returns the dense Schur complement on every process
+//!   (MUMPS builds it on the host, which broadcasts it);
+//! - the pivot signs passed to [`LinearSolver::analyze`] are a hint on the matrix's inertia,
+//!   which a backend may check (LDLᵀ does) or ignore (an LU or an iterative method).
+//!
+//! [`LdltSolver`] scales the matrix symmetrically by its diagonal, `S A S` with
+//! `S = diag(|a_ii|^{-1/2})`, so that the u and ϕ blocks, whose entries differ by many orders
+//! of magnitude and depend on the case's unit system (model §9), meet on equal terms. A pivot
+//! that is tiny (below 1e-12 after scaling) or has the wrong sign for a quasi-definite matrix
+//! is reported as [`crate::Error::SingularSystem`], never silently regularised.
+
+mod dense;
+mod ldlt;
+mod sparse;
+
+pub use dense::DenseMatrix;
+pub use ldlt::{LdltSolver, bare_ldlt_seconds};
+pub use sparse::{SymmetricMatrix, SymmetricPattern};
+
+use crate::error::Result;
+
+/// The fill-reducing ordering of [`LdltSolver`]'s symbolic analysis.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum Ordering {
+    /// Approximate minimum degree, chosen by the factorisation.
+    #[default]
+    Amd,
+    /// The caller's: `order[k]` is the unknown eliminated k-th (a permutation of 0..n).
+    Custom(Vec<usize>),
+}
+
+/// Counts and wall-clock times of a linear solver.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SolverStats {
+    /// Symbolic analysis [s].
+    pub symbolic_seconds: f64,
+    /// All numeric factorisations [s].
+    pub numeric_seconds: f64,
+    /// Number of numeric factorisations.
+    pub numeric_count: usize,
+    /// All solves [s].
+    pub solve_seconds: f64,
+    /// Number of solves.
+    pub solve_count: usize,
+    /// Stored values of the factor (a measure of its memory).
+    pub factor_len: usize,
+}
+
+/// What every backend does: analyse the pattern once, factorise whenever the values change,
+/// solve as often as needed.
+pub trait LinearSolver: std::fmt::Debug + Send {
+    /// The backend's name, for messages and reports.
+    fn name(&self) -> &str;
+    /// Symbolic analysis of `pattern`; `signs` are the expected pivot signs (+1 for u rows,
+    /// −1 for ϕ rows) of the quasi-definite matrix, a hint the backend may check.
+    fn analyze(&mut self, pattern: &SymmetricPattern, signs: &[i8]) -> Result<()>;
+    /// Numeric factorisation of `matrix`, which has the analysed pattern.
+    fn factorize(&mut self, matrix: &SymmetricMatrix) -> Result<()>;
+    /// Solves A x = b in place (b on entry, x on exit, whole vectors) with the current
+    /// factorisation.
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()>;
+    /// Counts and timings so far.
+    fn stats(&self) -> SolverStats;
+    /// The Schur-complement capability, for backends that have it.
+    fn schur(&mut self) -> Option<&mut dyn SchurComplement> {
+        None
+    }
+}
+
+/// What a backend that can condense does: eliminate every unknown but a given list, and give
+/// the Schur complement S = K_cc − K_ci K_ii⁻¹ K_ic of that list (model §11).
+pub trait SchurComplement {
+    /// Symbolic analysis of `pattern` as [`LinearSolver::analyze`], with the unknowns `last`
+    /// (distinct, below n) kept for the Schur complement, in that order; the backend orders
+    /// the others as it likes.
+    fn analyze_with_last(
+        &mut self,
+        pattern: &SymmetricPattern,
+        signs: &[i8],
+        last: &[usize],
+    ) -> Result<()>;
+    /// S of the unknowns given to [`SchurComplement::analyze_with_last`] (rows and columns
+    /// in that order), from the current factorisation.
+    fn schur_complement(&self) -> Result<DenseMatrix>;
+}
+
+/// The default backend: [`LdltSolver`] with AMD.
+pub fn default_solver() -> Box<dyn LinearSolver> {
+    Box::new(LdltSolver::new())
+}

@@ -1,0 +1,211 @@
+//! Sparse symmetric matrices by their lower triangle: the pattern, built once, into which the
+//! assembly writes new values, and the matrices with it.
+
+use super::ldlt::symbolic_cholesky;
+use crate::error::{Error, Result};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::cholesky::SymmetricOrdering;
+use faer::sparse::{SparseColMat, SymbolicSparseColMat, SymbolicSparseColMatRef, Triplet};
+use faer::{MatMut, Par, Side};
+
+/// The lower-triangle sparsity pattern of a symmetric matrix.
+#[derive(Debug)]
+pub struct SymmetricPattern {
+    symbolic: SymbolicSparseColMat<usize>,
+}
+
+impl SymmetricPattern {
+    /// The pattern of an n × n matrix from its columns: the rows of column j are
+    /// `row_idx[col_ptr[j]..col_ptr[j + 1]]`, strictly increasing, each ≥ j and < n.
+    pub fn from_columns(n: usize, col_ptr: Vec<usize>, row_idx: Vec<usize>) -> Result<Self> {
+        let bad = |what: String| Error::LinearAlgebra(format!("sparsity pattern: {what}"));
+        if col_ptr.len() != n + 1 || col_ptr[0] != 0 || col_ptr[n] != row_idx.len() {
+            return Err(bad(format!("{} column pointers for {n} columns", col_ptr.len())));
+        }
+        for j in 0..n {
+            if col_ptr[j] > col_ptr[j + 1] {
+                return Err(bad(format!("column {j} ends before it starts")));
+            }
+            let rows = &row_idx[col_ptr[j]..col_ptr[j + 1]];
+            if rows.iter().any(|&r| r < j || r >= n) || rows.windows(2).any(|w| w[0] >= w[1]) {
+                return Err(bad(format!("the rows of column {j} are not increasing in {j}..{n}")));
+            }
+        }
+        Ok(Self { symbolic: SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx) })
+    }
+
+    /// The pattern of the (row, column) positions, row ≥ column, repetitions allowed.
+    pub fn from_positions(n: usize, positions: &[(usize, usize)]) -> Result<Self> {
+        if let Some(&(r, c)) = positions.iter().find(|&&(r, c)| r >= n || c > r) {
+            return Err(Error::LinearAlgebra(format!(
+                "position ({r}, {c}) is outside the lower triangle of a {n} × {n} matrix"
+            )));
+        }
+        let mut columns = vec![Vec::new(); n];
+        positions.iter().for_each(|&(r, c)| columns[c].push(r));
+        let mut col_ptr = vec![0];
+        let mut row_idx = Vec::new();
+        for mut rows in columns {
+            rows.sort_unstable();
+            rows.dedup();
+            row_idx.extend(rows);
+            col_ptr.push(row_idx.len());
+        }
+        Self::from_columns(n, col_ptr, row_idx)
+    }
+
+    /// Order of the matrix.
+    pub fn n(&self) -> usize {
+        self.symbolic.nrows()
+    }
+
+    /// faer's view, for the backends of this module.
+    pub(super) fn symbolic(&self) -> SymbolicSparseColMatRef<'_, usize> {
+        self.symbolic.as_ref()
+    }
+
+    /// Stored entries of the lower triangle.
+    pub fn nnz(&self) -> usize {
+        self.symbolic.row_idx().len()
+    }
+
+    /// The index of entry (row, column) in the matrix's values, if the pattern has it.
+    pub fn position(&self, row: usize, col: usize) -> Option<usize> {
+        if col >= self.n() {
+            return None;
+        }
+        let range = self.symbolic.col_range(col);
+        let rows = &self.symbolic.row_idx()[range.clone()];
+        rows.binary_search(&row).ok().map(|k| range.start + k)
+    }
+
+    /// The matrix with this pattern and `values` (one per stored entry, column by column).
+    pub fn matrix(&self, values: Vec<f64>) -> Result<SymmetricMatrix> {
+        if values.len() != self.nnz() {
+            return Err(Error::Length {
+                what: "matrix values".into(),
+                expected: self.nnz(),
+                got: values.len(),
+            });
+        }
+        Ok(SymmetricMatrix { lower: SparseColMat::new(self.symbolic.clone(), values) })
+    }
+}
+
+/// A symmetric sparse matrix stored by its lower triangle.
+#[derive(Clone, Debug)]
+pub struct SymmetricMatrix {
+    lower: SparseColMat<usize, f64>,
+}
+
+impl SymmetricMatrix {
+    /// faer's matrix, for the backends of this module.
+    pub(super) fn lower(&self) -> &SparseColMat<usize, f64> {
+        &self.lower
+    }
+
+    /// Order of the matrix.
+    pub fn n(&self) -> usize {
+        self.lower.nrows()
+    }
+
+    /// Lower-triangle entries (row, column, value) with row ≥ column.
+    pub fn lower_entries(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+        let (symbolic, values) = (self.lower.symbolic(), self.lower.val());
+        (0..self.n()).flat_map(move |j| {
+            let range = symbolic.col_range(j);
+            symbolic.row_idx()[range.clone()]
+                .iter()
+                .zip(&values[range])
+                .map(move |(&i, &v)| (i, j, v))
+        })
+    }
+
+    /// y = A x.
+    pub fn mul(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; self.n()];
+        for (i, j, v) in self.lower_entries() {
+            y[i] += v * x[j];
+            if i != j {
+                y[j] += v * x[i];
+            }
+        }
+        y
+    }
+
+    /// The diagonal (the first stored entry of each column, whose rows are sorted).
+    pub fn diagonal(&self) -> Vec<f64> {
+        let (symbolic, values) = (self.lower.symbolic(), self.lower.val());
+        (0..self.n())
+            .map(|j| {
+                let k = symbolic.col_ptr()[j];
+                if k < symbolic.col_ptr()[j + 1] && symbolic.row_idx()[k] == j {
+                    values[k]
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    }
+
+    /// The principal sub-matrix of rows and columns `range`, multiplied by `factor`.
+    pub fn block(&self, range: std::ops::Range<usize>, factor: f64) -> Result<Self> {
+        let triplets: Vec<Triplet<usize, usize, f64>> = self
+            .lower_entries()
+            .filter(|(i, j, _)| range.contains(i) && range.contains(j))
+            .map(|(i, j, v)| Triplet::new(i - range.start, j - range.start, factor * v))
+            .collect();
+        let lower = SparseColMat::try_new_from_triplets(range.len(), range.len(), &triplets)
+            .map_err(|e| Error::LinearAlgebra(format!("block: {e:?}")))?;
+        Ok(Self { lower })
+    }
+
+    /// Whether the matrix is positive definite (its sparse LLᵀ factorisation exists).
+    pub fn is_positive_definite(&self) -> Result<bool> {
+        let symbolic = symbolic_cholesky(self.lower.symbolic(), SymmetricOrdering::Amd)?;
+        let mut l_values = vec![0.0; symbolic.len_val()];
+        let mut mem = MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+        )
+        .map_err(|_| Error::LinearAlgebra("out of memory for the LLᵀ workspace".into()))?;
+        let result = symbolic.factorize_numeric_llt(
+            &mut l_values,
+            self.lower.as_ref(),
+            Side::Lower,
+            LltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
+        Ok(result.is_ok())
+    }
+
+    /// Symbolic and numeric LU of the full matrix and one solve, timed, for comparison in
+    /// benchmarks: (symbolic, numeric, solve) seconds.
+    pub fn time_lu(&self, rhs: &[f64]) -> Result<[f64; 3]> {
+        use faer::linalg::solvers::Solve;
+        use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+        let mut triplets = Vec::new();
+        for (i, j, v) in self.lower_entries() {
+            triplets.push(Triplet::new(i, j, v));
+            if i != j {
+                triplets.push(Triplet::new(j, i, v));
+            }
+        }
+        let full = SparseColMat::try_new_from_triplets(self.n(), self.n(), &triplets)
+            .map_err(|e| Error::LinearAlgebra(format!("{e:?}")))?;
+        let t = std::time::Instant::now();
+        let symbolic = SymbolicLu::try_new(full.symbolic())
+            .map_err(|e| Error::LinearAlgebra(format!("{e:?}")))?;
+        let t_symbolic = t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        let lu = Lu::try_new_with_symbolic(symbolic, full.as_ref())
+            .map_err(|e| Error::SingularSystem { detail: format!("LU: {e:?}") })?;
+        let t_numeric = t.elapsed().as_secs_f64();
+        let mut x = rhs.to_vec();
+        let t = std::time::Instant::now();
+        lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, self.n(), 1));
+        Ok([t_symbolic, t_numeric, t.elapsed().as_secs_f64()])
+    }
+}
