@@ -10,23 +10,46 @@
 //!
 //! ## Notation
 //!
+//! One meaning per symbol in code. Units are those of the case's consistent system (model §9):
+//! length, stress, charge, potential.
+//!
 //! | symbol | identifier | meaning | unit | [P] |
 //! |---|---|---|---|---|
-//! | u | `u` | displacement | length | (2.1) |
-//! | ϕ | `phi` | electric potential | potential | (2.1) |
+//! | u, ϕ, x | `u`, `phi`, `x` | displacement, electric potential, x = (u, ϕ) | length, potential | (2.1) |
 //! | σ | `sigma` | stress | stress | (2.2) |
 //! | D | `D`, `electric_displacement` | electric displacement | charge/length² (3D) | (2.2) |
+//! | E(ϕ) = −∇ϕ | `grad_phi` (its negative) | electric field | potential/length | (2.2) |
+//! | E_Y, ν_P | `young`, `poisson` | Young's modulus, Poisson's ratio (case file) | stress, – | §7 |
 //! | ε(u), ε^D | `eps` | strain, its deviator | – | (2.3) |
 //! | k0, µ1 | `k0`, `mu1` | bulk coefficient, small-strain shear modulus | stress | §7 |
-//! | g(t), t0 | `g`, `t0` | Hencky secant modulus, elasticity limit (t = ‖ε^D‖²) | stress, – | (2.3), §7 |
+//! | g(t), t0 | `Elasticity::g`, `t0` | Hencky's secant modulus, elasticity limit (t = ‖ε^D‖²) | stress, – | (2.3), §7 |
+//! | g_e | `moduli` | g per element at the iterate, with which B̌ is assembled | stress | (6.5) |
 //! | e_ijk | `e`, `e31`, `e33`, `e15` | piezoelectric tensor | charge/length² | (2.2) |
 //! | β_ij | `beta`, `beta11`, `beta33` | permittivity | charge/(potential·length) | (2.2) |
 //! | f0, q0 | `f0`, `q0` | body force, volume charge | stress/length, charge/length³ | (2.1) |
 //! | f2, q2 | `traction`, `charge` | traction on Γ2, surface charge on Γb | stress, charge/length² | (2.4) |
 //! | Γ1, Γ2, Γ3 | `clamped`, `traction`, `contact` | clamped, loaded, contact boundary | – | (2.4) |
 //! | Γa, Γb | `grounded`, `charge` | ϕ = 0, D·ν = q2 | – | (2.4) |
+//! | w_i, ν_i, τ_i | `weight`, `normal`, `tangent`, `frame` | nodal weight, normal and tangents of Γ3 node i | length^(d−1), – | model §6 |
+//! | u_ν, u_τ | `u_nu`, `u_tau` | normal and tangential displacement on Γ3 | length | (2.5) |
+//! | σ_ν, σ_τ | `sigma_nu`, `sigma_tau` | normal and tangential stress on Γ3 | stress | (2.5) |
+//! | g_a, g_p, ρ | `gap`, `penetration`, `stop` | gap, penetration, rigid stop ρ = g_a + g_p | length | (2.5), model §9 |
+//! | p_ν, h_ν | `p_nu`, `h_nu` | normal compliance functions; the pressure h_ν p_ν | length, stress/length | (2.5) |
+//! | ϕ0 | `phi0` | potential of the foundation (stored once, in `ContactModel`) | potential | (2.5), (2.8) |
+//! | ψ, k_e, φ_L | `psi`, `ke`, `phi_l` | conductivity, its coefficient, truncation | charge/(potential·length^d), –, potential | (2.8) |
+//! | µ, R, s | `mu`, `Mollifier`, `s` / `friction_bound` | friction coefficient, regularisation, bound s = µ\|Rσ_ν\| | –, –, stress | (2.7) |
+//! | λ_c, λ_f | `lambda_c`, `lambda_f` | contact pressure of the stop, friction traction (σ_τ = −λ_f) | stress | (6.6) |
+//! | p_c, p_f | `p_c`, `p_f` | Uzawa's auxiliary displacements | length | (6.9) |
+//! | r | `r` (`solver.r`) | augmented Lagrangian parameter; the exact solver's constant | stress/length | (6.9) |
+//! | c, c_i | `complementarity_constant`, `c` | constant of the complementarity functions; Newton's per node | stress/length | model §10, §11 |
+//! | ε, ε_fp | `eps`, `eps_fp` | stopping tolerances of (6.12) and (6.13)/(6.15) | – | (6.12)–(6.16) |
 //! | B̌(x_n; ·,·) | `Assembler::matrix` | symmetric form with g frozen at x_n | – | (6.5) |
 //! | f̌ | `Assembler::load_vector` | symmetric right-hand side | – | (6.3) |
+//! | S, b, F | `schur`, `load`, `forces` | Schur complement of the Γ3 unknowns, condensed load, contact forces | – | model §11 |
+//! | E_n, E_t, E_ϕ | `residual` | the exact solver's equations | – | model §11 |
+//!
+//! Indices of unknowns are `dof` (global) and `k` (free); `residual` is always a defect of
+//! equations, never the parameter r.
 //!
 //! ## Modules (data flow top to bottom)
 //!
@@ -36,14 +59,16 @@
 //! - [`problem`]: a checked problem: mesh, material, boundary roles, loads.
 //! - [`dofs`]: DOF numbering [u; ϕ] and Dirichlet elimination.
 //! - [`assembly`]: element kernels, B̌ (pattern once, parallel refills), f̌, fields and norms.
-//! - [`linalg`]: the linear-solver seam and sparse LDLᵀ (the only module naming faer).
-//! - [`solver`]: the coupled solve without contact; element fields σ, D.
-//! - [`contact`]: Γ3 kinematics (w_i, ν_i, u_ν, u_τ) and the contact laws.
-//! - [`algorithm`]: the outer fixed point (Algorithms 1, 3) around an inner method (Uzawa,
-//!   Algorithms 2, 4), residuals and balances.
-//! - [`case`]: case files — schema, defaults, overrides, validation, hypotheses.
+//! - [`linalg`]: the linear-solver seam (backends and their capabilities) and sparse LDLᵀ, the
+//!   only module naming faer.
+//! - [`solver`]: the coupled system on the caller's backend; the solve without contact.
+//! - [`contact`]: Γ3 (w_i, ν_i, u_ν, u_τ), the contact laws, the contact model, multipliers,
+//!   statuses, the mollifier and the foundation.
+//! - [`algorithm`]: the outer fixed point (Algorithms 1, 3) around an inner method — Uzawa
+//!   (Algorithms 2, 4) or the exact solver — residuals and balances.
+//! - [`case`]: case files — schema and defaults, overrides, validation, one build.
 //! - [`report`], [`run`]: a run of a case, its Γ3 table, summary and files.
-//! - [`output`]: ParaView `.vtu`, atomic files.
+//! - [`output`]: ParaView `.vtu`, figures, atomic files.
 //!
 //! ## Running a case
 //!
@@ -92,5 +117,7 @@ pub mod problem;
 pub mod report;
 pub mod run;
 pub mod solver;
+#[cfg(test)]
+mod testing;
 
 pub use error::{Error, Result};

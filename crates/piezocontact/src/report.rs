@@ -234,3 +234,47 @@ pub fn timings(t: &Timings) -> Value {
         "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algorithm::solve_contact;
+    use crate::testing::{PAPER_72, built};
+
+    /// The Γ3 table of a PV2 solution: one row per node, the solution's σ_ν and s, statuses
+    /// that partition the contact zone, and a CSV with the documented columns.
+    #[test]
+    fn the_table_agrees_with_the_solution_and_the_zones_add_up() {
+        let built = built(PAPER_72, &["mesh.nx=24", "mesh.ny=4", "solver.method=\"newton\""]);
+        let (problem, model) = (&built.problem, built.model.as_ref().unwrap());
+        let solution = solve_contact(problem, model, &built.settings).unwrap();
+        let rows = rows(problem, model, &solution);
+        assert_eq!(rows.len(), solution.surface.len());
+        for (i, r) in rows.iter().enumerate() {
+            assert_eq!((r.sigma_nu, r.s), (solution.sigma_nu[i], solution.s[i]));
+            // σ_τ = −λ_f, and in 2D it lies along τ: its norm is |σ_τ|.
+            let norm = r.friction_traction.iter().map(|v| v * v).sum::<f64>().sqrt();
+            assert!((norm - r.sigma_tau[0].abs()).abs() < 1e-12 * norm.max(1.0));
+            let touching = r.sigma_nu < 0.0;
+            assert_eq!(touching, r.status != NodeStatus::Separated, "node {i}");
+        }
+        let (contact, stick, slip) = zone_measures(&solution, &rows);
+        assert!(contact > 0.0 && slip > 0.0, "{contact} {stick} {slip}");
+        assert!((contact - stick - slip).abs() < 1e-12);
+        let touching: f64 = rows
+            .iter()
+            .zip(&solution.surface.weight)
+            .filter(|(r, _)| r.sigma_nu < 0.0)
+            .map(|(_, w)| w)
+            .sum();
+        assert!((contact - touching).abs() < 1e-12);
+        let csv = contact_csv(&rows, 2);
+        let mut lines = csv.lines();
+        assert_eq!(lines.next(), Some("x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status"));
+        assert_eq!(lines.count(), rows.len());
+        assert_eq!((csv_number(f64::NAN), csv_number(-0.5)), (String::new(), "-5e-1".into()));
+        let summary = contact_summary(model, &solution, &rows);
+        assert_eq!(summary["gamma3"]["nodes"], rows.len());
+        assert_eq!(summary["non_finite"], json!({}));
+    }
+}

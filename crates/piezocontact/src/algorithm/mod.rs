@@ -569,3 +569,131 @@ impl ContactSolution {
         if traction >= self.s_used[i] * (1.0 - 1e-9) { NodeStatus::Slip } else { NodeStatus::Stick }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::solve_without_contact;
+    use crate::testing::{PAPER_71, built};
+
+    /// An inner method that ignores contact: each step is the solve without contact forces,
+    /// and it stops as it is told. It shows what the outer loop does on its own.
+    #[derive(Clone, Debug)]
+    struct Stub {
+        lags: bool,
+        stop: Stop,
+        reject: bool,
+    }
+
+    impl InnerMethod for Stub {
+        fn name(&self) -> &'static str {
+            "stub"
+        }
+        fn fresh(&self) -> Box<dyn InnerMethod> {
+            Box::new(self.clone())
+        }
+        fn lags_contact(&self) -> bool {
+            self.lags
+        }
+        fn complementarity_constant(&self) -> f64 {
+            1.0
+        }
+        fn outer_tolerance(&self) -> f64 {
+            1e-8
+        }
+        fn prepare(
+            &mut self,
+            setup: Setup,
+            solver: Box<dyn LinearSolver>,
+        ) -> Result<CoupledSystem> {
+            CoupledSystem::new(setup.problem, setup.dofs, &[], solver)
+        }
+        fn blocks(&self) -> &[NodalBlock] {
+            &[]
+        }
+        fn solve(&mut self, step: &Step, system: &mut CoupledSystem) -> Result<InnerResult> {
+            let x = system.solve(None)?;
+            let state = ContactState::cold(step.surface.len());
+            Ok(InnerResult {
+                x,
+                state,
+                iterations: 3,
+                history: vec![0.5, 0.1],
+                stop: self.stop.clone(),
+            })
+        }
+        fn stop_context(&self, outer_step: usize, _pv2: bool) -> StopContext {
+            StopContext {
+                what: format!("the stub of outer step {outer_step}"),
+                tolerance: 0.25,
+                cap_hint: "the cap hint".into(),
+                hint: "the hint".into(),
+            }
+        }
+        fn accept(&self, _kkt: &KktResidual, _outer_history: &[f64]) -> Option<Error> {
+            self.reject.then(|| Error::Input("rejected by the stub".into()))
+        }
+    }
+
+    fn run(stub: Stub, max_outer: usize) -> ContactSolution {
+        let built = built(PAPER_71, &["mesh.nx=12", "mesh.ny=2", "material.law=\"linear\""]);
+        let settings = Settings::new(stub, max_outer);
+        let model = built.model.unwrap();
+        solve_contact(&built.problem, &model, &settings).unwrap()
+    }
+
+    #[test]
+    fn a_lagging_method_stops_when_the_iterate_settles() {
+        let stub = Stub { lags: true, stop: Stop::Converged, reject: false };
+        let solution = run(stub, 10);
+        // x_1 from x_0 = 0: a change of 100 %; x_2 = x_1: none.
+        assert!(solution.converged && solution.failure.is_none());
+        assert_eq!(solution.outer_history, vec![1.0, 0.0]);
+        assert_eq!((solution.outer_iterations, solution.inner_iterations.clone()), (2, vec![3, 3]));
+        // Hencky's moduli never change with the linear law: one factorisation serves both steps.
+        assert_eq!(solution.timings.numeric_count, 1);
+        let problem =
+            built(PAPER_71, &["mesh.nx=12", "mesh.ny=2", "material.law=\"linear\""]).problem;
+        assert_eq!(solution.x, solve_without_contact(&problem).unwrap().x);
+        // The lagged friction bound: s_used is the s of the step before.
+        assert!(solution.s_used.iter().all(|s| *s == 0.0));
+    }
+
+    #[test]
+    fn a_method_that_does_not_lag_stops_when_the_moduli_settle() {
+        let solution = run(Stub { lags: false, stop: Stop::Converged, reject: false }, 10);
+        assert!(solution.converged);
+        assert_eq!((solution.outer_iterations, solution.outer_history.clone()), (1, vec![0.0]));
+        assert_eq!(solution.s_used, solution.s);
+    }
+
+    #[test]
+    fn inner_stops_become_errors_with_the_method_s_words() {
+        for (stop, variant) in [
+            (Stop::Cap, "NotConverged"),
+            (Stop::Diverged, "Diverged"),
+            (Stop::NotFinite("a NaN".into()), "NumericalFailure"),
+        ] {
+            let solution = run(Stub { lags: true, stop, reject: false }, 10);
+            assert!(!solution.converged);
+            assert_eq!(solution.outer_iterations, 1, "{variant}: the loop stops at once");
+            let failure = solution.failure.unwrap();
+            assert!(format!("{failure:?}").starts_with(variant), "{failure:?}");
+            let text = failure.to_string();
+            assert!(text.contains("the stub of outer step 1"), "{text}");
+            let hint = if variant == "NotConverged" { "the cap hint" } else { "the hint" };
+            assert!(text.contains(hint), "{text}");
+        }
+    }
+
+    #[test]
+    fn the_outer_cap_and_the_method_s_verdict_are_failures() {
+        let solution = run(Stub { lags: true, stop: Stop::Converged, reject: false }, 1);
+        let failure = solution.failure.unwrap().to_string();
+        assert!(!solution.converged && failure.contains("fixed-point loop (Algorithm 3)"));
+        assert!(failure.contains("solver.max_outer (now 1)"), "{failure}");
+        let solution = run(Stub { lags: true, stop: Stop::Converged, reject: true }, 10);
+        assert!(!solution.converged && solution.outer_iterations == 2);
+        assert!(solution.failure.unwrap().to_string().contains("rejected by the stub"));
+    }
+}

@@ -592,15 +592,9 @@ impl<'a> Local<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::assembly::{MassNorm, secant_moduli};
-    use crate::case::Case;
-    use crate::contact::model::nodal_mu;
-    use crate::contact::{ContactModel, ContactSurface, Mollifier};
-    use crate::dofs::DofMap;
+    use crate::assembly::secant_moduli;
     use crate::linalg::default_solver;
-    use crate::problem::Problem;
-
-    const PAPER_72: &str = include_str!("../../../../cases/paper-7.2.toml");
+    use crate::testing::{Fixture, PAPER_72};
 
     /// Checks `Local::gradient` against central differences of `Local::evaluate` on every
     /// equation that does not fix its unknown, at the point `y`; `skip_slip` leaves out the
@@ -657,65 +651,43 @@ mod tests {
     #[test]
     fn the_newton_jacobian_matches_difference_quotients() {
         for regularization in ["identity", "mollifier"] {
-            let overrides: Vec<String> = [
-                "mesh.nx=24",
-                "mesh.ny=4",
-                "material.law=\"linear\"",
-                "contact.penetration=0.05",
-                "solver.method=\"newton\"",
-                "conductivity.ke=0.5",
-                "friction.radius=1.0",
-            ]
-            .iter()
-            .map(|s| s.to_string())
-            .chain([format!("friction.regularization=\"{regularization}\"")])
-            .collect();
-            let case = Case::from_text("paper-7.2.toml".as_ref(), PAPER_72, &overrides).unwrap();
-            let built = case.build().unwrap();
-            let (problem, model) = (&built.problem, built.model.as_ref().unwrap());
-            let checked = jacobian_case(problem, model);
+            let regularization = format!("friction.regularization=\"{regularization}\"");
+            let fixture = Fixture::new(
+                PAPER_72,
+                &[
+                    "mesh.nx=24",
+                    "mesh.ny=4",
+                    "material.law=\"linear\"",
+                    "contact.penetration=0.05",
+                    "solver.method=\"newton\"",
+                    "conductivity.ke=0.5",
+                    "friction.radius=1.0",
+                    &regularization,
+                ],
+            );
+            let checked = jacobian_case(&fixture);
             assert!(checked > 20, "{regularization}: {checked} rows checked");
         }
     }
 
-    /// Prepares the exact solver on `problem`, solves one step, and checks the Jacobian at
+    /// Prepares the exact solver on the fixture, solves one step, and checks the Jacobian at
     /// the start (x̂, slip rows left out) and at the solution (every row). Returns the number
     /// of rows checked.
-    fn jacobian_case(problem: &Problem, model: &ContactModel) -> usize {
-        let dofs = DofMap::new(problem).unwrap();
-        let surface = ContactSurface::new(problem, &dofs).unwrap().with_gaps(
-            problem,
-            &model.foundation,
-            model.compliance.gap,
-        );
+    fn jacobian_case(fixture: &Fixture) -> usize {
         let parameters = Parameters { r: 14.7, tol: 1e-10, max_inner: 100, max_condensed: 2000 };
         let mut method = Newton::new(parameters);
-        let setup = Setup { problem, dofs, surface: &surface, model };
-        let mut system = method.prepare(setup, default_solver()).unwrap();
-        let moduli = secant_moduli(problem, system.dofs(), &vec![0.0; system.dofs().n_total()]);
-        let moduli = moduli.unwrap();
-        system.factorize(problem, &moduli, &[]).unwrap();
-        let friction = &model.pv2.as_ref().unwrap().0;
-        let (mass, mu) = (MassNorm::new(problem).unwrap(), nodal_mu(problem, &surface, friction));
-        let mollifier = Mollifier::new(problem, &surface, model).unwrap();
+        let mut system = method.prepare(fixture.setup(), default_solver()).unwrap();
         let zero = vec![0.0; system.dofs().n_total()];
-        let step = Step {
-            problem,
-            mass: &mass,
-            surface: &surface,
-            model,
-            mu: &mu,
-            mollifier: &mollifier,
-            previous: &zero,
-            friction_bound: &vec![0.0; surface.len()],
-            moduli: &moduli,
-            progress: &|_| {},
-        };
+        let moduli = secant_moduli(fixture.problem(), system.dofs(), &zero).unwrap();
+        system.factorize(fixture.problem(), &moduli, &[]).unwrap();
+        let s_n = vec![0.0; fixture.surface.len()];
+        let step = fixture.step(&zero, &s_n, &moduli);
         let condensed = method.condensed.clone().unwrap();
+        let c_factor = method.c_factor;
         let semismooth = Semismooth {
             step: &step,
             condensed: &condensed,
-            c_factor: method.c_factor,
+            c_factor,
             max_inner: 100,
             start: None,
         };

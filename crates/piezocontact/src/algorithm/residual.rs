@@ -134,3 +134,52 @@ pub fn assess(
     balance.imbalance = if size > 0.0 { norm(&total) / size } else { 0.0 };
     Ok((kkt, balance))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algorithm::solve_contact;
+    use crate::testing::{PAPER_71, built};
+
+    /// At the exact solver's solution the residuals vanish and the forces balance; a defect
+    /// put into one multiplier shows, with its size, in the contact and equilibrium residuals.
+    #[test]
+    fn the_residuals_measure_defects_and_the_forces_balance() {
+        let overrides = ["mesh.nx=24", "mesh.ny=4", "solver.method=\"newton\""];
+        let built = built(PAPER_71, &overrides);
+        let (problem, model) = (&built.problem, built.model.as_ref().unwrap());
+        let solution = solve_contact(problem, model, &built.settings).unwrap();
+        let c = built.settings.method.complementarity_constant();
+        let (kkt, balance) = assess(problem, model, c, &solution).unwrap();
+        assert!(solution.converged && kkt.max < 1e-10, "{kkt:?}");
+        assert!(balance.imbalance < 1e-10, "{balance:?}");
+        let applied = balance.applied[1];
+        assert!(applied < 0.0 && balance.contact[1] > 0.0 && balance.reaction[1] > 0.0);
+        // A separated node, clear of the stop: λ_c = δ breaks complementarity by δ/c.
+        let dofs = &solution.dofs;
+        let surface = &solution.surface;
+        let clearance = |i: usize| {
+            model.compliance.stop(surface.gap[i]) - surface.split(dofs, &solution.x, i).0
+        };
+        let i = (0..surface.len())
+            .filter(|&i| solution.state.lambda_c[i] == 0.0)
+            .max_by(|&a, &b| clearance(a).total_cmp(&clearance(b)))
+            .expect("a separated node");
+        let delta = 1e-3;
+        assert!(c * clearance(i) > delta, "node {i} is too close to the stop");
+        let mut broken = solution.clone();
+        broken.state.lambda_c[i] = delta;
+        broken.sigma_nu[i] -= delta;
+        let (kkt_broken, balance_broken) = assess(problem, model, c, &broken).unwrap();
+        let max_u = (0..problem.mesh.n_nodes())
+            .map(|a| (0..2).map(|k| solution.x[dofs.u(a, k)].powi(2)).sum::<f64>().sqrt())
+            .fold(0.0, f64::max);
+        let expected = delta / c / max_u;
+        assert!((kkt_broken.contact - expected).abs() < 1e-12 * expected, "{kkt_broken:?}");
+        assert!(kkt_broken.equilibrium_u > 1e3 * kkt.equilibrium_u, "{kkt_broken:?}");
+        // The force the node's λ_c adds to the foundation's: w δ along −ν.
+        let extra = balance_broken.contact[1] - balance.contact[1];
+        let w_nu = surface.weight[i] * surface.normal[i][1];
+        assert!((extra + delta * w_nu).abs() < 1e-12, "{extra}");
+    }
+}

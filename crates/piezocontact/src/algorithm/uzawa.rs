@@ -275,3 +275,114 @@ fn lagged_loads(
     }
     base
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assembly::secant_moduli;
+    use crate::contact::model::normal_stress;
+    use crate::linalg::default_solver;
+    use crate::testing::{Fixture, PAPER_71, PAPER_72};
+
+    const COARSE: [&str; 3] = ["mesh.nx=24", "mesh.ny=4", "material.law=\"linear\""];
+
+    #[test]
+    fn step_1_adds_r_m_on_the_contact_nodes() {
+        for (text, friction) in [(PAPER_71, false), (PAPER_72, true)] {
+            let fixture = Fixture::new(text, &COARSE);
+            let surface = &fixture.surface;
+            let blocks = step1_blocks(surface, 3.0, friction);
+            assert_eq!(blocks.len(), surface.len());
+            for (i, block) in blocks.iter().enumerate() {
+                let (w, n) = (surface.weight[i], surface.normal[i]);
+                for a in 0..3 {
+                    for b in 0..3 {
+                        // Algorithm 2: r w I on u; Algorithm 4: r w ν νᵀ.
+                        let identity = if a == b && a < 2 { 1.0 } else { 0.0 };
+                        let expected = 3.0 * w * if friction { identity } else { n[a] * n[b] };
+                        assert_eq!(block[a][b], expected, "node {i} ({a}, {b})");
+                    }
+                }
+            }
+        }
+    }
+
+    /// One Uzawa loop of PV2 to ε = 1e−12, with the friction bound s_n given: at its end the
+    /// multipliers obey Steps 2–3 — λ_c ≥ 0 with complementarity and no penetration beyond
+    /// the stop, ‖λ_f‖ ≤ s_n — and a second call, cold like the first, repeats it exactly.
+    #[test]
+    fn a_loop_ends_on_the_contact_and_friction_laws_and_starts_cold() {
+        let mut overrides = COARSE.to_vec();
+        overrides.extend(["solver.eps=1e-12", "solver.max_inner=100000"]);
+        let fixture = Fixture::new(PAPER_72, &overrides);
+        let (problem, model) = (fixture.problem(), fixture.model());
+        let parameters = Parameters { r: 14.67755, eps: 1e-12, eps_fp: 1e-12, max_inner: 100_000 };
+        let mut uzawa = Uzawa::new(parameters);
+        let mut system = uzawa.prepare(fixture.setup(), default_solver()).unwrap();
+        let zero = vec![0.0; system.dofs().n_total()];
+        let moduli = secant_moduli(problem, system.dofs(), &zero).unwrap();
+        system.factorize(problem, &moduli, uzawa.blocks()).unwrap();
+        let s_n = vec![0.05; fixture.surface.len()];
+        let step = fixture.step(&zero, &s_n, &moduli);
+        let first = uzawa.solve(&step, &mut system).unwrap();
+        assert!(matches!(first.stop, Stop::Converged) && *first.history.last().unwrap() < 1e-12);
+        let dofs = system.dofs();
+        let (mut touching, mut slipping) = (0, 0);
+        for i in 0..fixture.surface.len() {
+            let (u_nu, _) = fixture.surface.split(dofs, &first.x, i);
+            let rho = model.compliance.stop(fixture.surface.gap[i]);
+            let lambda_c = first.state.lambda_c[i];
+            assert!(lambda_c >= 0.0 && u_nu - rho < 1e-9, "node {i}: {lambda_c}, {u_nu}");
+            assert!(lambda_c * (rho - u_nu).max(0.0) < 1e-9 * lambda_c.max(1.0), "node {i}");
+            let traction = first.state.lambda_f[i].iter().map(|v| v * v).sum::<f64>().sqrt();
+            assert!(traction <= 0.05 * (1.0 + 1e-12), "node {i}: ‖λ_f‖ = {traction}");
+            touching += usize::from(lambda_c > 0.0);
+            slipping += usize::from(traction > 0.05 * (1.0 - 1e-9));
+        }
+        assert!(touching > 3 && slipping > 0, "{touching} touching, {slipping} slipping");
+        let sigma_nu = normal_stress(dofs, &fixture.surface, model, &first.x, &first.state);
+        assert!(sigma_nu.iter().all(|s| *s <= 0.0), "the foundation only pushes");
+        let again = uzawa.solve(&step, &mut system).unwrap();
+        assert_eq!((again.x, again.history), (first.x, first.history));
+    }
+
+    /// The lagged loads are the compliance pressure on the u rows and the conduction flux on
+    /// the ϕ rows of the Γ3 nodes, and nothing elsewhere.
+    #[test]
+    fn the_lagged_loads_sit_on_the_contact_rows() {
+        let fixture =
+            Fixture::new(PAPER_72, &[COARSE.as_slice(), &["contact.penetration=0.1"]].concat());
+        let (problem, model, surface) = (fixture.problem(), fixture.model(), &fixture.surface);
+        let dofs = DofMap::new(problem).unwrap();
+        // Every Γ3 node 0.05 past the gap, ϕ = 40 against ϕ0 = 32.
+        let mut x = vec![0.0; dofs.n_total()];
+        for i in 0..surface.len() {
+            let node = surface.nodes[i];
+            for c in 0..2 {
+                x[dofs.u(node, c)] = (surface.gap[i] + 0.05) * surface.normal[i][c];
+            }
+            x[dofs.phi(node)] = 40.0;
+        }
+        let base = lagged_loads(&dofs, surface, model, &x);
+        let mut expected = vec![0.0; dofs.n_free()];
+        for i in 0..surface.len() {
+            let (w, node) = (surface.weight[i], surface.nodes[i]);
+            // h_ν(8) p_ν(0.05) and ψ(0.05) φ_L(8) of the case's laws.
+            let pressure = 1.0 * (1.0 + 8.0 / 128.0) * 0.05;
+            let flux = model.pv2.as_ref().unwrap().1.ke * 0.05 * 8.0;
+            for c in 0..2 {
+                let k = dofs.free_index(dofs.u(node, c));
+                if k != CONSTRAINED {
+                    expected[k] -= w * pressure * surface.normal[i][c];
+                }
+            }
+            let k = dofs.free_index(dofs.phi(node));
+            if k != CONSTRAINED {
+                expected[k] += w * flux;
+            }
+        }
+        let error = base.iter().zip(&expected).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        assert!(error < 1e-14, "{error}");
+        assert!(base.iter().filter(|v| **v != 0.0).count() > surface.len());
+    }
+}

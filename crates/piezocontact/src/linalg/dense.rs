@@ -1,5 +1,6 @@
 //! Dense square matrices, for the condensed contact problem (model §11).
 
+use super::check_length;
 use crate::error::{Error, Result};
 use faer::MatMut;
 
@@ -56,13 +57,7 @@ impl DenseMatrix {
     pub fn solve_transposed(&self, b: &[f64]) -> Result<Vec<f64>> {
         use faer::linalg::solvers::Solve;
         let n = self.n();
-        if b.len() != n {
-            return Err(Error::Length {
-                what: "right-hand side".into(),
-                expected: n,
-                got: b.len(),
-            });
-        }
+        check_length("right-hand side", n, b.len())?;
         let lu = self.mat.transpose().partial_piv_lu();
         let mut x = b.to_vec();
         lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, n, 1));

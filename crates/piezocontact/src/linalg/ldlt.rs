@@ -2,8 +2,8 @@
 //! [`LinearSolver`] seam, with the [`SchurComplement`] capability read off the factor's
 //! trailing block.
 
-use super::SymmetricPattern;
 use super::{DenseMatrix, LinearSolver, Ordering, SchurComplement, SolverStats, SymmetricMatrix};
+use super::{SymmetricPattern, check_length};
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
@@ -123,13 +123,7 @@ impl LdltSolver {
 /// Checks that `order` is a permutation of 0..n and returns it with its inverse.
 fn permutation(order: &[usize], n: usize) -> Result<(Vec<usize>, Vec<usize>)> {
     let mut inverse = vec![usize::MAX; n];
-    if order.len() != n {
-        return Err(Error::Length {
-            what: "custom ordering".into(),
-            expected: n,
-            got: order.len(),
-        });
-    }
+    check_length("custom ordering", n, order.len())?;
     for (k, &i) in order.iter().enumerate() {
         if i >= n || inverse[i] != usize::MAX {
             return Err(Error::LinearAlgebra(format!(
@@ -150,13 +144,7 @@ impl LdltSolver {
         ordering: &Ordering,
     ) -> Result<()> {
         let n = pattern.n();
-        if signs.len() != n {
-            return Err(Error::Length {
-                what: "pivot signs".into(),
-                expected: n,
-                got: signs.len(),
-            });
-        }
+        check_length("pivot signs", n, signs.len())?;
         let t = Instant::now();
         let symbolic = match ordering {
             Ordering::Amd => symbolic_cholesky(pattern.symbolic(), SymmetricOrdering::Amd)?,
@@ -257,13 +245,7 @@ impl LinearSolver for LdltSolver {
         if !self.factorized {
             return Err(Error::LinearAlgebra("solve before a successful factorisation".into()));
         }
-        if rhs.len() != n {
-            return Err(Error::Length {
-                what: "right-hand side".into(),
-                expected: n,
-                got: rhs.len(),
-            });
-        }
+        check_length("right-hand side", n, rhs.len())?;
         let t = Instant::now();
         let symbolic = self.symbolic()?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);

@@ -121,6 +121,14 @@ pub trait SchurComplement {
     fn schur_complement(&self) -> Result<DenseMatrix>;
 }
 
+/// An [`crate::Error::Length`] unless a vector of `what` has the `expected` length.
+fn check_length(what: &str, expected: usize, got: usize) -> Result<()> {
+    if got == expected {
+        return Ok(());
+    }
+    Err(crate::Error::Length { what: what.into(), expected, got })
+}
+
 /// The default backend: [`LdltSolver`] with AMD.
 pub fn default_solver() -> Box<dyn LinearSolver> {
     Box::new(LdltSolver::new())

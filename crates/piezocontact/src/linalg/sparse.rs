@@ -1,6 +1,7 @@
 //! Sparse symmetric matrices by their lower triangle: the pattern, built once, into which the
 //! assembly writes new values, and the matrices with it.
 
+use super::check_length;
 use super::ldlt::symbolic_cholesky;
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -82,13 +83,7 @@ impl SymmetricPattern {
 
     /// The matrix with this pattern and `values` (one per stored entry, column by column).
     pub fn matrix(&self, values: Vec<f64>) -> Result<SymmetricMatrix> {
-        if values.len() != self.nnz() {
-            return Err(Error::Length {
-                what: "matrix values".into(),
-                expected: self.nnz(),
-                got: values.len(),
-            });
-        }
+        check_length("matrix values", self.nnz(), values.len())?;
         Ok(SymmetricMatrix { lower: SparseColMat::new(self.symbolic.clone(), values) })
     }
 }

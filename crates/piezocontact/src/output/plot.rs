@@ -274,31 +274,50 @@ fn draw_body<DB: DrawingBackend>(
             )
         }))
         .map_err(err)?;
-    chart
-        .draw_series(LineSeries::new(stop.clone(), BLACK.stroke_width(2)))
-        .map_err(err)?
-        .label(match run.model.foundation {
-            Foundation::ConstantGap => format!(
-                "rigid stop (gap + penetration = {} {})",
-                run.model.compliance.stop(run.model.compliance.gap),
-                labels.length
-            ),
-            _ => "rigid stop (foundation + penetration)".to_string(),
-        })
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2)));
+    draw_stop(&mut chart, run, stop, labels.length)?;
     let peak = run.rows.iter().map(|r| r.sigma_nu.abs().hypot(r.sigma_tau[0])).fold(0.0, f64::max);
     let arrow_length = 0.12 * (y1 - y0) / peak.max(f64::MIN_POSITIVE);
     draw_forces(&mut chart, run, &deformed, arrow_length)?;
     if run.model.pv2.is_some() {
         draw_statuses(&mut chart, run, &deformed)?;
     }
+    force_legend(&mut chart, (x0, y0), &format!("{peak:.3} {}", labels.stress))?;
+    color_bar(&bar, phi_lo, phi_hi, &format!("ϕ [{}]", labels.potential))
+}
+
+/// The rigid stop as a line through `stop`, with its legend entry.
+fn draw_stop<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    run: &ContactRun,
+    stop: Vec<(f64, f64)>,
+    length: &str,
+) -> Result<()> {
+    let compliance = &run.model.compliance;
+    let label = match run.model.foundation {
+        Foundation::ConstantGap => {
+            format!("rigid stop (gap + penetration = {} {length})", compliance.stop(compliance.gap))
+        }
+        _ => "rigid stop (foundation + penetration)".to_string(),
+    };
     chart
-        .draw_series(std::iter::once(PathElement::new(
-            vec![(x0, y0), (x0, y0)],
-            RGBColor(200, 0, 0),
-        )))
+        .draw_series(LineSeries::new(stop, BLACK.stroke_width(2)))
         .map_err(err)?
-        .label(format!("contact force on Γ3 (peak {peak:.3} {})", labels.stress))
+        .label(label)
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2)));
+    Ok(())
+}
+
+/// The legend entry of the force arrows (their `peak` with its unit), drawn by an invisible
+/// series at `corner`, and the legend box.
+fn force_legend<'a, DB: DrawingBackend + 'a>(
+    chart: &mut Chart<'a, DB>,
+    corner: (f64, f64),
+    peak: &str,
+) -> Result<()> {
+    chart
+        .draw_series(std::iter::once(PathElement::new(vec![corner, corner], RGBColor(200, 0, 0))))
+        .map_err(err)?
+        .label(format!("contact force on Γ3 (peak {peak})"))
         .legend(|(x, y)| {
             let red = RGBColor(200, 0, 0).stroke_width(2);
             PathElement::new(
@@ -314,7 +333,7 @@ fn draw_body<DB: DrawingBackend>(
         .position(SeriesLabelPosition::UpperRight)
         .draw()
         .map_err(err)?;
-    color_bar(&bar, phi_lo, phi_hi, &format!("ϕ [{}]", labels.potential))
+    Ok(())
 }
 
 /// The plot ranges that hold `points` with equal scales on both axes, in a plot area of

@@ -16,6 +16,8 @@ mod foundation;
 mod gmsh_io;
 /// Hertz contact in 2D and 3D through the foundation's sphere.
 mod hertz;
+/// The code's own rules: function lengths, an outer loop that names no method.
+mod layout;
 /// Patch tests: linear fields reproduced to round-off, 2D and 3D.
 mod patch;
 /// The assembled system: symmetry, definiteness of the blocks, factorisation reuse.
