@@ -1,6 +1,7 @@
 //! `piezocontact bench`: assembly, symbolic, numeric and solve times of the coupled system —
-//! on the paper's rectangle (Example 7.1 data) at several sizes, or on any Gmsh mesh — beside
-//! faer's bare numeric LDLᵀ and solve of the same matrix in the same run (the floor), and
+//! on the paper's rectangle (Example 7.1 data) at several sizes, or on any Gmsh mesh — for
+//! each ordering (AMD, nested dissection) and thread count, beside faer's bare numeric LDLᵀ
+//! and solve of the same matrix with the same analysis in the same run (the floor), and
 //! optionally faer's sparse LU.
 //!
 //! On a Gmsh mesh every boundary part is clamped and grounded and the paper's PZT-5A is used:
@@ -11,7 +12,7 @@ use anyhow::{Result, anyhow, bail};
 use piezocontact::assembly::secant_moduli;
 use piezocontact::case::{Built, Case};
 use piezocontact::dofs::DofMap;
-use piezocontact::linalg::{bare_ldlt_seconds, default_solver};
+use piezocontact::linalg::{LdltSolver, LinearSolver, Ordering, default_solver};
 use piezocontact::problem::Problem;
 use piezocontact::solver::CoupledSystem;
 use std::path::Path;
@@ -45,11 +46,46 @@ pub enum Target<'a> {
     Mesh(&'a Path),
 }
 
-/// Runs the benchmark and prints one line per mesh; `lu` adds faer's sparse LU.
-pub fn run(target: &Target, lu: bool) -> Result<()> {
+/// The orderings and thread counts of the factorisation benchmark.
+pub struct Variants {
+    /// The orderings, each measured on every thread count.
+    pub orderings: Vec<Ordering>,
+    /// The thread counts.
+    pub threads: Vec<usize>,
+}
+
+/// The name of an ordering in the benchmark's rows.
+fn ordering_name(ordering: &Ordering) -> &'static str {
+    match ordering {
+        Ordering::Auto => "auto",
+        Ordering::Amd => "amd",
+        Ordering::NestedDissection => "nd",
+        Ordering::Custom(_) => "custom",
+    }
+}
+
+/// Parses `--ordering amd,nd,auto`.
+pub fn parse_ordering(name: &str) -> Result<Ordering> {
+    match name.trim() {
+        "amd" => Ok(Ordering::Amd),
+        "nd" => Ok(Ordering::NestedDissection),
+        "auto" => Ok(Ordering::Auto),
+        other => bail!("--ordering: '{other}' is not one of amd, nd, auto"),
+    }
+}
+
+/// One measured row: (numeric seconds, factor bytes) for the ratios.
+type Row = (f64, f64);
+
+/// Runs the benchmark and prints one line per mesh, ordering and thread count; `lu` adds
+/// faer's sparse LU. With AMD and nested dissection both measured, prints the ratios of
+/// nested dissection on the most threads to AMD on one thread.
+pub fn run(target: &Target, variants: &Variants, lu: bool) -> Result<()> {
     say!(
-        "{:>16} {:>9} {:>10} {:>11} {:>11} {:>11} {:>9} {:>15} {:>13} {:>16} {:>20} {:>10} {:>10}",
+        "{:>16} {:>5} {:>7} {:>9} {:>10} {:>11} {:>11} {:>11} {:>9} {:>15} {:>13} {:>16} {:>20} {:>10} {:>11} {:>10}",
         "mesh",
+        "order",
+        "threads",
         "DOFs",
         "pattern_s",
         "assembly_s",
@@ -61,29 +97,64 @@ pub fn run(target: &Target, lu: bool) -> Result<()> {
         "assembly/numeric",
         "(numeric+solve)/faer",
         "nnz(A)",
-        "len(L)"
+        "len(L)",
+        "factor_MB"
     );
-    match target {
-        Target::Sizes(sizes) => {
-            for size in *sizes {
+    let problems: Vec<(String, Problem)> = match target {
+        Target::Sizes(sizes) => sizes
+            .iter()
+            .map(|size| {
                 let (nx, ny) = parse_size(size)?;
-                measure(size, &paper_case(PAPER_CASE, nx, ny, &[])?.problem()?, lu)?;
+                Ok((size.clone(), paper_case(PAPER_CASE, nx, ny, &[])?.problem()?))
+            })
+            .collect::<Result<_>>()?,
+        Target::Mesh(path) => {
+            let name = path.file_name().map_or("mesh".into(), |n| n.to_string_lossy());
+            vec![(name.to_string(), mesh_case(path)?.problem()?)]
+        }
+    };
+    for (name, problem) in &problems {
+        let mut rows = Vec::new();
+        for ordering in &variants.orderings {
+            for &threads in &variants.threads {
+                let row = measure(name, problem, ordering, threads, lu)?;
+                rows.push((ordering_name(ordering), threads, row));
             }
         }
-        Target::Mesh(path) => {
-            let case = mesh_case(path)?;
-            let name = path.file_name().map_or("mesh".into(), |n| n.to_string_lossy());
-            measure(&name, &case.problem()?, lu)?;
-        }
+        ratios(&rows);
     }
     say!(
         "pattern_s: DOF map, sparsity pattern and gather plan (once per run); assembly_s: f̌ and \
-         one refill of B̌ (every factorisation); both parallel over {} threads. numeric_s, \
-         solve_s: piezocontact's LDLᵀ (with diagonal scaling and pivot checks); faer_*: faer's \
-         bare LDLᵀ of the same matrix in the same run",
+         one refill of B̌ (every factorisation); both parallel over {} threads. symbolic_s: the \
+         ordering and the elimination tree; numeric_s, solve_s: piezocontact's LDLᵀ (with \
+         diagonal scaling and pivot checks) on `threads` threads; faer_*: faer's bare LDLᵀ of \
+         the same matrix with the same ordering and threads; factor_MB: the factor, its \
+         workspace and the scaled matrix, as predicted after the symbolic analysis",
         rayon::current_num_threads()
     );
     Ok(())
+}
+
+/// Nested dissection on the most threads against AMD on one thread, when both were measured.
+fn ratios(rows: &[(&str, usize, Row)]) {
+    let find = |order: &str, most: bool| {
+        let matching = rows.iter().filter(|(o, ..)| *o == order);
+        if most { matching.max_by_key(|r| r.1) } else { matching.min_by_key(|r| r.1) }
+    };
+    if let (Some(amd), Some(nd)) = (find("amd", false), find("nd", true)) {
+        let ((t_amd, b_amd), (t_nd, b_nd)) = (amd.2, nd.2);
+        say!(
+            "  nd on {} threads / amd on {} thread(s): numeric {:.3}× ({:.3} s / {:.3} s), factor bytes {:.3}× ({:.1} MB / {:.1} MB)",
+            nd.1,
+            amd.1,
+            t_nd / t_amd,
+            t_nd,
+            t_amd,
+            b_nd / b_amd,
+            b_nd / 1e6,
+            b_amd / 1e6
+        );
+    }
 }
 
 /// A case around a Gmsh mesh: every boundary part clamped and grounded.
@@ -107,23 +178,36 @@ fn mesh_case(path: &Path) -> Result<Case> {
     Ok(Case::from_text(Path::new("bench.toml"), &text, &[])?)
 }
 
-/// Assembles, analyses, factorises and solves once, then times faer's bare factorisation.
-fn measure(name: &str, problem: &Problem, lu: bool) -> Result<()> {
+/// Assembles, analyses, factorises and solves once with `ordering` on `threads` threads,
+/// then times faer's bare factorisation with the same analysis; prints the row.
+fn measure(
+    name: &str,
+    problem: &Problem,
+    ordering: &Ordering,
+    threads: usize,
+    lu: bool,
+) -> Result<Row> {
     let t = std::time::Instant::now();
     let dofs = DofMap::new(problem)?;
     let dof_map = t.elapsed().as_secs_f64();
-    let mut system = CoupledSystem::new(problem, dofs, &[], default_solver())?;
+    let solver = || LdltSolver::with_ordering(ordering.clone()).on_threads(threads);
+    let mut system = CoupledSystem::new(problem, dofs, &[], Box::new(solver()))?;
     let zero = vec![0.0; system.dofs().n_total()];
     let g = secant_moduli(problem, system.dofs(), &zero)?;
     system.factorize(problem, &g, &[])?;
     system.solve(None)?;
     let timings = system.timings();
+    let stats = system.solver_stats();
     let (pattern, assembly) = (dof_map + timings.pattern, timings.assembly);
     let matrix = system.matrix().ok_or_else(|| anyhow!("no matrix"))?;
-    let [faer_numeric, faer_solve] = bare_ldlt_seconds(matrix, system.rhs())?;
+    let mut bare = solver();
+    bare.analyze(system.assembler().pattern(), &system.dofs().signs())?;
+    let [faer_numeric, faer_solve] = bare.bare_seconds(matrix, system.rhs())?;
     say!(
-        "{:>16} {:>9} {:>10.4} {:>11.4} {:>11.4} {:>11.4} {:>9.4} {:>15.4} {:>13.4} {:>16.3} {:>20.3} {:>10} {:>10}",
+        "{:>16} {:>5} {:>7} {:>9} {:>10.4} {:>11.4} {:>11.4} {:>11.4} {:>9.4} {:>15.4} {:>13.4} {:>16.3} {:>20.3} {:>10} {:>11} {:>10.1}",
         name,
+        stats.ordering,
+        threads,
         system.dofs().n_free(),
         pattern,
         assembly,
@@ -135,12 +219,15 @@ fn measure(name: &str, problem: &Problem, lu: bool) -> Result<()> {
         assembly / timings.numeric,
         (timings.numeric + timings.solve) / (faer_numeric + faer_solve),
         matrix.lower_entries().count(),
-        system.factor_len()
+        stats.factor_len,
+        stats.factor_bytes / 1e6
     );
     if lu {
         let [s, n, v] = matrix.time_lu(system.rhs())?;
         say!(
-            "{:>16} {:>9} {:>10} {:>11} {:>11.4} {:>11.4} {:>9.4}   (faer sparse LU)",
+            "{:>16} {:>5} {:>7} {:>9} {:>10} {:>11} {:>11.4} {:>11.4} {:>9.4}   (faer sparse LU)",
+            "",
+            "",
             "",
             "",
             "",
@@ -150,7 +237,7 @@ fn measure(name: &str, problem: &Problem, lu: bool) -> Result<()> {
             v
         );
     }
-    Ok(())
+    Ok((timings.numeric, stats.factor_bytes))
 }
 
 /// Parses "NXxNY".
@@ -265,8 +352,10 @@ pub fn contact(targets: &[String]) -> Result<()> {
         "condensed: Γ3 nodes in the exact solver's dense problem / all Γ3 nodes; wall_s: \
          solve_contact with solver.method = \"newton\" (pattern, ordering, factorisations, \
          Schur complement, Newton, two solves per factorisation, KKT residual); factorisation_s: one plain \
-         pattern + assembly + symbolic + numeric LDLᵀ (AMD) of the same mesh; peak_MB: the \
-         process's peak resident memory; ratios: contact / factorisation"
+         pattern + assembly + symbolic + numeric LDLᵀ of the same mesh, the floor; both with \
+         solver.ordering = \"auto\" (the smaller factor of AMD and nested dissection) on {} \
+         threads; peak_MB: the process's peak resident memory; ratios: contact / factorisation",
+        rayon::current_num_threads()
     );
     Ok(())
 }

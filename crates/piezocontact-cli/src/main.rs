@@ -4,10 +4,9 @@
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use piezocontact::case::{Built, Case};
-use piezocontact::linalg::default_solver;
 use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
-use piezocontact::run::{ContactRun, StaticRun};
+use piezocontact::run::{self, ContactRun, StaticRun};
 use piezocontact_cli::progress::Reporter;
 use piezocontact_cli::{bench, print, reproduce, sweep};
 use piezocontact_cli::{say, say_err};
@@ -118,6 +117,10 @@ enum Command {
         /// Also time faer's sparse LU on the same matrices, for comparison.
         #[arg(long)]
         lu: bool,
+        /// The fill-reducing orderings to measure, comma separated: amd, nd (METIS's nested
+        /// dissection), auto (the smaller factor of both). Each runs on 1 thread and on all.
+        #[arg(long, value_delimiter = ',', default_value = "amd,nd", value_parser = bench::parse_ordering, conflicts_with = "contact")]
+        ordering: Vec<piezocontact::linalg::Ordering>,
         /// Time the exact contact solver (newton) on PV1 and PV2 (µ = k_e = 0.2, 0.6) of the
         /// paper's bar against one plain factorisation of the same mesh, each in a process of
         /// its own to measure its peak memory.
@@ -194,7 +197,7 @@ fn run(command: Command) -> Result<Outcome> {
         }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
-        Command::Bench { sizes, mesh, lu, contact, one } => {
+        Command::Bench { sizes, mesh, lu, contact, one, ordering } => {
             if let Some(spec) = one {
                 return bench::measure_one(&spec).map(|_| Outcome::Done);
             }
@@ -211,7 +214,10 @@ fn run(command: Command) -> Result<Outcome> {
                 Some(path) => bench::Target::Mesh(path),
                 None => bench::Target::Sizes(&sizes),
             };
-            bench::run(&target, lu).map(|_| Outcome::Done)
+            let all = rayon::current_num_threads();
+            let threads = if all > 1 { vec![1, all] } else { vec![1] };
+            let variants = bench::Variants { orderings: ordering, threads };
+            bench::run(&target, &variants, lu).map(|_| Outcome::Done)
         }
     }
 }
@@ -253,9 +259,19 @@ fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Resu
 }
 
 fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
+    let built = case.build()?;
+    let problem = built.problem.clone();
     let reporter = Reporter::new(case.method_name(), interval);
     let progress = |event| reporter.event(event);
-    let run = ContactRun::solve_with(case, default_solver(), &progress)?;
+    let run = match ContactRun::solve_built(case, built, case.linear_solver(), &progress) {
+        Ok(run) => run,
+        Err(e) => {
+            // Refused after validation (memory, a capability): summary.json says why.
+            let summary = run::refusal_summary(case, &problem, &e)?;
+            output::write_summary(out, &summary)?;
+            return Err(e.into());
+        }
+    };
     drop(reporter);
     run.write(case, out)?;
     print::contact_run(&run, case, out);

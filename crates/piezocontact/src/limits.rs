@@ -1,14 +1,31 @@
 //! The machine's limits that inputs are checked against before the work starts.
 
-/// Memory available to this process [bytes]: MemAvailable of /proc/meminfo, else 24 GiB.
+/// The environment variable that caps the memory a run may plan for [bytes], below what the
+/// machine has available (for a machine shared with other work).
+pub const MEMORY_LIMIT_VAR: &str = "PIEZOCONTACT_MEMORY_LIMIT";
+
+/// Memory available to this process [bytes]: MemAvailable of /proc/meminfo (else 24 GiB),
+/// or less when [`MEMORY_LIMIT_VAR`] says so.
 pub fn available_memory() -> f64 {
-    std::fs::read_to_string("/proc/meminfo")
+    let machine = std::fs::read_to_string("/proc/meminfo")
         .ok()
         .and_then(|t| {
             let line = t.lines().find(|l| l.starts_with("MemAvailable:"))?.to_string();
             line.split_whitespace().nth(1)?.parse::<f64>().ok()
         })
-        .map_or(24.0 * 2f64.powi(30), |kib| kib * 1024.0)
+        .map_or(24.0 * 2f64.powi(30), |kib| kib * 1024.0);
+    let cap = std::env::var(MEMORY_LIMIT_VAR).ok().and_then(|v| v.trim().parse::<f64>().ok());
+    cap.filter(|c| *c > 0.0).map_or(machine, |c| c.min(machine))
+}
+
+/// Bytes in the unit that reads best: "12.3 GiB", "456.7 MiB".
+pub fn bytes_text(bytes: f64) -> String {
+    let gib = 2f64.powi(30);
+    if bytes >= gib {
+        format!("{:.1} GiB", bytes / gib)
+    } else {
+        format!("{:.1} MiB", bytes / 2f64.powi(20))
+    }
 }
 
 /// The one memory check: refuses work that needs `bytes` when `available` bytes are free,
@@ -17,10 +34,9 @@ pub fn check_memory(bytes: f64, available: f64, what: &str, fix: &str) -> crate:
     if bytes <= available {
         return Ok(());
     }
-    let gib = 2f64.powi(30);
     Err(crate::Error::Input(format!(
-        "{what} would need about {:.1} GiB, more than the {:.1} GiB available; {fix}",
-        bytes / gib,
-        available / gib
+        "{what} would need about {}, more than the {} available; {fix}",
+        bytes_text(bytes),
+        bytes_text(available)
     )))
 }

@@ -7,7 +7,7 @@ use crate::case::{Built, Case};
 use crate::contact::{ContactModel, NodeStatus};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
-use crate::linalg::{LinearSolver, default_solver};
+use crate::linalg::LinearSolver;
 use crate::output::files;
 use crate::output::plot::{self, MapLabels};
 use crate::output::vtu::Field;
@@ -40,7 +40,7 @@ impl ContactRun {
     /// Solves a case that has a `[contact]` table and contact parts, with the default linear
     /// solver.
     pub fn solve(case: &Case) -> Result<Self> {
-        Self::solve_with(case, default_solver(), &|_| {})
+        Self::solve_with(case, case.linear_solver(), &|_| {})
     }
 
     /// [`ContactRun::solve`] with the caller's linear `solver`, telling `progress` of each
@@ -50,8 +50,18 @@ impl ContactRun {
         solver: Box<dyn LinearSolver>,
         progress: &dyn Fn(Progress),
     ) -> Result<Self> {
+        Self::solve_built(case, case.build()?, solver, progress)
+    }
+
+    /// [`ContactRun::solve_with`] on a case already built.
+    pub fn solve_built(
+        case: &Case,
+        built: Built,
+        solver: Box<dyn LinearSolver>,
+        progress: &dyn Fn(Progress),
+    ) -> Result<Self> {
         let start = Instant::now();
-        let Built { problem, model, settings, warnings } = case.build()?;
+        let Built { problem, model, settings, warnings } = built;
         let model = model.ok_or_else(|| {
             Error::Input(format!("{}: the case has no [contact] table", case.path.display()))
         })?;
@@ -175,7 +185,8 @@ impl StaticRun {
     pub fn solve(case: &Case) -> Result<Self> {
         let start = Instant::now();
         let problem = case.problem()?;
-        let solution = solve_without_contact(&problem).map_err(|e| case.context(e))?;
+        let solution =
+            solve_without_contact(&problem, case.linear_solver()).map_err(|e| case.context(e))?;
         let (dofs, x) = (&solution.dofs, &solution.x);
         let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
         let max_u = (0..n)
@@ -215,6 +226,19 @@ impl StaticRun {
         let (problem, solution) = (&self.problem, &self.solution);
         files::write_results(out, &self.summary(case), problem, &solution.dofs, &solution.x, &[])
     }
+}
+
+/// The summary.json of a validated case that the solver refused before it had a result (a
+/// factor too large for the memory, a backend without a capability the method needs):
+/// `converged` false and the `failure`, with the fields common to every summary.
+pub fn refusal_summary(case: &Case, problem: &Problem, failure: &Error) -> Result<Value> {
+    let dofs = DofMap::new(problem)?;
+    let mut summary = common_summary(case, problem, &dofs);
+    merge(
+        &mut summary,
+        json!({ "converged": false, "failure": failure.to_string(), "method": case.method_name() }),
+    );
+    Ok(summary)
 }
 
 /// Fields common to every summary.json.

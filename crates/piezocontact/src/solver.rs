@@ -3,10 +3,10 @@
 //! current factorisation so that the contact algorithms reuse them (model §7). The
 //! factorisation is the caller's backend, behind the [`LinearSolver`] seam.
 
-use crate::assembly::{Assembler, NodalBlock, load_vector, secant_moduli};
+use crate::assembly::{Assembler, Linearisation, NodalBlock, load_vector, secant_moduli};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
-use crate::linalg::{DenseMatrix, LinearSolver, SchurComplement, SymmetricMatrix, default_solver};
+use crate::linalg::{DenseMatrix, LinearSolver, SchurComplement, SolverStats, SymmetricMatrix};
 use crate::problem::Problem;
 use std::time::Instant;
 
@@ -131,8 +131,20 @@ impl CoupledSystem {
         moduli: &[f64],
         blocks: &[NodalBlock],
     ) -> Result<()> {
+        let secant = Linearisation { moduli: moduli.to_vec(), tangent: Vec::new() };
+        self.factorize_linearised(problem, &secant, blocks)
+    }
+
+    /// [`CoupledSystem::factorize`] with Hencky's law linearised at x_n (secant moduli and
+    /// tangent parts); the right-hand side includes (K_T − K_sec) x_n.
+    pub fn factorize_linearised(
+        &mut self,
+        problem: &Problem,
+        linearisation: &Linearisation,
+        blocks: &[NodalBlock],
+    ) -> Result<()> {
         let t = Instant::now();
-        let (matrix, lifting) = self.assembler.matrix(problem, moduli, blocks)?;
+        let (matrix, lifting) = self.assembler.linearised_matrix(problem, linearisation, blocks)?;
         self.rhs = self.load.iter().zip(&lifting).map(|(f, l)| f + l).collect();
         self.assembly_seconds += t.elapsed().as_secs_f64();
         self.solver.factorize(&matrix)?;
@@ -180,9 +192,9 @@ impl CoupledSystem {
         schur_capability(self.solver.as_mut())?.schur_complement()
     }
 
-    /// Number of stored values of the factor.
-    pub fn factor_len(&self) -> usize {
-        self.solver.stats().factor_len
+    /// The linear solver's counts, times, factor size and ordering.
+    pub fn solver_stats(&self) -> SolverStats {
+        self.solver.stats()
     }
 
     /// Timings so far.
@@ -221,10 +233,13 @@ pub struct StaticSolution {
     pub timings: Timings,
 }
 
-/// Solves the coupled problem without contact, with B̌(x_0) at x_0 = 0 (g = g(0) = µ1: the
+/// Solves the coupled problem without contact with the caller's `solver`, with B̌(x_0) at x_0 = 0 (g = g(0) = µ1: the
 /// linear problem; the Hencky secant update comes with the contact algorithms).
-pub fn solve_without_contact(problem: &Problem) -> Result<StaticSolution> {
-    let mut system = CoupledSystem::new(problem, DofMap::new(problem)?, &[], default_solver())?;
+pub fn solve_without_contact(
+    problem: &Problem,
+    solver: Box<dyn LinearSolver>,
+) -> Result<StaticSolution> {
+    let mut system = CoupledSystem::new(problem, DofMap::new(problem)?, &[], solver)?;
     let zero = vec![0.0; system.dofs().n_total()];
     let moduli = secant_moduli(problem, system.dofs(), &zero)?;
     system.factorize(problem, &moduli, &[])?;

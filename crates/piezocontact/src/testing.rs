@@ -1,7 +1,7 @@
 //! Fixtures of the unit tests: the paper's cases on coarse meshes, built as a run builds them.
 
 use crate::algorithm::{Setup, Step};
-use crate::assembly::MassNorm;
+use crate::assembly::{Linearisation, MassNorm};
 use crate::case::{Built, Case};
 use crate::contact::model::nodal_mu;
 use crate::contact::{ContactModel, ContactSurface, Mollifier};
@@ -66,12 +66,13 @@ impl Fixture {
         Setup { problem: self.problem(), dofs, surface: &self.surface, model: self.model() }
     }
 
-    /// An outer step from x_n = `previous` with s_n = `friction_bound` and the `moduli`.
+    /// An outer step from x_n = `previous` with s_n = `friction_bound` and Hencky's law
+    /// `linearisation`.
     pub fn step<'a>(
         &'a self,
         previous: &'a [f64],
         friction_bound: &'a [f64],
-        moduli: &'a [f64],
+        linearisation: &'a Linearisation,
     ) -> Step<'a> {
         Step {
             problem: self.problem(),
@@ -82,7 +83,7 @@ impl Fixture {
             mollifier: &self.mollifier,
             previous,
             friction_bound,
-            moduli,
+            linearisation,
             progress: &|_| {},
         }
     }

@@ -181,3 +181,33 @@ fn a_killed_run_leaves_only_complete_files() {
     }
     assert!(killed_while_running >= 2, "the runs ended before they could be killed");
 }
+
+/// A factor that does not fit in the memory (capped here by PIEZOCONTACT_MEMORY_LIMIT) is
+/// refused after the symbolic analysis, before any numeric work: exit 1, both sizes and the
+/// ways out in the message, summary.json written with the failure and nothing else.
+#[test]
+fn a_factor_too_large_for_the_memory_is_refused_before_it_is_computed() {
+    let out = temp_dir("memory");
+    let o = command()
+        .env("PIEZOCONTACT_MEMORY_LIMIT", "3000000")
+        .args(["run", "cases/indentation-3d.toml", "--out", out.to_str().unwrap()])
+        .args(["--set", "mesh.file=\"../meshes/indent-3d-h0.05.msh\""])
+        .args(["--set", "solver.method=\"uzawa\""]) // no dense condensation to refuse first
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(
+        t.contains("the sparse LDLᵀ factor of")
+            && t.contains("would need about")
+            && t.contains("more than the 2.9 MiB available")
+            && t.contains("solver.ordering"),
+        "{t}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["converged"], false);
+    assert!(summary["failure"].as_str().unwrap().contains("would need about"), "{summary}");
+    assert_eq!(summary["dim"], 3);
+    assert!(!out.join("solution.vtu").exists() && !out.join("contact.csv").exists());
+}

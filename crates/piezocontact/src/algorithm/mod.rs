@@ -5,11 +5,13 @@
 //! solve each outer step, and to say how its stops read; adding a method touches the method's
 //! own module and the case's `solver.method` table.
 //!
-//! One outer step n: update Hencky's secant moduli at x_n and factorise B̌(x_n) (only when
-//! they changed); solve the contact problem of the step; compute σ_ν and the friction bound
-//! s_{n+1} = µ|Rσ_ν(x_{n+1})| ([`crate::contact::model`]); stop on the criteria (6.13)/(6.15)
-//! when the method lags the contact terms, or when the moduli no longer change when it does
-//! not. The reported number of outer iterations is n + 1 at the stop, as Table 2 counts.
+//! One outer step n: linearise Hencky's law at x_n — the secant moduli of the paper's fixed
+//! point when the method lags the contact terms, the consistent tangent (a Newton iteration on
+//! the law) when it solves them exactly (model §13) — and factorise B̌(x_n) (only when the
+//! linearisation changed); solve the contact problem of the step; compute σ_ν and the
+//! friction bound s_{n+1} = µ|Rσ_ν(x_{n+1})| ([`crate::contact::model`]); stop on the criteria
+//! (6.13)/(6.15) when the method lags the contact terms, or when the linearisation no longer
+//! changes (or the step is below the tolerance) when it does not. The reported number of outer iterations is n + 1 at the stop, as Table 2 counts.
 //! Hitting an iteration cap is not a silent stop: the result carries
 //! [`Error::NotConverged`] naming the loop and its last criterion. A growing criterion
 //! ([`Error::Diverged`]), a singular matrix or a NaN ([`Error::NumericalFailure`]) stop the run
@@ -20,7 +22,7 @@ pub mod newton;
 pub mod residual;
 pub mod uzawa;
 
-use crate::assembly::{MassNorm, NodalBlock, secant_moduli};
+use crate::assembly::{Linearisation, MassNorm, NodalBlock, secant_moduli};
 use crate::contact::model::{friction_bound, nodal_mu, normal_stress};
 use crate::contact::{ContactModel, ContactState, ContactSurface, Mollifier, NodeStatus};
 use crate::dofs::DofMap;
@@ -37,9 +39,9 @@ pub trait InnerMethod: std::fmt::Debug + Send + Sync {
     /// The same method and parameters with no state, for a new solve.
     fn fresh(&self) -> Box<dyn InnerMethod>;
     /// Whether the outer loop lags the contact terms — the friction bound s, the compliance
-    /// h_ν p_ν and the conduction ψ φ_L at x_n — as Algorithms 1 and 3 do (true), or the
-    /// method solves them at the solution, so that the outer loop only updates Hencky's
-    /// secant moduli (false).
+    /// h_ν p_ν and the conduction ψ φ_L at x_n — as Algorithms 1 and 3 do, with Hencky's
+    /// secant (true), or the method solves them at the solution, so that the outer loop only
+    /// iterates on Hencky's law, by Newton with its consistent tangent (false).
     fn lags_contact(&self) -> bool;
     /// The constant c > 0 [stress/length] of the complementarity functions by which the KKT
     /// residual measures the contact and friction conditions (model §10).
@@ -162,8 +164,8 @@ pub struct Step<'a> {
     pub previous: &'a [f64],
     /// s_n on the Γ3 nodes: the friction bound at x_n [stress] (zero for PV1).
     pub friction_bound: &'a [f64],
-    /// Hencky's secant moduli at x_n, one per element, with which B̌ was factorised [stress].
-    pub moduli: &'a [f64],
+    /// Hencky's law linearised at x_n, with which B̌ was factorised.
+    pub linearisation: &'a Linearisation,
     /// Told of every inner iteration.
     pub progress: &'a dyn Fn(Progress),
 }
@@ -264,40 +266,39 @@ pub fn solve_contact_with(
     let mut system = method.prepare(Setup { problem, dofs, surface: &surface, model }, solver)?;
     let fixed = Fixed::new(problem, &surface, model)?;
     let mut solution = ContactSolution::start(surface, system.dofs().n_total());
-    let mut moduli = secant_moduli(problem, system.dofs(), &solution.x)?;
-    let mut factorised_with: Option<Vec<f64>> = None;
+    let lags = method.lags_contact();
+    let mut linearisation = linearise(problem, system.dofs(), &solution.x, lags)?;
+    let mut factorised_with: Option<Linearisation> = None;
     for n in 1..=settings.max_outer {
         progress(Progress::Outer { step: n, max: settings.max_outer });
-        if factorised_with.as_ref() != Some(&moduli) {
-            if let Err(e) = system.factorize(problem, &moduli, method.blocks()) {
+        if factorised_with.as_ref() != Some(&linearisation) {
+            if let Err(e) = system.factorize_linearised(problem, &linearisation, method.blocks()) {
                 solution.failure = Some(factorisation_failure(n, e));
                 break;
             }
-            factorised_with = Some(moduli.clone());
+            factorised_with = Some(linearisation.clone());
         }
         let s_n = solution.s.clone();
-        let step = fixed.step(problem, model, &solution, &s_n, &moduli, progress);
+        let step = fixed.step(problem, model, &solution, &s_n, &linearisation, progress);
         let inner = method.solve(&step, &mut system)?;
         let failure = inner_failure(&method.stop_context(n, model.pv2.is_some()), &inner);
         solution.outer_iterations = n;
-        let x_previous = solution.record(inner, s_n, method.lags_contact(), model, &fixed, &system);
+        let x_previous = solution.record(inner, s_n, lags, model, &fixed, &system);
         if failure.is_some() {
             solution.failure = failure;
             break;
         }
-        let moduli_next = secant_moduli(problem, system.dofs(), &solution.x)?;
-        let changed = moduli_next != moduli;
+        let next = linearise(problem, system.dofs(), &solution.x, lags)?;
+        let changed = next != linearisation;
         let criterion =
             fixed.outer_criterion(problem, &system, &solution, &x_previous, changed, &*method);
         solution.outer_history.push(criterion);
-        moduli = moduli_next;
+        linearisation = next;
         if criterion < method.outer_tolerance() {
             solution.converged = true;
             break;
         }
-        if method.lags_contact()
-            && let Some(failure) = outer_failure(model, &solution)
-        {
+        if lags && let Some(failure) = outer_failure(model, &solution) {
             solution.failure = Some(failure);
             break;
         }
@@ -332,7 +333,7 @@ impl Fixed {
         model: &'a ContactModel,
         solution: &'a ContactSolution,
         friction_bound: &'a [f64],
-        moduli: &'a [f64],
+        linearisation: &'a Linearisation,
         progress: &'a dyn Fn(Progress),
     ) -> Step<'a> {
         Step {
@@ -344,7 +345,7 @@ impl Fixed {
             mollifier: &self.mollifier,
             previous: &solution.x,
             friction_bound,
-            moduli,
+            linearisation,
             progress,
         }
     }
@@ -352,27 +353,40 @@ impl Fixed {
     /// The outer criterion after a step. With the contact terms lagged: (6.13)
     /// ‖s_{n+1} − s_n‖/‖s_{n+1}‖ for PV2 with s ≢ 0, else (6.15) ‖x_{n+1} − x_n‖/‖x_{n+1}‖,
     /// and the larger of both while Hencky's moduli still change. Without lagging, the loop is
-    /// the secant iteration of Hencky's law alone, done when the moduli at the solution are
-    /// those it was solved with (criterion 0), else (6.15).
+    /// the Newton iteration of Hencky's law alone, done when the linearisation at the solution
+    /// is the one it was solved with (criterion 0: the law is linear or secant there), else
+    /// (6.15).
     fn outer_criterion(
         &self,
         problem: &Problem,
         system: &CoupledSystem,
         solution: &ContactSolution,
         x_previous: &[f64],
-        moduli_changed: bool,
+        linearisation_changed: bool,
         method: &dyn InnerMethod,
     ) -> f64 {
         let x_criterion =
             relative_change(problem, system.dofs(), &self.mass, &solution.x, x_previous);
         if !method.lags_contact() {
-            return if moduli_changed { x_criterion } else { 0.0 };
+            return if linearisation_changed { x_criterion } else { 0.0 };
         }
         match solution.friction_bound_change() {
-            Some(s_criterion) if moduli_changed => s_criterion.max(x_criterion),
+            Some(s_criterion) if linearisation_changed => s_criterion.max(x_criterion),
             Some(s_criterion) => s_criterion,
             None => x_criterion,
         }
+    }
+}
+
+/// Hencky's law at x_n as the outer loop uses it: the secant (model §7) when the method lags
+/// the contact terms — the paper's fixed point — and else the consistent tangent with the
+/// secant as its fallback (model §13), a Newton iteration on the law around an exact inner
+/// solve.
+fn linearise(problem: &Problem, dofs: &DofMap, x: &[f64], lags: bool) -> Result<Linearisation> {
+    if lags {
+        Ok(Linearisation { moduli: secant_moduli(problem, dofs, x)?, tangent: Vec::new() })
+    } else {
+        Linearisation::tangent(problem, dofs, x)
     }
 }
 
@@ -654,7 +668,7 @@ mod tests {
         assert_eq!(solution.timings.numeric_count, 1);
         let problem =
             built(PAPER_71, &["mesh.nx=12", "mesh.ny=2", "material.law=\"linear\""]).problem;
-        assert_eq!(solution.x, solve_without_contact(&problem).unwrap().x);
+        assert_eq!(solution.x, solve_without_contact(&problem, default_solver()).unwrap().x);
         // The lagged friction bound: s_used is the s of the step before.
         assert!(solution.s_used.iter().all(|s| *s == 0.0));
     }

@@ -87,7 +87,7 @@ pub struct Parameters {
 }
 
 /// The exact solver as an inner method: it owns its condensation, and the outer loop only
-/// updates Hencky's secant moduli around it.
+/// linearises Hencky's law around it (model §13).
 #[derive(Clone, Debug)]
 pub struct Newton {
     parameters: Parameters,
@@ -188,7 +188,7 @@ impl InnerMethod for Newton {
 impl Newton {
     /// Solves an outer step with the factorised `system` (ordered with `condensed` last),
     /// growing the condensation until no node left out touches (model §11). Each growth
-    /// orders the new condensed unknowns last, factorises B̌ with the step's moduli again,
+    /// orders the new condensed unknowns last, factorises B̌ with the step's linearisation again,
     /// and restarts Newton from the last solution; the steps and histories of all rounds are
     /// summed.
     fn solve_growing(
@@ -217,7 +217,7 @@ impl Newton {
             grown.check_memory(crate::limits::available_memory())?;
             *condensed = grown;
             system.put_last(&condensed.free)?;
-            system.factorize(step.problem, step.moduli, &[])?;
+            system.factorize_linearised(step.problem, step.linearisation, &[])?;
             let start = Some(result.x.as_slice());
             let next = Semismooth { step, condensed, c_factor, max_inner, start }.run(system)?;
             let history = [std::mem::take(&mut result.history), next.history].concat();
@@ -592,7 +592,7 @@ impl<'a> Local<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::assembly::secant_moduli;
+    use crate::assembly::{Linearisation, secant_moduli};
     use crate::linalg::default_solver;
     use crate::testing::{Fixture, PAPER_72};
 
@@ -679,7 +679,8 @@ mod tests {
         let mut system = method.prepare(fixture.setup(), default_solver()).unwrap();
         let zero = vec![0.0; system.dofs().n_total()];
         let moduli = secant_moduli(fixture.problem(), system.dofs(), &zero).unwrap();
-        system.factorize(fixture.problem(), &moduli, &[]).unwrap();
+        let moduli = Linearisation { moduli, tangent: Vec::new() };
+        system.factorize_linearised(fixture.problem(), &moduli, &[]).unwrap();
         let s_n = vec![0.0; fixture.surface.len()];
         let step = fixture.step(&zero, &s_n, &moduli);
         let condensed = method.condensed.clone().unwrap();

@@ -279,7 +279,7 @@ fn lagged_loads(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::assembly::secant_moduli;
+    use crate::assembly::{Linearisation, secant_moduli};
     use crate::contact::model::normal_stress;
     use crate::linalg::default_solver;
     use crate::testing::{Fixture, PAPER_71, PAPER_72};
@@ -321,7 +321,8 @@ mod tests {
         let mut system = uzawa.prepare(fixture.setup(), default_solver()).unwrap();
         let zero = vec![0.0; system.dofs().n_total()];
         let moduli = secant_moduli(problem, system.dofs(), &zero).unwrap();
-        system.factorize(problem, &moduli, uzawa.blocks()).unwrap();
+        let moduli = Linearisation { moduli, tangent: Vec::new() };
+        system.factorize_linearised(problem, &moduli, uzawa.blocks()).unwrap();
         let s_n = vec![0.05; fixture.surface.len()];
         let step = fixture.step(&zero, &s_n, &moduli);
         let first = uzawa.solve(&step, &mut system).unwrap();

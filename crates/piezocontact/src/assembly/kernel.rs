@@ -15,6 +15,22 @@ pub const M_MAX: usize = 16;
 /// An element matrix (first M × M entries used).
 pub type ElementMatrix = [[f64; M_MAX]; M_MAX];
 
+/// The rank-one part of Hencky's consistent tangent on a simplex, `coefficient` = 4 g'(t)
+/// [stress] and `deviator` = ε^D(u_n) ([`super::Linearisation`]): the vector a with
+/// a_(a,i) = Σ_j ε^D_ij ∂_jN_a, so that the uu block gains |K| coefficient a aᵀ and aᵀ u_e = t.
+pub fn tangent_vector<const D: usize, const N: usize>(
+    s: &Simplex<D, N>,
+    deviator: &[[f64; 3]; 3],
+) -> [f64; M_MAX] {
+    let mut a = [0.0; M_MAX];
+    for node in 0..N {
+        for i in 0..D {
+            a[node * D + i] = (0..D).map(|j| deviator[i][j] * s.grad[node][j]).sum();
+        }
+    }
+    a
+}
+
 /// The element matrix of B̌ on a simplex with secant modulus `g` [stress].
 ///
 /// ```text

@@ -23,8 +23,8 @@ pub mod kernel;
 pub mod load;
 
 pub use fields::{
-    ElementFields, MassNorm, cell_gradients, element_fields, internal_force, secant_moduli,
-    x_norm_squared,
+    ElementFields, Linearisation, MassNorm, cell_gradients, element_fields, internal_force,
+    secant_moduli, x_norm_squared,
 };
 pub use load::load_vector;
 
@@ -33,7 +33,7 @@ use crate::error::{Error, Result};
 use crate::linalg::{SymmetricMatrix, SymmetricPattern};
 use crate::mesh::Mesh;
 use crate::problem::Problem;
-use kernel::{element_matrix, local_dofs, simplex};
+use kernel::{element_matrix, local_dofs, simplex, tangent_vector};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -127,6 +127,20 @@ impl Assembler {
         moduli: &[f64],
         blocks: &[NodalBlock],
     ) -> Result<(SymmetricMatrix, Vec<f64>)> {
+        let secant = Linearisation { moduli: moduli.to_vec(), tangent: Vec::new() };
+        self.linearised_matrix(problem, &secant, blocks)
+    }
+
+    /// [`Assembler::matrix`] for Hencky's law linearised at x_n: the secant moduli plus the
+    /// rank-one parts of the tangent; the right-hand side gains (K_T − K_sec) x_n (with the
+    /// lifting), so that K_T x = f̌ + (K_T − K_sec) x_n is the Newton step of the law.
+    pub fn linearised_matrix(
+        &self,
+        problem: &Problem,
+        linearisation: &Linearisation,
+        blocks: &[NodalBlock],
+    ) -> Result<(SymmetricMatrix, Vec<f64>)> {
+        let moduli = &linearisation.moduli;
         if !blocks.is_empty() && blocks.len() != self.block_nodes.len() {
             return Err(Error::Length {
                 what: "nodal blocks".into(),
@@ -148,7 +162,9 @@ impl Assembler {
             group.par_chunks(PER_TASK).try_for_each(|cells| {
                 cells.iter().try_for_each(|&c| {
                     let slots = &self.cell_slots[self.cell_offsets[c]..self.cell_offsets[c + 1]];
-                    with_simplex!(dim, add_cell(problem, &self.dofs, moduli[c], c, slots, &sums))
+                    let cell =
+                        Cell { c, modulus: moduli[c], tangent: linearisation.tangent.get(c) };
+                    with_simplex!(dim, add_cell(problem, &self.dofs, &cell, slots, &sums))
                 })
             })?;
         }
@@ -299,7 +315,8 @@ fn lower_pattern(mesh: &Mesh, dofs: &DofMap) -> Result<SymmetricPattern> {
         out.iter_mut().zip(rows_of(j)).for_each(|(slot, k)| *slot = k);
         Ok(())
     })?;
-    SymmetricPattern::from_columns(n, col_ptr, row_idx)
+    let nodes = global_of_free.iter().map(|&dof| node_of(dof)).collect();
+    SymmetricPattern::from_columns(n, col_ptr, row_idx)?.with_groups(nodes)
 }
 
 /// Splits the cells into groups in which no two cells share a node (greedy colouring in cell
@@ -355,18 +372,40 @@ fn cell_slots_into<const D: usize, const N: usize>(
     Ok(())
 }
 
-/// Adds the element matrix of cell `c` at its `slots`: K_pq, times the prescribed value of the
-/// column where it is constrained (the lifting).
+/// What [`add_cell`] adds for one cell: its index, its secant modulus g_e [stress] and the
+/// rank-one part of the tangent, if any ([`Linearisation`]).
+struct Cell<'a> {
+    c: usize,
+    modulus: f64,
+    tangent: Option<&'a (f64, [[f64; 3]; 3])>,
+}
+
+/// Adds the element matrix of a cell at its `slots`: K_pq, times the prescribed value of the
+/// column where it is constrained (the lifting). With a tangent part |K| β a aᵀ (β = 4 g'),
+/// adds it to the uu block, and −|K| β t a (t = aᵀ u_e) to the lifting's slots, which the
+/// right-hand side takes with the opposite sign.
 fn add_cell<const D: usize, const N: usize>(
     problem: &Problem,
     dofs: &DofMap,
-    g: f64,
-    c: usize,
+    cell: &Cell,
     slots: &[u32],
     sums: &[AtomicU64],
 ) -> Result<()> {
-    let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, g);
-    let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
+    let s = simplex::<D, N>(problem, cell.c)?;
+    let mut k = element_matrix(&problem.material, &s, cell.modulus);
+    let global = local_dofs::<D, N>(dofs, problem.mesh.cell(cell.c));
+    if let Some(&(beta, deviator)) = cell.tangent.filter(|(beta, _)| *beta != 0.0) {
+        let a = tangent_vector::<D, N>(&s, &deviator);
+        let t: f64 = deviator.iter().flatten().map(|v| v * v).sum();
+        let lifting_start = sums.len() - dofs.n_free();
+        for p in 0..N * D {
+            (0..N * D).for_each(|q| k[p][q] += s.measure() * beta * a[p] * a[q]);
+            let row = dofs.free_index(global[p]);
+            if row != CONSTRAINED {
+                add(&sums[lifting_start + row], -s.measure() * beta * t * a[p]);
+            }
+        }
+    }
     for (&slot, (p, q, _, col)) in slots.iter().zip(local_pairs(dofs, global, N * (D + 1))) {
         let value = if col == CONSTRAINED { k[p][q] * dofs.prescribed(global[q]) } else { k[p][q] };
         add(&sums[slot as usize], value);

@@ -22,6 +22,7 @@ pub mod validate;
 use crate::algorithm::Settings;
 use crate::contact::ContactModel;
 use crate::error::{Error, Result};
+use crate::linalg::{LdltSolver, LinearSolver, Ordering};
 use crate::problem::Problem;
 use overrides::apply_override;
 pub use overrides::key_line;
@@ -102,6 +103,17 @@ impl Case {
     pub fn problem(&self) -> Result<Problem> {
         self.contact_settings()?;
         self.problem_checked()
+    }
+
+    /// The linear solver the case asks for: sparse LDLᵀ with `solver.ordering`, on the run's
+    /// threads.
+    pub fn linear_solver(&self) -> Box<dyn LinearSolver> {
+        let ordering = match self.file.solver.ordering.unwrap_or(DEFAULTS.ordering) {
+            OrderingKey::Auto => Ordering::Auto,
+            OrderingKey::Nd => Ordering::NestedDissection,
+            OrderingKey::Amd => Ordering::Amd,
+        };
+        Box::new(LdltSolver::with_ordering(ordering))
     }
 
     /// The name of the inner method the case chooses (`solver.method`).

@@ -43,6 +43,8 @@ pub struct Defaults {
     pub max_outer: usize,
     /// solver.max_condensed [nodes].
     pub max_condensed: usize,
+    /// solver.ordering.
+    pub ordering: OrderingKey,
 }
 
 /// The defaults: the paper's values for its constants and for Uzawa, round-off for Newton,
@@ -66,6 +68,7 @@ pub const DEFAULTS: Defaults = Defaults {
     max_newton: 100,
     max_outer: 100,
     max_condensed: 2000,
+    ordering: OrderingKey::Auto,
 };
 
 /// The case's consistent unit system, used for labels only (model §9): the numbers in the file
@@ -384,6 +387,19 @@ pub enum MethodKey {
     Uzawa,
 }
 
+/// The fill-reducing ordering of the sparse factorisation in the case file.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum OrderingKey {
+    /// Both symbolic analyses, and the smaller factor (the default).
+    #[default]
+    Auto,
+    /// METIS's nested dissection of the mesh nodes.
+    Nd,
+    /// Approximate minimum degree.
+    Amd,
+}
+
 /// `[solver]`: the algorithms' parameters (model §7). Defaults: [`DEFAULTS`].
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -406,6 +422,9 @@ pub struct SolverSection {
     /// The most Γ3 nodes the exact solver condenses into its dense problem; default 2000
     /// (newton only).
     pub max_condensed: Option<usize>,
+    /// The fill-reducing ordering of the factorisation: "auto" (default: AMD and nested
+    /// dissection both analysed, the smaller factor kept), "nd" or "amd".
+    pub ordering: Option<OrderingKey>,
 }
 
 /// A whole case file.

@@ -2,6 +2,7 @@
 //! [`LinearSolver`] seam, with the [`SchurComplement`] capability read off the factor's
 //! trailing block.
 
+use super::ordering;
 use super::{DenseMatrix, LinearSolver, Ordering, SchurComplement, SolverStats, SymmetricMatrix};
 use super::{SymmetricPattern, check_length};
 use crate::error::{Error, Result};
@@ -10,7 +11,6 @@ use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::perm::PermRef;
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLdltRef;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
@@ -28,10 +28,8 @@ const PIVOT_MARKER: f64 = 1e300;
 pub(super) fn symbolic_cholesky(
     pattern: faer::sparse::SymbolicSparseColMatRef<'_, usize>,
     ordering: SymmetricOrdering<'_, usize>,
+    supernodal: bool,
 ) -> Result<SymbolicCholesky<usize>> {
-    // A caller's ordering asks for the factor's trailing block (the Schur complement), which
-    // is read from supernodes.
-    let supernodal = matches!(ordering, SymmetricOrdering::Custom(_));
     let params = CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: if supernodal {
             SupernodalThreshold::FORCE_SUPERNODAL
@@ -42,30 +40,6 @@ pub(super) fn symbolic_cholesky(
     };
     factorize_symbolic_cholesky(pattern, Side::Lower, ordering, params)
         .map_err(|e| Error::LinearAlgebra(format!("symbolic analysis: {e:?}")))
-}
-
-/// An ordering that eliminates every unknown not in `last` first, in the order an
-/// approximate minimum degree ordering of the whole matrix gives them, and then the unknowns
-/// of `last` in the given order. (Ordering the rest by its own minimum degree gave 5 % more
-/// fill on the paper's bar with Γ3 last.)
-fn ordering_with_last(pattern: &SymmetricPattern, last: &[usize]) -> Result<Ordering> {
-    let n = pattern.n();
-    let mut is_last = vec![false; n];
-    for &i in last {
-        if i >= n || is_last[i] {
-            return Err(Error::LinearAlgebra(format!("unknown {i} is repeated or not below {n}")));
-        }
-        is_last[i] = true;
-    }
-    let a = pattern.symbolic();
-    let (mut order, mut inverse) = (vec![0usize; n], vec![0usize; n]);
-    let mut mem = MemBuffer::try_new(amd::order_scratch::<usize>(n, a.row_idx().len()))
-        .map_err(|_| Error::LinearAlgebra("out of memory for the ordering".into()))?;
-    amd::order(&mut order, &mut inverse, a, Default::default(), MemStack::new(&mut mem))
-        .map_err(|e| Error::LinearAlgebra(format!("ordering: {e:?}")))?;
-    order.retain(|&i| !is_last[i]);
-    order.extend_from_slice(last);
-    Ok(Ordering::Custom(order))
 }
 
 /// Sparse LDLᵀ of a symmetric quasi-definite matrix (faer's supernodal or simplicial LDLᵀ).
@@ -81,20 +55,33 @@ pub struct LdltSolver {
     stats: SolverStats,
     /// The ordering of the next analysis.
     ordering: Ordering,
+    /// The threads of the numeric factorisation and the solves.
+    threads: usize,
     /// The number of trailing unknowns kept for the Schur complement (0: none).
     last: usize,
 }
 
 impl LdltSolver {
-    /// A solver with AMD and nothing analysed yet.
+    /// A solver with the [`Ordering::Auto`] choice, on every thread of the run, with nothing
+    /// analysed yet.
     pub fn new() -> Self {
-        Self::default()
+        Self::with_ordering(Ordering::Auto)
     }
 
     /// A solver whose analyses use `ordering` (a [`Ordering::Custom`] must be a permutation
     /// of the unknowns of the pattern it analyses).
     pub fn with_ordering(ordering: Ordering) -> Self {
-        Self { ordering, ..Self::default() }
+        Self { ordering, threads: rayon::current_num_threads(), ..Self::default() }
+    }
+
+    /// The same solver on `threads` threads (at least 1).
+    pub fn on_threads(self, threads: usize) -> Self {
+        Self { threads: threads.max(1), ..self }
+    }
+
+    /// faer's parallelism with the solver's threads.
+    fn par(&self) -> Par {
+        if self.threads <= 1 { Par::Seq } else { Par::rayon(self.threads) }
     }
 
     /// The entries of D (supernodal: the diagonals of the supernodes' blocks), or every
@@ -136,34 +123,98 @@ fn permutation(order: &[usize], n: usize) -> Result<(Vec<usize>, Vec<usize>)> {
 }
 
 impl LdltSolver {
-    /// The symbolic analysis of `pattern` with `ordering`.
+    /// The symbolic analysis of `pattern` with the solver's ordering and the unknowns `last`
+    /// kept last, then the check that the factor fits in memory, before any numeric work.
+    /// The factor of the previous analysis is freed first: two are never held at once.
     fn analyze_ordered(
         &mut self,
         pattern: &SymmetricPattern,
         signs: &[i8],
-        ordering: &Ordering,
+        last: &[usize],
     ) -> Result<()> {
         let n = pattern.n();
         check_length("pivot signs", n, signs.len())?;
         let t = Instant::now();
-        let symbolic = match ordering {
-            Ordering::Amd => symbolic_cholesky(pattern.symbolic(), SymmetricOrdering::Amd)?,
-            Ordering::Custom(order) => {
-                let (forward, inverse) = permutation(order, n)?;
-                let perm = PermRef::new_checked(&forward, &inverse, n);
-                symbolic_cholesky(pattern.symbolic(), SymmetricOrdering::Custom(perm))?
-            }
-        };
-        self.l_values = vec![0.0; symbolic.len_val()];
+        (self.symbolic, self.l_values, self.factorized) = (None, Vec::new(), false);
+        let (symbolic, name) = self.ordered_symbolic(pattern, last)?;
+        self.stats.symbolic_seconds += t.elapsed().as_secs_f64();
+        let bytes = self.predicted_bytes(&symbolic, pattern);
+        let what = format!(
+            "the sparse LDLᵀ factor of {n} unknowns ({} entries, {name} ordering)",
+            symbolic.len_val()
+        );
+        crate::limits::check_memory(bytes, crate::limits::available_memory(), &what, MEMORY_FIX)?;
+        let mut l_values = Vec::new();
+        l_values.try_reserve_exact(symbolic.len_val()).map_err(|_| {
+            Error::Input(format!("{what}: the memory for it could not be had; {MEMORY_FIX}"))
+        })?;
+        l_values.resize(symbolic.len_val(), 0.0);
+        self.l_values = l_values;
         self.symbolic = Some(symbolic);
         self.signs = signs.to_vec();
         self.scaling = vec![1.0; n];
-        self.factorized = false;
-        self.stats.symbolic_seconds += t.elapsed().as_secs_f64();
         self.stats.factor_len = self.l_values.len();
+        self.stats.factor_bytes = bytes;
+        self.stats.ordering = name;
         Ok(())
     }
+
+    /// The symbolic analysis with the solver's ordering (for [`Ordering::Auto`], the one of
+    /// AMD and nested dissection whose factor is smaller), and the ordering's name. A factor
+    /// whose trailing block is read (unknowns kept last) is supernodal.
+    fn ordered_symbolic(
+        &self,
+        pattern: &SymmetricPattern,
+        last: &[usize],
+    ) -> Result<(SymbolicCholesky<usize>, &'static str)> {
+        let n = pattern.n();
+        let schur = !last.is_empty();
+        let custom = |order: &[usize]| -> Result<SymbolicCholesky<usize>> {
+            let (forward, inverse) = permutation(order, n)?;
+            let perm = PermRef::new_checked(&forward, &inverse, n);
+            symbolic_cholesky(pattern.symbolic(), SymmetricOrdering::Custom(perm), schur)
+        };
+        let amd = || -> Result<SymbolicCholesky<usize>> {
+            if schur {
+                custom(&ordering::amd_with_last(pattern, last)?)
+            } else {
+                symbolic_cholesky(pattern.symbolic(), SymmetricOrdering::Amd, false)
+            }
+        };
+        let nd = || custom(&ordering::nested_dissection(pattern, last)?);
+        Ok(match &self.ordering {
+            Ordering::Amd => (amd()?, "amd"),
+            Ordering::NestedDissection => (nd()?, "nd"),
+            Ordering::Custom(order) if !schur => (custom(order)?, "custom"),
+            Ordering::Custom(_) => {
+                return Err(Error::LinearAlgebra(
+                    "a custom ordering cannot keep unknowns last for a Schur complement".into(),
+                ));
+            }
+            Ordering::Auto => {
+                let by_nd = nd()?;
+                let by_amd = amd()?;
+                if by_nd.len_val() < by_amd.len_val() { (by_nd, "nd") } else { (by_amd, "amd") }
+            }
+        })
+    }
+
+    /// The bytes a numeric factorisation with `symbolic` needs: the factor, its workspace,
+    /// and the scaled copy of the matrix.
+    fn predicted_bytes(
+        &self,
+        symbolic: &SymbolicCholesky<usize>,
+        pattern: &SymmetricPattern,
+    ) -> f64 {
+        let scratch = symbolic
+            .factorize_numeric_ldlt_scratch::<f64>(self.par(), Default::default())
+            .size_bytes();
+        8.0 * symbolic.len_val() as f64 + scratch as f64 + 16.0 * pattern.nnz() as f64
+    }
 }
+
+/// The ways out of a factor too large for this machine.
+const MEMORY_FIX: &str = "use a coarser mesh, solver.ordering = \"nd\" (nested dissection), or a machine with more memory";
 
 impl LinearSolver for LdltSolver {
     fn name(&self) -> &str {
@@ -172,8 +223,7 @@ impl LinearSolver for LdltSolver {
 
     fn analyze(&mut self, pattern: &SymmetricPattern, signs: &[i8]) -> Result<()> {
         self.last = 0;
-        let ordering = self.ordering.clone();
-        self.analyze_ordered(pattern, signs, &ordering)
+        self.analyze_ordered(pattern, signs, &[])
     }
 
     fn factorize(&mut self, matrix: &SymmetricMatrix) -> Result<()> {
@@ -197,15 +247,16 @@ impl LinearSolver for LdltSolver {
                 }
             }
         }
-        let params = Default::default();
+        let (params, par) = (Default::default(), self.par());
         let symbolic = self.symbolic.take().ok_or_else(|| {
             Error::LinearAlgebra("factorisation before the symbolic analysis".into())
         })?;
         let result = (|| {
-            let mut mem = MemBuffer::try_new(
-                symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, params),
-            )
-            .map_err(|_| Error::LinearAlgebra("out of memory for the LDLᵀ workspace".into()))?;
+            let mut mem =
+                MemBuffer::try_new(symbolic.factorize_numeric_ldlt_scratch::<f64>(par, params))
+                    .map_err(|_| {
+                        Error::LinearAlgebra("out of memory for the LDLᵀ workspace".into())
+                    })?;
             // A tiny or wrongly signed pivot is replaced by the marker, which then shows in the
             // factor.
             let regularization = LdltRegularization {
@@ -219,7 +270,7 @@ impl LinearSolver for LdltSolver {
                     scaled.as_ref(),
                     Side::Lower,
                     regularization,
-                    Par::Seq,
+                    par,
                     MemStack::new(&mut mem),
                     params,
                 )
@@ -247,14 +298,14 @@ impl LinearSolver for LdltSolver {
         }
         check_length("right-hand side", n, rhs.len())?;
         let t = Instant::now();
-        let symbolic = self.symbolic()?;
+        let (symbolic, par) = (self.symbolic()?, self.par());
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
-        let mut mem = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
+        let mut mem = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, par))
             .map_err(|_| Error::LinearAlgebra("out of memory for the solve workspace".into()))?;
         LdltRef::new(symbolic, &self.l_values).solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(rhs, n, 1),
-            Par::Seq,
+            par,
             MemStack::new(&mut mem),
         );
         rhs.iter_mut().zip(&self.scaling).for_each(|(x, s)| *x *= s);
@@ -279,8 +330,8 @@ impl SchurComplement for LdltSolver {
         signs: &[i8],
         last: &[usize],
     ) -> Result<()> {
-        let ordering = ordering_with_last(pattern, last)?;
-        self.analyze_ordered(pattern, signs, &ordering)?;
+        self.last = 0;
+        self.analyze_ordered(pattern, signs, last)?;
         self.last = last.len();
         Ok(())
     }
@@ -350,39 +401,41 @@ impl SchurComplement for LdltSolver {
     }
 }
 
-/// The floor for benchmarks: faer's own numeric LDLᵀ and one solve of `matrix` (AMD, no
-/// scaling, no checks), timed: (numeric, solve) seconds.
-pub fn bare_ldlt_seconds(matrix: &SymmetricMatrix, rhs: &[f64]) -> Result<[f64; 2]> {
-    let symbolic = symbolic_cholesky(matrix.lower().symbolic(), SymmetricOrdering::Amd)?;
-    let mut l_values = vec![0.0; symbolic.len_val()];
-    let params = Default::default();
-    let t = Instant::now();
-    let mut mem =
-        MemBuffer::try_new(symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, params))
-            .map_err(|_| Error::LinearAlgebra("out of memory for the LDLᵀ workspace".into()))?;
-    symbolic
-        .factorize_numeric_ldlt(
-            &mut l_values,
-            matrix.lower().as_ref(),
-            Side::Lower,
-            LdltRegularization::default(),
-            Par::Seq,
+impl LdltSolver {
+    /// The floor for benchmarks: faer's own numeric LDLᵀ and one solve of `matrix` with this
+    /// solver's symbolic analysis and threads (no scaling, no checks), timed: (numeric,
+    /// solve) seconds.
+    pub fn bare_seconds(&self, matrix: &SymmetricMatrix, rhs: &[f64]) -> Result<[f64; 2]> {
+        let (symbolic, par, params) = (self.symbolic()?, self.par(), Default::default());
+        let mut l_values = vec![0.0; symbolic.len_val()];
+        let t = Instant::now();
+        let mut mem =
+            MemBuffer::try_new(symbolic.factorize_numeric_ldlt_scratch::<f64>(par, params))
+                .map_err(|_| Error::LinearAlgebra("out of memory for the LDLᵀ workspace".into()))?;
+        symbolic
+            .factorize_numeric_ldlt(
+                &mut l_values,
+                matrix.lower().as_ref(),
+                Side::Lower,
+                LdltRegularization::default(),
+                par,
+                MemStack::new(&mut mem),
+                params,
+            )
+            .map_err(|e| Error::SingularSystem { detail: format!("{e:?}") })?;
+        let numeric = t.elapsed().as_secs_f64();
+        let mut x = rhs.to_vec();
+        let t = Instant::now();
+        let mut mem = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, par))
+            .map_err(|_| Error::LinearAlgebra("out of memory for the solve workspace".into()))?;
+        LdltRef::new(symbolic, &l_values).solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut x, matrix.n(), 1),
+            par,
             MemStack::new(&mut mem),
-            params,
-        )
-        .map_err(|e| Error::SingularSystem { detail: format!("{e:?}") })?;
-    let numeric = t.elapsed().as_secs_f64();
-    let mut x = rhs.to_vec();
-    let t = Instant::now();
-    let mut mem = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
-        .map_err(|_| Error::LinearAlgebra("out of memory for the solve workspace".into()))?;
-    LdltRef::new(&symbolic, &l_values).solve_in_place_with_conj(
-        Conj::No,
-        MatMut::from_column_major_slice_mut(&mut x, matrix.n(), 1),
-        Par::Seq,
-        MemStack::new(&mut mem),
-    );
-    Ok([numeric, t.elapsed().as_secs_f64()])
+        );
+        Ok([numeric, t.elapsed().as_secs_f64()])
+    }
 }
 
 #[cfg(test)]

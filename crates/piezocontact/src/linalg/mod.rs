@@ -48,20 +48,26 @@
 
 mod dense;
 mod ldlt;
+pub mod ordering;
 mod sparse;
 
 pub use dense::DenseMatrix;
-pub use ldlt::{LdltSolver, bare_ldlt_seconds};
+pub use ldlt::LdltSolver;
 pub use sparse::{SymmetricMatrix, SymmetricPattern};
 
 use crate::error::Result;
 
-/// The fill-reducing ordering of [`LdltSolver`]'s symbolic analysis.
+/// The fill-reducing ordering of [`LdltSolver`]'s symbolic analysis ([`ordering`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub enum Ordering {
-    /// Approximate minimum degree, chosen by the factorisation.
+    /// Both symbolic analyses, AMD's and nested dissection's, and the one with the smaller
+    /// factor (in 3D nearly always nested dissection; in 2D either).
     #[default]
+    Auto,
+    /// Approximate minimum degree.
     Amd,
+    /// METIS's nested dissection of the mesh nodes, each node's unknowns together.
+    NestedDissection,
     /// The caller's: `order[k]` is the unknown eliminated k-th (a permutation of 0..n).
     Custom(Vec<usize>),
 }
@@ -81,6 +87,11 @@ pub struct SolverStats {
     pub solve_count: usize,
     /// Stored values of the factor (a measure of its memory).
     pub factor_len: usize,
+    /// The bytes the last analysis predicted for a numeric factorisation (factor, workspace,
+    /// scaled matrix).
+    pub factor_bytes: f64,
+    /// The ordering of the last analysis ("amd", "nd", "custom"; empty before one).
+    pub ordering: &'static str,
 }
 
 /// What every backend does: analyse the pattern once, factorise whenever the values change,
@@ -129,7 +140,7 @@ fn check_length(what: &str, expected: usize, got: usize) -> Result<()> {
     Err(crate::Error::Length { what: what.into(), expected, got })
 }
 
-/// The default backend: [`LdltSolver`] with AMD.
+/// The default backend: [`LdltSolver`] with the [`Ordering::Auto`] choice on the run's threads.
 pub fn default_solver() -> Box<dyn LinearSolver> {
     Box::new(LdltSolver::new())
 }

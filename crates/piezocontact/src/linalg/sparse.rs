@@ -14,6 +14,9 @@ use faer::{MatMut, Par, Side};
 #[derive(Debug)]
 pub struct SymmetricPattern {
     symbolic: SymbolicSparseColMat<usize>,
+    /// The group of each unknown (the mesh node it belongs to), for orderings that keep a
+    /// group's unknowns together; `None`: each unknown its own group.
+    groups: Option<Vec<usize>>,
 }
 
 impl SymmetricPattern {
@@ -33,7 +36,8 @@ impl SymmetricPattern {
                 return Err(bad(format!("the rows of column {j} are not increasing in {j}..{n}")));
             }
         }
-        Ok(Self { symbolic: SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx) })
+        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        Ok(Self { symbolic, groups: None })
     }
 
     /// The pattern of the (row, column) positions, row ≥ column, repetitions allowed.
@@ -59,6 +63,17 @@ impl SymmetricPattern {
     /// Order of the matrix.
     pub fn n(&self) -> usize {
         self.symbolic.nrows()
+    }
+
+    /// The pattern with `groups[i]`, the group (mesh node) of unknown i.
+    pub fn with_groups(self, groups: Vec<usize>) -> Result<Self> {
+        check_length("unknown groups", self.n(), groups.len())?;
+        Ok(Self { groups: Some(groups), ..self })
+    }
+
+    /// The group of unknown i.
+    pub fn group(&self, i: usize) -> usize {
+        self.groups.as_ref().map_or(i, |g| g[i])
     }
 
     /// faer's view, for the backends of this module.
@@ -158,7 +173,7 @@ impl SymmetricMatrix {
 
     /// Whether the matrix is positive definite (its sparse LLᵀ factorisation exists).
     pub fn is_positive_definite(&self) -> Result<bool> {
-        let symbolic = symbolic_cholesky(self.lower.symbolic(), SymmetricOrdering::Amd)?;
+        let symbolic = symbolic_cholesky(self.lower.symbolic(), SymmetricOrdering::Amd, false)?;
         let mut l_values = vec![0.0; symbolic.len_val()];
         let mut mem = MemBuffer::try_new(
             symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),

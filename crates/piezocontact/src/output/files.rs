@@ -176,11 +176,17 @@ pub fn write_results(
     x: &[f64],
     extra: &[Field],
 ) -> Result<()> {
-    let json = serde_json::to_string_pretty(summary)
-        .map_err(|e| Error::Input(format!("summary.json cannot be written: {e}")))?;
-    write_atomic(&out.join("summary.json"), json.as_bytes())?;
+    write_summary(out, summary)?;
     write_atomic(&out.join("solution.vtu"), solution_vtu(problem, dofs, x, extra)?.as_bytes())
 }
+
+/// Writes DIR/summary.json.
+pub fn write_summary(out: &Path, summary: &serde_json::Value) -> Result<()> {
+    let json = serde_json::to_string_pretty(summary)
+        .map_err(|e| Error::Input(format!("summary.json cannot be written: {e}")))?;
+    write_atomic(&out.join("summary.json"), json.as_bytes())
+}
+
 /// The solution as a ParaView file: point data u (3 components), phi and `extra`; cell data
 /// sigma (3 × 3), D (3 components).
 pub fn solution_vtu(

@@ -11,6 +11,7 @@ use super::common::{perturbed_square, pzt};
 use piezocontact::assembly::cell_gradients;
 use piezocontact::dofs::DofMap;
 use piezocontact::element::{Simplex, point_at, quadrature};
+use piezocontact::linalg::default_solver;
 use piezocontact::material::{ElasticLaw, Material};
 use piezocontact::problem::{BodyLoads, Boundary, Problem};
 use piezocontact::solver::solve_without_contact;
@@ -114,7 +115,7 @@ fn coupled_system_converges_at_optimal_rates() {
         .iter()
         .map(|&n| {
             let p = problem(n, &material);
-            errors(&p, &solve_without_contact(&p).unwrap().x)
+            errors(&p, &solve_without_contact(&p, default_solver()).unwrap().x)
         })
         .collect();
     println!(

@@ -18,6 +18,8 @@ mod gmsh_io;
 mod hertz;
 /// The code's own rules: function lengths, an outer loop that names no method.
 mod layout;
+/// Orderings and threads of the factorisation: same solutions, smaller factors.
+mod orderings;
 /// Patch tests: linear fields reproduced to round-off, 2D and 3D.
 mod patch;
 /// The assembled system: symmetry, definiteness of the blocks, factorisation reuse.

@@ -4,6 +4,7 @@
 
 use super::common::{perturbed_square, pzt, read_mesh};
 use piezocontact::dofs::DofMap;
+use piezocontact::linalg::default_solver;
 use piezocontact::material::ElasticLaw;
 use piezocontact::mesh::Mesh;
 use piezocontact::problem::{BodyLoads, Boundary, Problem, ScalarField, VectorField};
@@ -28,7 +29,7 @@ fn linear_fields(dim: usize) -> (VectorField, ScalarField, Vec<Vec<f64>>, Vec<f6
 }
 
 fn assert_exact(problem: &Problem, u: &VectorField, phi: &ScalarField) {
-    let solution = solve_without_contact(problem).unwrap();
+    let solution = solve_without_contact(problem, default_solver()).unwrap();
     let dofs = DofMap::new(problem).unwrap();
     let mesh = &problem.mesh;
     let (mut err_u, mut err_phi, mut size_u, mut size_phi) = (0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64);

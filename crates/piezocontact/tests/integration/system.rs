@@ -115,8 +115,8 @@ fn the_solution_does_not_depend_on_the_unit_system() {
         p
     };
     let (paper, si) = (without_contact(PAPER_UNITS), without_contact(SI));
-    let (x_paper, x_si) =
-        (solve_without_contact(&paper).unwrap().x, solve_without_contact(&si).unwrap().x);
+    let solve = |p| solve_without_contact(p, default_solver()).unwrap().x;
+    let (x_paper, x_si) = (solve(&paper), solve(&si));
     let dofs = DofMap::new(&paper).unwrap();
     let n = paper.mesh.n_nodes();
     let max_u = (0..2 * n).map(|k| x_paper[k].abs()).fold(0.0, f64::max);
