@@ -153,7 +153,8 @@ fn progress_shows_on_long_runs_and_quiet_silences_it() {
     assert!(o.status.success() && stderr.contains("Newton step 1: criterion"), "{stderr}");
 }
 
-/// The newer keys — [foundation], solver.method, solver.tol, solver.max_condensed — are
+/// The newer keys — [foundation], solver.method, solver.tol, solver.max_condensed,
+/// solver.ordering — are
 /// checked by `check` as by `run`, with file:line:key and the fix.
 #[test]
 fn check_validates_the_foundation_and_the_exact_solver_s_keys() {
@@ -170,6 +171,7 @@ fn check_validates_the_foundation_and_the_exact_solver_s_keys() {
         ("solver.tol=-1", vec!["indentation-3d.toml:", "solver.tol = -1", "a tolerance > 0"]),
         ("solver.max_condensed=0", vec!["solver.max_condensed = 0", "at least 1"]),
         ("solver.method=\"simplex\"", vec!["unknown variant `simplex`", "newton", "uzawa"]),
+        ("solver.ordering=\"metis\"", vec!["unknown variant `metis`", "auto", "nd", "amd"]),
     ] {
         let o = piezocontact(&["check", "cases/indentation-3d.toml", "--set", set]);
         let t = text(&o);
