@@ -26,6 +26,19 @@ pub struct Condensed {
     with_phi: bool,
 }
 
+/// How the exact solver guesses the Γ3 nodes to condense first.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Guess {
+    /// Every node within the foundation's reach, or the `max_condensed` nearest.
+    Nearest,
+    /// The nodes inside the foundation when the undeformed body penetrates it — for a ball
+    /// pressed in by d, the disc of radius √(2Rd), which holds Hertz's contact disc of radius
+    /// √(Rd) — else as [`Guess::Nearest`]. Nodes of the contact zone outside it are added by
+    /// [`Condensed::grown`], at the cost of a factorisation.
+    #[default]
+    Interpenetration,
+}
+
 /// ϕ of a Γ3 node in the condensed problem.
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Phi {
@@ -39,14 +52,26 @@ pub(super) enum Phi {
 }
 
 impl Condensed {
-    /// The Γ3 nodes within the foundation's reach, at most `max_nodes` of them: all when
-    /// they are that few, else the `max_nodes` nearest to the foundation (smallest gap; the
-    /// first of equal ones), which [`Condensed::grown`] corrects. A node's u is condensed, and its ϕ when
-    /// `with_phi` (the laws that read ϕ can act: a penetration g_p > 0); a prescribed ϕ (a
-    /// Γ3 node on Γa) is not an unknown.
-    pub fn new(dofs: &DofMap, surface: &ContactSurface, with_phi: bool, max_nodes: usize) -> Self {
+    /// The first guess of the Γ3 nodes to condense, at most `max_nodes` of them: with
+    /// [`Guess::Interpenetration`] and a foundation that the undeformed body already
+    /// penetrates, the nodes inside it (g_a ≤ 0); else every node within the foundation's
+    /// reach. When they are more than `max_nodes`, the `max_nodes` nearest to the foundation
+    /// (smallest gap; the first of equal ones). [`Condensed::grown`] corrects the guess. A
+    /// node's u is condensed, and its ϕ when `with_phi` (the laws that read ϕ can act: a
+    /// penetration g_p > 0); a prescribed ϕ (a Γ3 node on Γa) is not an unknown.
+    pub fn new(
+        dofs: &DofMap,
+        surface: &ContactSurface,
+        with_phi: bool,
+        max_nodes: usize,
+        guess: Guess,
+    ) -> Self {
         let gap = &surface.gap;
         let mut reach: Vec<usize> = (0..surface.len()).filter(|&i| gap[i].is_finite()).collect();
+        let inside = reach.iter().filter(|&&i| gap[i] <= 0.0).count();
+        if guess == Guess::Interpenetration && inside > 0 {
+            reach.retain(|&i| gap[i] <= 0.0);
+        }
         if reach.len() > max_nodes {
             reach.sort_by(|&a, &b| gap[a].total_cmp(&gap[b]).then(a.cmp(&b)));
             reach.truncate(max_nodes);

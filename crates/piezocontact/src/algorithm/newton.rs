@@ -16,7 +16,7 @@
 //! sees (E_Y: Young's modulus). The iteration stops when the sets no longer change and the
 //! step is at round-off; one solve with the contact forces recovers the interior.
 
-use super::condensed::{Condensed, Phi};
+use super::condensed::{Condensed, Guess, Phi};
 use super::residual::KktResidual;
 use super::{InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
 use crate::assembly::NodalBlock;
@@ -84,6 +84,8 @@ pub struct Parameters {
     /// foundation's reach starts from the nodes nearest to it, and trades clear nodes for
     /// left-out nodes that turn out to touch (model §11).
     pub max_condensed: usize,
+    /// The first guess of the condensed nodes.
+    pub guess: Guess,
 }
 
 /// The exact solver as an inner method: it owns its condensation, and the outer loop only
@@ -131,7 +133,8 @@ impl InnerMethod for Newton {
     fn prepare(&mut self, setup: Setup, solver: Box<dyn LinearSolver>) -> Result<CoupledSystem> {
         let Setup { problem, dofs, surface, model } = setup;
         let with_phi = model.compliance.penetration > 0.0;
-        let condensed = Condensed::new(&dofs, surface, with_phi, self.parameters.max_condensed);
+        let Parameters { max_condensed, guess, .. } = self.parameters;
+        let condensed = Condensed::new(&dofs, surface, with_phi, max_condensed, guess);
         condensed.check_memory(crate::limits::available_memory())?;
         let system = CoupledSystem::with_last(problem, dofs, &condensed.free, solver)?;
         self.c_factor = self.parameters.r / problem.material.elasticity.young();
@@ -674,7 +677,13 @@ mod tests {
     /// the start (x̂, slip rows left out) and at the solution (every row). Returns the number
     /// of rows checked.
     fn jacobian_case(fixture: &Fixture) -> usize {
-        let parameters = Parameters { r: 14.7, tol: 1e-10, max_inner: 100, max_condensed: 2000 };
+        let parameters = Parameters {
+            r: 14.7,
+            tol: 1e-10,
+            max_inner: 100,
+            max_condensed: 2000,
+            guess: Guess::Nearest,
+        };
         let mut method = Newton::new(parameters);
         let mut system = method.prepare(fixture.setup(), default_solver()).unwrap();
         let zero = vec![0.0; system.dofs().n_total()];

@@ -7,6 +7,7 @@ use super::schema::{
 use super::validate::positive;
 use super::{Case, DEFAULTS};
 use crate::algorithm::Settings;
+use crate::algorithm::condensed::Guess;
 use crate::algorithm::newton::{self, Newton};
 use crate::algorithm::uzawa::{self, Uzawa};
 use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
@@ -288,6 +289,12 @@ impl Case {
                 tol: s.tol.unwrap_or(d.tol),
                 max_inner: s.max_inner.unwrap_or(d.max_newton),
                 max_condensed: s.max_condensed.unwrap_or(d.max_condensed),
+                // A cap the file names is the set's size; without one the solver guesses.
+                guess: if s.max_condensed.is_some() {
+                    Guess::Nearest
+                } else {
+                    Guess::Interpenetration
+                },
             }),
         }
     }

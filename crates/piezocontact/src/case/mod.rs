@@ -193,6 +193,7 @@ gap = 0.1
             tol: d.tol,
             max_inner: d.max_newton,
             max_condensed: d.max_condensed,
+            guess: crate::algorithm::condensed::Guess::Interpenetration,
         };
         assert_eq!(c.method_parameters(), MethodParameters::Newton(newton));
         let built = c.build().unwrap();

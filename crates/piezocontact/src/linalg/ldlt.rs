@@ -143,10 +143,11 @@ impl LdltSolver {
             "the sparse LDLᵀ factor of {n} unknowns ({} entries, {name} ordering)",
             symbolic.len_val()
         );
-        crate::limits::check_memory(bytes, crate::limits::available_memory(), &what, MEMORY_FIX)?;
+        let fix = memory_fix(name);
+        crate::limits::check_memory(bytes, crate::limits::available_memory(), &what, &fix)?;
         let mut l_values = Vec::new();
         l_values.try_reserve_exact(symbolic.len_val()).map_err(|_| {
-            Error::Input(format!("{what}: the memory for it could not be had; {MEMORY_FIX}"))
+            Error::Input(format!("{what}: the memory for it could not be had; {fix}"))
         })?;
         l_values.resize(symbolic.len_val(), 0.0);
         self.l_values = l_values;
@@ -213,8 +214,11 @@ impl LdltSolver {
     }
 }
 
-/// The ways out of a factor too large for this machine.
-const MEMORY_FIX: &str = "use a coarser mesh, solver.ordering = \"nd\" (nested dissection), or a machine with more memory";
+/// The ways out of a factor of the ordering `name` too large for this machine.
+fn memory_fix(name: &str) -> String {
+    let nd = if name == "nd" { "" } else { "solver.ordering = \"nd\" (nested dissection), " };
+    format!("use a coarser mesh, {nd}or a machine with more memory")
+}
 
 impl LinearSolver for LdltSolver {
     fn name(&self) -> &str {

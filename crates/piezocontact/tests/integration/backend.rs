@@ -6,6 +6,7 @@
 use super::common::{PAPER_UNITS, paper_model, paper_problem, paper_settings};
 use faer::Mat;
 use faer::linalg::solvers::{PartialPivLu, Solve};
+use piezocontact::algorithm::condensed::Guess;
 use piezocontact::algorithm::newton::{self, Newton};
 use piezocontact::algorithm::{ContactSolution, Settings, solve_contact, solve_contact_with};
 use piezocontact::linalg::{
@@ -127,7 +128,13 @@ impl LinearSolver for WithoutSchur {
 
 fn newton_settings() -> Settings {
     let r = 0.25 * PAPER_UNITS.stress(58.7102);
-    let parameters = newton::Parameters { r, tol: 1e-10, max_inner: 100, max_condensed: 2000 };
+    let parameters = newton::Parameters {
+        r,
+        tol: 1e-10,
+        max_inner: 100,
+        max_condensed: 2000,
+        guess: Guess::Nearest,
+    };
     Settings::new(Newton::new(parameters), 20)
 }
 

@@ -7,6 +7,7 @@ use super::common::{
     PAPER_UNITS, arch_problem, paper_model, paper_problem, paper_problem_with_contact,
     paper_settings, pzt, read_mesh,
 };
+use piezocontact::algorithm::condensed::Guess;
 use piezocontact::algorithm::newton::{self, Newton};
 use piezocontact::algorithm::{ContactSolution, Settings, solve_contact};
 use piezocontact::assembly::Linearisation;
@@ -27,7 +28,8 @@ fn newton(r_per_young: f64) -> Settings {
 fn condensing(r_per_young: f64, max_condensed: usize) -> Settings {
     let young = PAPER_UNITS.stress(58.7102);
     let r = r_per_young * young;
-    let parameters = newton::Parameters { r, tol: 1e-10, max_inner: 100, max_condensed };
+    let parameters =
+        newton::Parameters { r, tol: 1e-10, max_inner: 100, max_condensed, guess: Guess::Nearest };
     Settings::new(Newton::new(parameters), 100)
 }
 

@@ -3,6 +3,7 @@
 //! face (negative gaps) is pushed out of the body.
 
 use super::common::{PAPER_UNITS, paper_model, paper_problem};
+use piezocontact::algorithm::condensed::Guess;
 use piezocontact::algorithm::newton::{self, Newton};
 use piezocontact::algorithm::{ContactSolution, Settings, solve_contact};
 use piezocontact::contact::ContactModel;
@@ -13,8 +14,13 @@ use piezocontact::problem::Problem;
 /// Newton condensing at most `max_condensed` Γ3 nodes.
 fn newton(max_condensed: usize) -> Settings {
     let young = PAPER_UNITS.stress(58.7102);
-    let parameters =
-        newton::Parameters { r: 0.25 * young, tol: 1e-10, max_inner: 100, max_condensed };
+    let parameters = newton::Parameters {
+        r: 0.25 * young,
+        tol: 1e-10,
+        max_inner: 100,
+        max_condensed,
+        guess: Guess::Nearest,
+    };
     Settings::new(Newton::new(parameters), 10)
 }
 
@@ -266,4 +272,31 @@ fn a_contact_zone_larger_than_max_condensed_is_refused() {
             && e.contains("uzawa"),
         "{e}"
     );
+}
+
+/// The default first guess of the exact solver: the nodes inside the ball (g_a ≤ 0), which
+/// hold its contact zone — far fewer than the nodes within reach, one factorisation, and the
+/// solution of the whole condensation.
+#[test]
+fn the_first_guess_is_the_nodes_inside_the_ball() {
+    let (problem, model) = ball_on_block();
+    let whole = solve(&problem, &model);
+    let young = PAPER_UNITS.stress(58.7102);
+    let parameters = newton::Parameters {
+        r: 0.25 * young,
+        tol: 1e-10,
+        max_inner: 100,
+        max_condensed: 2000,
+        guess: Guess::Interpenetration,
+    };
+    let guessed = solve_with(&problem, &model, &Settings::new(Newton::new(parameters), 10));
+    let surface = &whole.surface;
+    let inside = surface.gap.iter().filter(|g| **g <= 0.0).count();
+    let touching = whole.sigma_nu.iter().filter(|s| **s < 0.0).count();
+    println!("{inside} inside, {touching} touch, {} within reach", whole.condensed_nodes);
+    assert_eq!((guessed.condensed_nodes, guessed.timings.numeric_count), (inside, 1));
+    assert!(touching <= inside && 2 * inside < whole.condensed_nodes);
+    let size = whole.x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let gap = whole.x.iter().zip(&guessed.x).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+    assert!(gap <= 1e-10 * size, "{gap} of {size}");
 }

@@ -19,6 +19,7 @@
 //! refinement (the committed meshes differ in their element size hc at the origin).
 
 use super::common::{EPS0, read_mesh};
+use piezocontact::algorithm::condensed::Guess;
 use piezocontact::algorithm::newton::{self, Newton};
 use piezocontact::algorithm::{Settings, solve_contact};
 use piezocontact::contact::ContactModel;
@@ -69,8 +70,13 @@ fn indent(mesh_name: &str, depth: f64) -> (f64, f64) {
         foundation: Foundation::Sphere { center, radius: 1.0 },
         phi0: 0.0,
     };
-    let parameters =
-        newton::Parameters { r: 0.25 * YOUNG, tol: 1e-10, max_inner: 100, max_condensed: 2000 };
+    let parameters = newton::Parameters {
+        r: 0.25 * YOUNG,
+        tol: 1e-10,
+        max_inner: 100,
+        max_condensed: 2000,
+        guess: Guess::Nearest,
+    };
     let settings = Settings::new(Newton::new(parameters), 10);
     let solution = solve_contact(&problem, &model, &settings).unwrap();
     assert!(solution.converged && solution.kkt.max <= 1e-10, "{:?}", solution.failure);
