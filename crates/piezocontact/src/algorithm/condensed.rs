@@ -16,6 +16,9 @@ pub struct Condensed {
     /// Per Γ3 node: the positions of its u components in the condensed vector (in local
     /// coordinates during the iteration: normal first, then tangents).
     pub(super) u: Vec<[usize; 3]>,
+    /// Per Γ3 node: how many u components are condensed (d, or 1 for the normal alone) and
+    /// the global axis of each.
+    axes: Vec<(usize, [usize; 3])>,
     /// Per Γ3 node: its ϕ.
     pub(super) phi: Vec<Phi>,
     /// Per Γ3 node: whether it is condensed. A node whose normal misses the foundation (an
@@ -24,6 +27,9 @@ pub struct Condensed {
     pub(super) kept: Vec<bool>,
     /// Whether ϕ of the nodes is condensed.
     with_phi: bool,
+    /// Whether friction is absent, so that a node whose normal is a coordinate axis condenses
+    /// u_ν alone (its tangential components carry no contact force and stay with the interior).
+    frictionless: bool,
 }
 
 /// How the exact solver guesses the Γ3 nodes to condense first.
@@ -62,7 +68,7 @@ impl Condensed {
     pub fn new(
         dofs: &DofMap,
         surface: &ContactSurface,
-        with_phi: bool,
+        (with_phi, frictionless): (bool, bool),
         max_nodes: usize,
         guess: Guess,
     ) -> Self {
@@ -78,23 +84,35 @@ impl Condensed {
         }
         let mut kept = vec![false; surface.len()];
         reach.into_iter().for_each(|i| kept[i] = true);
-        Self::with_nodes(dofs, surface, with_phi, kept)
+        Self::with_nodes(dofs, surface, (with_phi, frictionless), kept)
     }
 
-    /// The unknowns of the `kept` nodes.
+    /// The unknowns of the `kept` nodes: without friction, u_ν alone at every kept node when
+    /// all their normals are coordinate axes (a flat face along the axes), else every u
+    /// component.
     fn with_nodes(
         dofs: &DofMap,
         surface: &ContactSurface,
-        with_phi: bool,
+        (with_phi, frictionless): (bool, bool),
         kept: Vec<bool>,
     ) -> Self {
+        let dim = surface.dim();
+        let axis = |i: usize| {
+            let nu = surface.normal[i];
+            let k = (0..dim).find(|&k| nu[k].abs() > 1.0 - 1e-14)?;
+            (0..dim).all(|j| j == k || nu[j].abs() < 1e-14).then_some(k)
+        };
+        let normal_only =
+            frictionless && (0..surface.len()).filter(|&i| kept[i]).all(|i| axis(i).is_some());
         let mut this = Self {
             free: Vec::new(),
             global: Vec::new(),
             u: Vec::new(),
+            axes: Vec::new(),
             phi: Vec::new(),
             kept: Vec::new(),
             with_phi,
+            frictionless,
         };
         let push = |this: &mut Self, dof: usize| {
             this.free.push(dofs.free_index(dof));
@@ -104,14 +122,20 @@ impl Condensed {
         for (i, &node) in surface.nodes.iter().enumerate() {
             if !kept[i] {
                 this.u.push([usize::MAX; 3]);
+                this.axes.push((0, [0; 3]));
                 this.phi.push(Phi::Interior);
                 continue;
             }
-            let mut u = [0; 3];
-            for (k, slot) in u.iter_mut().enumerate().take(surface.dim()) {
+            let axes = match axis(i).filter(|_| normal_only) {
+                Some(k) => (1, [k, 0, 0]),
+                None => (dim, [0, 1, 2]),
+            };
+            let mut u = [usize::MAX; 3];
+            for (slot, &k) in u.iter_mut().zip(&axes.1[..axes.0]) {
                 *slot = push(&mut this, dofs.u(node, k));
             }
             this.u.push(u);
+            this.axes.push(axes);
             let dof = dofs.phi(node);
             let phi = if !with_phi {
                 Phi::Interior
@@ -175,7 +199,14 @@ impl Condensed {
             )));
         }
         left_out.into_iter().take(room).for_each(|(i, _)| kept[i] = true);
-        Ok(Some(Self::with_nodes(dofs, surface, self.with_phi, kept)))
+        Ok(Some(Self::with_nodes(dofs, surface, (self.with_phi, self.frictionless), kept)))
+    }
+
+    /// Node i's condensed u positions and, for each, its global axis (the normal alone, or
+    /// every component).
+    pub(super) fn slots(&self, i: usize) -> (&[usize], &[usize]) {
+        let (n, axes) = &self.axes[i];
+        (&self.u[i][..*n], &axes[..*n])
     }
 
     /// Number of condensed Γ3 nodes.
@@ -218,8 +249,10 @@ mod tests {
             global: Vec::new(),
             u: Vec::new(),
             phi: Vec::new(),
+            axes: Vec::new(),
             kept: Vec::new(),
             with_phi: false,
+            frictionless: false,
         };
         assert!(many.check_memory(64.0 * 2f64.powi(30)).is_ok());
         let e = many.check_memory(16.0 * 2f64.powi(30)).unwrap_err().to_string();
@@ -229,5 +262,30 @@ mod tests {
                 && e.contains("uzawa"),
             "{e}"
         );
+    }
+}
+
+#[cfg(test)]
+mod slot_tests {
+    use super::*;
+    use crate::testing::Fixture;
+
+    /// The indentation's flat top face: without friction one slot per node, on the z axis;
+    /// with friction every component.
+    #[test]
+    fn a_flat_face_without_friction_condenses_the_normal_alone() {
+        let text = include_str!("../../../../cases/indentation-3d.toml");
+        let mesh = concat!(env!("CARGO_MANIFEST_DIR"), "/../../meshes/indent-3d-h0.05.msh");
+        let file = format!("mesh.file={mesh:?}");
+        let fixture = Fixture::new(text, &[&file]);
+        let dofs = DofMap::new(fixture.problem()).unwrap();
+        let surface = &fixture.surface;
+        for (frictionless, per_node) in [(true, 1), (false, 3)] {
+            let c = Condensed::new(&dofs, surface, (false, frictionless), 2000, Guess::Nearest);
+            assert_eq!(c.len(), per_node * c.node_count(), "frictionless: {frictionless}");
+            let i = (0..surface.len()).find(|&i| c.kept[i]).unwrap();
+            let axes = c.slots(i).1.to_vec();
+            assert_eq!(axes, if frictionless { vec![2] } else { vec![0, 1, 2] });
+        }
     }
 }

@@ -134,7 +134,9 @@ impl InnerMethod for Newton {
         let Setup { problem, dofs, surface, model } = setup;
         let with_phi = model.compliance.penetration > 0.0;
         let Parameters { max_condensed, guess, .. } = self.parameters;
-        let condensed = Condensed::new(&dofs, surface, with_phi, max_condensed, guess);
+        let frictionless = model.pv2.is_none();
+        let condensed =
+            Condensed::new(&dofs, surface, (with_phi, frictionless), max_condensed, guess);
         condensed.check_memory(crate::limits::available_memory())?;
         let system = CoupledSystem::with_last(problem, dofs, &condensed.free, solver)?;
         self.c_factor = self.parameters.r / problem.material.elasticity.young();
@@ -315,22 +317,25 @@ impl<'a> Local<'a> {
     /// Turns S and the load into local coordinates and sets the constants.
     fn new(semismooth: &'a Semismooth<'a>, mut schur: DenseMatrix, x_hat: Vec<f64>) -> Self {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
-        let dim = surface.dim();
         let frames: Vec<[[f64; 3]; 3]> = (0..surface.len()).map(|i| surface.frame(i)).collect();
         let m = cond.len();
         // S ← Q S Qᵀ, node block by node block: columns, then rows.
+        // A node that condenses u_ν alone has one slot, on the axis of its normal.
         for (i, q) in frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
-            let idx = &cond.u[i][..dim];
+            let (idx, axes) = cond.slots(i);
+            let rotate = |old: &[f64], a: usize| -> f64 {
+                axes.iter().zip(old).map(|(&axis, v)| q[a][axis] * v).sum()
+            };
             for r in 0..m {
                 let old: Vec<f64> = idx.iter().map(|&k| schur.get(r, k)).collect();
                 for (a, &k) in idx.iter().enumerate() {
-                    schur.set(r, k, (0..dim).map(|b| q[a][b] * old[b]).sum());
+                    schur.set(r, k, rotate(&old, a));
                 }
             }
             for col in 0..m {
                 let old: Vec<f64> = idx.iter().map(|&k| schur.get(k, col)).collect();
                 for (a, &k) in idx.iter().enumerate() {
-                    schur.set(k, col, (0..dim).map(|b| q[a][b] * old[b]).sum());
+                    schur.set(k, col, rotate(&old, a));
                 }
             }
         }
@@ -356,8 +361,8 @@ impl<'a> Local<'a> {
         this.scale = (0..m)
             .map(|k| 1.0 / this.schur.get(k, k).abs().sqrt().max(f64::MIN_POSITIVE))
             .collect();
-        for (i, u) in cond.u.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
-            u[..dim].iter().for_each(|&k| this.scale[k] *= surface.weight[i]);
+        for i in (0..surface.len()).filter(|&i| cond.kept[i]) {
+            cond.slots(i).0.iter().for_each(|&k| this.scale[k] *= surface.weight[i]);
         }
         this
     }
@@ -366,12 +371,11 @@ impl<'a> Local<'a> {
     fn gather(&self, x: &[f64]) -> Vec<f64> {
         let cond = self.semismooth.condensed;
         let mut y: Vec<f64> = cond.global.iter().map(|&dof| x[dof]).collect();
-        let dim = self.semismooth.step.surface.dim();
         for (i, q) in self.frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
-            let idx = &cond.u[i][..dim];
+            let (idx, axes) = cond.slots(i);
             let u: Vec<f64> = idx.iter().map(|&k| y[k]).collect();
             for (a, &k) in idx.iter().enumerate() {
-                y[k] = (0..dim).map(|b| q[a][b] * u[b]).sum();
+                y[k] = axes.iter().zip(&u).map(|(&axis, v)| q[a][axis] * v).sum();
             }
         }
         y
@@ -380,12 +384,11 @@ impl<'a> Local<'a> {
     /// A condensed vector from local to global coordinates.
     fn to_global(&self, local: &[f64]) -> Vec<f64> {
         let cond = self.semismooth.condensed;
-        let dim = self.semismooth.step.surface.dim();
         let mut v = local.to_vec();
         for (i, q) in self.frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
-            let idx = &cond.u[i][..dim];
-            for (b, &k) in idx.iter().enumerate() {
-                v[k] = idx.iter().enumerate().map(|(a, &l)| q[a][b] * local[l]).sum();
+            let (idx, axes) = cond.slots(i);
+            for (&k, &axis) in idx.iter().zip(axes) {
+                v[k] = idx.iter().enumerate().map(|(a, &l)| q[a][axis] * local[l]).sum();
             }
         }
         v
@@ -415,7 +418,7 @@ impl<'a> Local<'a> {
     fn evaluate(&self, y: &[f64]) -> Evaluation {
         let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
         let (surface, law) = (step.surface, &step.model.compliance);
-        let (n3, dim) = (surface.len(), surface.dim());
+        let n3 = surface.len();
         let mut forces = self.schur.mul(y);
         forces.iter_mut().zip(&self.load).for_each(|(f, b)| *f -= b);
         let sigma_nu: Vec<f64> = (0..n3)
@@ -433,6 +436,8 @@ impl<'a> Local<'a> {
         };
         for i in (0..n3).filter(|&i| cond.kept[i]) {
             let (w, u, c) = (surface.weight[i], cond.u[i], self.c[i]);
+            // The condensed components of the node: d, or the normal alone.
+            let dim = cond.slots(i).0.len();
             let (u_nu, phi) = (y[u[0]], self.phi(y, i));
             let (gap, rho) = (surface.gap[i], law.stop(surface.gap[i]));
             let lambda_c = -eval.sigma_nu[i] - self.pressure(u_nu, phi, i);
@@ -477,17 +482,17 @@ impl<'a> Local<'a> {
     /// The Newton step δ at y: the fixed unknowns from their own rows, the others from the
     /// dense system of the remaining rows.
     fn newton_step(&self, y: &[f64], eval: &Evaluation) -> Result<Vec<f64>> {
-        let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
-        let dim = step.surface.dim();
+        let cond = self.semismooth.condensed;
         let m = y.len();
         let mut delta = vec![0.0; m];
         let mut node_of = vec![0; m];
-        for (i, u) in cond.u.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
-            u[..dim].iter().for_each(|&k| node_of[k] = i);
+        for i in (0..cond.u.len()).filter(|&i| cond.kept[i]) {
+            let idx = cond.slots(i).0;
+            idx.iter().for_each(|&k| node_of[k] = i);
             if let Phi::Unknown(p) = cond.phi[i] {
                 node_of[p] = i;
             }
-            for &k in &u[..dim] {
+            for &k in idx {
                 if eval.fixed[k] {
                     // −c δ = −E.
                     delta[k] = eval.residual[k] / self.c[i];
@@ -516,7 +521,7 @@ impl<'a> Local<'a> {
     fn gradient(&self, y: &[f64], eval: &Evaluation, i: usize, k: usize, out: &mut [f64]) {
         let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
         let surface = step.surface;
-        let (w, u, c, dim) = (surface.weight[i], cond.u[i], self.c[i], surface.dim());
+        let (w, u, c, dim) = (surface.weight[i], cond.u[i], self.c[i], cond.slots(i).0.len());
         let (u_nu, phi) = (y[u[0]], self.phi(y, i));
         let phi_position = match cond.phi[i] {
             Phi::Unknown(p) => Some(p),
@@ -605,16 +610,17 @@ mod tests {
     fn check_gradient(local: &Local, y: &[f64], skip_slip: bool) -> usize {
         let eval = local.evaluate(y);
         let cond = local.semismooth.condensed;
-        let (m, dim) = (y.len(), local.semismooth.step.surface.dim());
+        let m = y.len();
         let mut node_of = vec![0; m];
         let mut slip_row = vec![false; m];
-        for (i, u) in cond.u.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
-            u[..dim].iter().for_each(|&k| node_of[k] = i);
+        for i in (0..cond.u.len()).filter(|&i| cond.kept[i]) {
+            let idx = cond.slots(i).0;
+            idx.iter().for_each(|&k| node_of[k] = i);
             if let Phi::Unknown(p) = cond.phi[i] {
                 node_of[p] = i;
             }
             let slipping = eval.sets[i] < 2 && local.semismooth.step.model.pv2.is_some();
-            u[1..dim].iter().for_each(|&k| slip_row[k] = slipping);
+            idx[1..].iter().for_each(|&k| slip_row[k] = slipping);
         }
         // Steps relative to the size of each kind of unknown (u and ϕ differ by far).
         let size = |k: usize| {

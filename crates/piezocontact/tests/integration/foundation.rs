@@ -300,3 +300,26 @@ fn the_first_guess_is_the_nodes_inside_the_ball() {
     let gap = whole.x.iter().zip(&guessed.x).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
     assert!(gap <= 1e-10 * size, "{gap} of {size}");
 }
+
+/// Without friction, a flat contact face along the axes condenses u_ν alone (the tangential
+/// components carry no force and stay with the interior): PV1 on the ball gives the solution
+/// of PV2 with µ = k_e = 0, which condenses every component — to round-off — with the same
+/// single factorisation.
+#[test]
+fn a_frictionless_flat_face_condenses_the_normal_alone() {
+    let (problem, mut model) = ball_on_block();
+    let (friction, conduction) = model.pv2.as_mut().unwrap();
+    (friction.mu, conduction.ke) = (0.0, 0.0);
+    let every_component = solve(&problem, &model);
+    model.pv2 = None;
+    let normal_alone = solve(&problem, &model);
+    let size = every_component.x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let difference = every_component
+        .x
+        .iter()
+        .zip(&normal_alone.x)
+        .fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+    assert!(difference <= 1e-10 * size, "{difference} of {size}");
+    assert_eq!(normal_alone.timings.numeric_count, 1);
+    assert!(normal_alone.sigma_nu.iter().filter(|s| **s < 0.0).count() >= 9);
+}
