@@ -4,6 +4,7 @@
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use piezocontact::case::{Built, Case};
+use piezocontact::dofs::DofMap;
 use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
 use piezocontact::run::{self, ContactRun, StaticRun};
@@ -260,15 +261,15 @@ fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Resu
 
 fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
     let built = case.build()?;
-    let problem = built.problem.clone();
+    // What summary.json says of a run the solver refuses after validation (memory, a
+    // capability), taken before the solve consumes the problem.
+    let header = run::common_summary(case, &built.problem, &DofMap::new(&built.problem)?);
     let reporter = Reporter::new(case.method_name(), interval);
     let progress = |event| reporter.event(event);
     let run = match ContactRun::solve_built(case, built, case.linear_solver(), &progress) {
         Ok(run) => run,
         Err(e) => {
-            // Refused after validation (memory, a capability): summary.json says why.
-            let summary = run::refusal_summary(case, &problem, &e)?;
-            output::write_summary(out, &summary)?;
+            output::write_summary(out, &run::refusal_summary(header, case, &e))?;
             return Err(e.into());
         }
     };

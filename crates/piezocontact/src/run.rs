@@ -229,16 +229,15 @@ impl StaticRun {
 }
 
 /// The summary.json of a validated case that the solver refused before it had a result (a
-/// factor too large for the memory, a backend without a capability the method needs):
-/// `converged` false and the `failure`, with the fields common to every summary.
-pub fn refusal_summary(case: &Case, problem: &Problem, failure: &Error) -> Result<Value> {
-    let dofs = DofMap::new(problem)?;
-    let mut summary = common_summary(case, problem, &dofs);
+/// factor too large for the memory, a backend without a capability the method needs): the
+/// fields common to every summary (`header`, [`common_summary`]), `converged` false and the
+/// `failure`.
+pub fn refusal_summary(mut header: Value, case: &Case, failure: &Error) -> Value {
     merge(
-        &mut summary,
+        &mut header,
         json!({ "converged": false, "failure": failure.to_string(), "method": case.method_name() }),
     );
-    Ok(summary)
+    header
 }
 
 /// Fields common to every summary.json.

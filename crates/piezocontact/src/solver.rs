@@ -131,8 +131,7 @@ impl CoupledSystem {
         moduli: &[f64],
         blocks: &[NodalBlock],
     ) -> Result<()> {
-        let secant = Linearisation { moduli: moduli.to_vec(), tangent: Vec::new() };
-        self.factorize_linearised(problem, &secant, blocks)
+        self.factorize_linearised(problem, &Linearisation::secant(moduli.to_vec()), blocks)
     }
 
     /// [`CoupledSystem::factorize`] with Hencky's law linearised at x_n (secant moduli and

@@ -694,7 +694,7 @@ mod tests {
         let mut system = method.prepare(fixture.setup(), default_solver()).unwrap();
         let zero = vec![0.0; system.dofs().n_total()];
         let moduli = secant_moduli(fixture.problem(), system.dofs(), &zero).unwrap();
-        let moduli = Linearisation { moduli, tangent: Vec::new() };
+        let moduli = Linearisation::secant(moduli);
         system.factorize_linearised(fixture.problem(), &moduli, &[]).unwrap();
         let s_n = vec![0.0; fixture.surface.len()];
         let step = fixture.step(&zero, &s_n, &moduli);

@@ -159,6 +159,11 @@ pub struct Linearisation {
 }
 
 impl Linearisation {
+    /// The secant alone, with the moduli g_e [stress].
+    pub fn secant(moduli: Vec<f64>) -> Self {
+        Self { moduli, tangent: Vec::new() }
+    }
+
     /// The consistent tangent of Hencky's law at x (global vector), with the secant fallback.
     pub fn tangent(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Self> {
         let elasticity = problem.material.elasticity;

@@ -127,8 +127,7 @@ impl Assembler {
         moduli: &[f64],
         blocks: &[NodalBlock],
     ) -> Result<(SymmetricMatrix, Vec<f64>)> {
-        let secant = Linearisation { moduli: moduli.to_vec(), tangent: Vec::new() };
-        self.linearised_matrix(problem, &secant, blocks)
+        self.linearised_matrix(problem, &Linearisation::secant(moduli.to_vec()), blocks)
     }
 
     /// [`Assembler::matrix`] for Hencky's law linearised at x_n: the secant moduli plus the
