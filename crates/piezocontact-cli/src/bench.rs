@@ -259,11 +259,29 @@ fn paper_case(text: &str, nx: usize, ny: usize, extra: &[String]) -> Result<Case
     Ok(Case::from_text(Path::new("cases/paper.toml"), text, &overrides)?)
 }
 
+/// The target of `bench --contact --case FILE`.
+pub fn case_target(file: &Path) -> String {
+    format!("{CASE_PREFIX}{}", file.display())
+}
+
+/// What marks a case file among the targets of the contact benchmark.
+const CASE_PREFIX: &str = "case:";
+
 /// The problems of the contact benchmark on a target: the paper's bar at a size "NXxNY"
-/// (PV1, PV2 with µ = k_e = 0.2 and 0.6), or a Gmsh mesh with the parts of
-/// meshes/indent-3d.geo in the indentation case (PV1, and PV2 with its µ = 0.3).
+/// (PV1, PV2 with µ = k_e = 0.2 and 0.6), a Gmsh mesh with the parts of
+/// meshes/indent-3d.geo in the indentation case, or "case:FILE" (both: PV1, and PV2 with
+/// µ = 0.3).
 fn contact_problems(target: &str) -> Result<Vec<(&'static str, Case)>> {
     let newton = || vec!["solver.method=\"newton\"".to_string()];
+    if let Some(file) = target.strip_prefix(CASE_PREFIX) {
+        let with = |extra: &[&str]| -> Result<Case> {
+            let mut overrides = newton();
+            overrides.extend(extra.iter().map(|s| s.to_string()));
+            Ok(Case::load(Path::new(file), &overrides)?)
+        };
+        let pv2 = ["contact.problem=\"PV2\"", "friction.mu=0.3"];
+        return Ok(vec![("PV1", with(&["contact.problem=\"PV1\""])?), ("PV2 mu=0.3", with(&pv2)?)]);
+    }
     if let Ok((nx, ny)) = parse_size(target) {
         let pv2 = |mu: f64| {
             let mut o = newton();
@@ -353,7 +371,7 @@ pub fn contact(targets: &[String]) -> Result<()> {
          solve_contact with solver.method = \"newton\" (pattern, ordering, factorisations, \
          Schur complement, Newton, two solves per factorisation, KKT residual); factorisation_s: one plain \
          pattern + assembly + symbolic + numeric LDLᵀ of the same mesh, the floor; both with \
-         solver.ordering = \"auto\" (the smaller factor of AMD and nested dissection) on {} \
+         solver.ordering = \"auto\" (nested dissection in 3D) on {} \
          threads; peak_MB: the process's peak resident memory; ratios: contact / factorisation",
         rayon::current_num_threads()
     );

@@ -119,7 +119,7 @@ enum Command {
         #[arg(long)]
         lu: bool,
         /// The fill-reducing orderings to measure, comma separated: amd, nd (METIS's nested
-        /// dissection), auto (the smaller factor of both). Each runs on 1 thread and on all.
+        /// dissection), auto (nested dissection in 3D, else the smaller factor of both). Each runs on 1 thread and on all.
         #[arg(long, value_delimiter = ',', default_value = "amd,nd", value_parser = bench::parse_ordering, conflicts_with = "contact")]
         ordering: Vec<piezocontact::linalg::Ordering>,
         /// Time the exact contact solver (newton) on PV1 and PV2 (µ = k_e = 0.2, 0.6) of the
@@ -127,6 +127,10 @@ enum Command {
         /// its own to measure its peak memory.
         #[arg(long, conflicts_with = "lu")]
         contact: bool,
+        /// With --contact: a contact case (a .toml file) instead, run as PV1 and as PV2 with
+        /// µ = 0.3, e.g. cases/block-3d.toml (a block whose whole bottom face touches).
+        #[arg(long, requires = "contact", conflicts_with_all = ["sizes", "mesh"])]
+        case: Option<PathBuf>,
         /// One measurement of --contact (internal).
         #[arg(long, hide = true)]
         one: Option<String>,
@@ -198,12 +202,15 @@ fn run(command: Command) -> Result<Outcome> {
         }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
-        Command::Bench { sizes, mesh, lu, contact, one, ordering } => {
+        Command::Bench { sizes, mesh, lu, contact, case, one, ordering } => {
             if let Some(spec) = one {
                 return bench::measure_one(&spec).map(|_| Outcome::Done);
             }
             if contact {
                 let targets = match (&mesh, sizes) {
+                    _ if case.is_some() => {
+                        case.as_deref().map(bench::case_target).into_iter().collect()
+                    }
                     (Some(path), _) => vec![path.display().to_string()],
                     (None, Some(sizes)) => sizes,
                     (None, None) => bench::CONTACT_SIZES.map(String::from).to_vec(),

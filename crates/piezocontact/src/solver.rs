@@ -165,6 +165,12 @@ impl CoupledSystem {
         Ok(self.assembler.dofs().expand(&x))
     }
 
+    /// Solves B̌ y = b in place with the current factorisation (`b`: on the free DOFs,
+    /// without f̌ or lifting).
+    pub fn solve_free(&mut self, b: &mut [f64]) -> Result<()> {
+        self.solver.solve_in_place(b)
+    }
+
     /// The assembler (DOF map, pattern).
     pub fn assembler(&self) -> &Assembler {
         &self.assembler

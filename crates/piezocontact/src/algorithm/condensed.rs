@@ -5,6 +5,9 @@
 use crate::contact::ContactSurface;
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
+use crate::linalg::{DenseMatrix, SolverStats};
+use crate::solver::CoupledSystem;
+use std::collections::HashMap;
 
 /// The Γ3 unknowns kept by the condensation, in the order of the Schur complement.
 #[derive(Clone, Debug)]
@@ -238,6 +241,59 @@ impl Condensed {
     }
 }
 
+/// The Schur complement S_W of the free unknowns `wanted` from the current factorisation of
+/// `system`, analysed with the free unknowns `analysed` last (model §11), without analysing
+/// or factorising again. The (W, W) block of B̌⁻¹ is S_W⁻¹: its entries between analysed
+/// unknowns are those of S_A⁻¹, the others come from one solve per wanted unknown that was
+/// not analysed (B̌⁻¹ is symmetric); S_W is the inverse of that block, made symmetric.
+pub fn schur_on(
+    system: &mut CoupledSystem,
+    analysed: &[usize],
+    wanted: &[usize],
+) -> Result<DenseMatrix> {
+    let s_analysed = system.schur_complement()?;
+    if analysed == wanted {
+        return Ok(s_analysed);
+    }
+    let position: HashMap<usize, usize> =
+        analysed.iter().enumerate().map(|(p, &k)| (k, p)).collect();
+    let inverse = s_analysed.inverse()?;
+    drop(s_analysed);
+    let n = system.dofs().n_free();
+    let mut solved: HashMap<usize, Vec<f64>> = HashMap::new();
+    for &k in wanted.iter().filter(|k| !position.contains_key(k)) {
+        let mut e = vec![0.0; n];
+        e[k] = 1.0;
+        system.solve_free(&mut e)?;
+        solved.insert(k, wanted.iter().map(|&row| e[row]).collect());
+    }
+    let m = wanted.len();
+    let mut block = DenseMatrix::zeros(m);
+    for (b, &kb) in wanted.iter().enumerate() {
+        let column = block.col_mut(b);
+        for (a, &ka) in wanted.iter().enumerate() {
+            column[a] = match (position.get(&ka), position.get(&kb)) {
+                (Some(&pa), Some(&pb)) => inverse.get(pa, pb),
+                (_, None) => solved[&kb][a],
+                (None, Some(_)) => solved[&ka][b],
+            };
+        }
+    }
+    let mut schur = block.inverse()?;
+    schur.symmetrize();
+    Ok(schur)
+}
+
+/// Whether growing the condensation by [`schur_on`] (one solve per new unknown) is cheaper
+/// than analysing and factorising again with them last, judged by the mean times of the
+/// solves and factorisations so far.
+pub fn cheaper_by_solves(new_unknowns: usize, stats: &SolverStats) -> bool {
+    let mean = |seconds: f64, count: usize| seconds / count.max(1) as f64;
+    let solve = mean(stats.solve_seconds, stats.solve_count);
+    let factorisation = mean(stats.numeric_seconds, stats.numeric_count);
+    new_unknowns as f64 * solve < factorisation
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -287,5 +343,60 @@ mod slot_tests {
             let axes = c.slots(i).1.to_vec();
             assert_eq!(axes, if frictionless { vec![2] } else { vec![0, 1, 2] });
         }
+    }
+}
+
+#[cfg(test)]
+mod transfer_tests {
+    use super::*;
+    use crate::assembly::secant_moduli;
+    use crate::linalg::default_solver;
+    use crate::testing::{Fixture, PAPER_72};
+
+    /// The Schur complement of a set taken by solves from a factor analysed with another set
+    /// last (some unknowns shared, some new, some dropped) equals the one of a factor
+    /// analysed with that set last.
+    #[test]
+    fn a_schur_complement_by_solves_equals_one_by_analysis() {
+        let fixture = Fixture::new(
+            PAPER_72,
+            &["mesh.nx=24", "mesh.ny=4", "contact.penetration=0.05", "conductivity.ke=0.5"],
+        );
+        let dofs = DofMap::new(fixture.problem()).unwrap();
+        let all = Condensed::new(&dofs, &fixture.surface, (true, false), 2000, Guess::Nearest);
+        let m = all.len();
+        assert!(m > 40, "{m} condensed unknowns");
+        let analysed: Vec<usize> = all.free[..2 * m / 3].to_vec();
+        let wanted: Vec<usize> = all.free[m / 3..].iter().rev().copied().collect();
+        let problem = fixture.problem();
+        let schur = |last: &[usize], wanted: &[usize]| {
+            let mut system =
+                CoupledSystem::with_last(problem, dofs.clone(), last, default_solver()).unwrap();
+            let moduli = secant_moduli(problem, system.dofs(), &vec![0.0; dofs.n_total()]).unwrap();
+            system.factorize(problem, &moduli, &[]).unwrap();
+            schur_on(&mut system, last, wanted).unwrap()
+        };
+        let (by_solves, by_analysis) = (schur(&analysed, &wanted), schur(&wanted, &wanted));
+        let size = (0..wanted.len()).map(|k| by_analysis.get(k, k).abs()).fold(0.0, f64::max);
+        for i in 0..wanted.len() {
+            for j in 0..wanted.len() {
+                let error = (by_solves.get(i, j) - by_analysis.get(i, j)).abs();
+                assert!(error <= 1e-10 * size, "entry ({i}, {j}): {error:e} of {size:e}");
+            }
+        }
+    }
+
+    /// Solves win when their count times a solve's time is below a factorisation's.
+    #[test]
+    fn growth_by_solves_when_they_cost_less_than_a_factorisation() {
+        let stats = SolverStats {
+            numeric_seconds: 2.0,
+            numeric_count: 2,
+            solve_seconds: 0.03,
+            solve_count: 3,
+            ..SolverStats::default()
+        };
+        assert!(cheaper_by_solves(99, &stats));
+        assert!(!cheaper_by_solves(100, &stats));
     }
 }

@@ -16,7 +16,7 @@
 //! sees (E_Y: Young's modulus). The iteration stops when the sets no longer change and the
 //! step is at round-off; one solve with the contact forces recovers the interior.
 
-use super::condensed::{Condensed, Guess, Phi};
+use super::condensed::{self, Condensed, Guess, Phi};
 use super::residual::KktResidual;
 use super::{InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
 use crate::assembly::NodalBlock;
@@ -32,6 +32,9 @@ pub const STEP_TOLERANCE: f64 = 1e-12;
 const STEP_FLOOR: f64 = 1e-15;
 /// Halvings of the line search.
 const HALVINGS: usize = 8;
+/// Newton steps from the first guess of a cold start before starting again from the solve
+/// without contact forces.
+const GUESS_STEPS: usize = 30;
 /// Condensed problems solved in one outer step, at most (each after a factorisation).
 const MAX_ROUNDS: usize = 10;
 
@@ -69,6 +72,17 @@ struct Evaluation {
     r_sigma: Vec<f64>,
 }
 
+/// Where a Newton iteration ended.
+struct Iteration {
+    /// The last iterate (local coordinates).
+    y: Vec<f64>,
+    stop: Stop,
+    /// Steps taken.
+    iterations: usize,
+    /// The step criterion of each step.
+    history: Vec<f64>,
+}
+
 /// What the exact solver reads from `solver.*`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Parameters {
@@ -95,8 +109,11 @@ pub struct Newton {
     parameters: Parameters,
     /// r/E: the complementarity constant relative to the local stiffness [-].
     c_factor: f64,
-    /// The Γ3 unknowns, last in the factorisation's ordering.
+    /// The Γ3 unknowns of the condensed problem.
     condensed: Option<Condensed>,
+    /// The free unknowns last in the factorisation's ordering: those of `condensed`, or of
+    /// an earlier condensation that a growth by solves kept.
+    analysed: Vec<usize>,
     /// Outer steps solved so far: the first starts from the solve without contact, the next
     /// ones from x_n.
     solved: usize,
@@ -105,7 +122,7 @@ pub struct Newton {
 impl Newton {
     /// The method with `parameters`.
     pub fn new(parameters: Parameters) -> Self {
-        Self { parameters, c_factor: 0.0, condensed: None, solved: 0 }
+        Self { parameters, c_factor: 0.0, condensed: None, analysed: Vec::new(), solved: 0 }
     }
 }
 
@@ -140,6 +157,7 @@ impl InnerMethod for Newton {
         condensed.check_memory(crate::limits::available_memory())?;
         let system = CoupledSystem::with_last(problem, dofs, &condensed.free, solver)?;
         self.c_factor = self.parameters.r / problem.material.elasticity.young();
+        self.analysed = condensed.free.clone();
         self.condensed = Some(condensed);
         Ok(system)
     }
@@ -152,8 +170,9 @@ impl InnerMethod for Newton {
         let mut condensed = self.condensed.take().ok_or_else(|| {
             Error::LinearAlgebra("the exact solver solved before it was prepared".into())
         })?;
-        let result = self.solve_growing(step, &mut condensed, system);
-        self.condensed = Some(condensed);
+        let mut analysed = std::mem::take(&mut self.analysed);
+        let result = self.solve_growing(step, (&mut condensed, &mut analysed), system);
+        (self.condensed, self.analysed) = (Some(condensed), analysed);
         self.solved += 1;
         result
     }
@@ -191,22 +210,23 @@ impl InnerMethod for Newton {
 }
 
 impl Newton {
-    /// Solves an outer step with the factorised `system` (ordered with `condensed` last),
-    /// growing the condensation until no node left out touches (model §11). Each growth
-    /// orders the new condensed unknowns last, factorises B̌ with the step's linearisation again,
-    /// and restarts Newton from the last solution; the steps and histories of all rounds are
-    /// summed.
+    /// Solves an outer step with the factorised `system` (ordered with `analysed` last),
+    /// growing the condensation until no node left out touches (model §11). A growth takes
+    /// the Schur complement of the new set from the factor by solves when that is cheaper
+    /// ([`condensed::cheaper_by_solves`]), else orders the new set last and factorises B̌
+    /// with the step's linearisation again; Newton restarts from the last solution, and the
+    /// steps and histories of all rounds are summed.
     fn solve_growing(
         &self,
         step: &Step,
-        condensed: &mut Condensed,
+        (condensed, analysed): (&mut Condensed, &mut Vec<usize>),
         system: &mut CoupledSystem,
     ) -> Result<InnerResult> {
         let Parameters { max_inner, max_condensed, .. } = self.parameters;
         let c_factor = self.c_factor;
         let start = (self.solved > 0).then_some(step.previous);
         let first = Semismooth { step, condensed, c_factor, max_inner, start };
-        let mut result = first.run(system)?;
+        let mut result = first.run(system, analysed)?;
         let mut rounds = 1;
         while matches!(result.stop, Stop::Converged)
             && let Some(grown) =
@@ -221,10 +241,15 @@ impl Newton {
             rounds += 1;
             grown.check_memory(crate::limits::available_memory())?;
             *condensed = grown;
-            system.put_last(&condensed.free)?;
-            system.factorize_linearised(step.problem, step.linearisation, &[])?;
+            let new = condensed.free.iter().filter(|k| !analysed.contains(k)).count();
+            if !condensed::cheaper_by_solves(new, &system.solver_stats()) {
+                system.put_last(&condensed.free)?;
+                system.factorize_linearised(step.problem, step.linearisation, &[])?;
+                *analysed = condensed.free.clone();
+            }
             let start = Some(result.x.as_slice());
-            let next = Semismooth { step, condensed, c_factor, max_inner, start }.run(system)?;
+            let next =
+                Semismooth { step, condensed, c_factor, max_inner, start }.run(system, analysed)?;
             let history = [std::mem::take(&mut result.history), next.history].concat();
             result =
                 InnerResult { iterations: result.iterations + next.iterations, history, ..next };
@@ -248,44 +273,33 @@ struct Semismooth<'a> {
 }
 
 impl Semismooth<'_> {
-    /// Solves the condensed problem with the factorised `system` (ordered with the condensed
-    /// unknowns last) and recovers the whole solution.
-    pub fn run(&self, system: &mut CoupledSystem) -> Result<InnerResult> {
+    /// Solves the condensed problem with the factorised `system` (ordered with the free
+    /// unknowns `analysed` last) and recovers the whole solution.
+    pub fn run(&self, system: &mut CoupledSystem, analysed: &[usize]) -> Result<InnerResult> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;
-        let local = Local::new(self, system.schur_complement()?, x_hat);
-        let mut y = local.gather(self.start.unwrap_or(&local.x_hat));
-        let mut history = Vec::new();
-        let mut previous_sets: Option<Vec<u8>> = None;
-        let (mut stop, mut iterations) = (Stop::Cap, self.max_inner);
-        for k in 0..self.max_inner {
-            let eval = local.evaluate(&y);
-            let delta = match local.newton_step(&y, &eval) {
-                Ok(delta) => delta,
-                Err(e) => {
-                    (stop, iterations) = (Stop::NotFinite(e.to_string()), k + 1);
-                    break;
-                }
-            };
-            let alpha = local.line_search(&y, &delta, local.merit(&eval));
-            y.iter_mut().zip(&delta).for_each(|(a, d)| *a += alpha * d);
-            let size = y.iter().fold(0.0_f64, |a, v| a.max(v.abs())).max(f64::MIN_POSITIVE);
-            let criterion = alpha * delta.iter().fold(0.0_f64, |a, v| a.max(v.abs())) / size;
-            history.push(criterion);
-            let tolerance = STEP_TOLERANCE;
-            (self.step.progress)(Progress::Inner { iteration: k + 1, criterion, tolerance });
-            if !criterion.is_finite() {
-                (stop, iterations) =
-                    (Stop::NotFinite(format!("the Newton step is {criterion}")), k + 1);
-                break;
-            }
-            let settled = alpha == 1.0 && previous_sets.as_ref() == Some(&eval.sets);
-            previous_sets = Some(eval.sets);
-            if (settled && criterion <= STEP_TOLERANCE) || criterion <= STEP_FLOOR {
-                (stop, iterations) = (Stop::Converged, k + 1);
-                break;
-            }
+        let schur = condensed::schur_on(system, analysed, &cond.free)?;
+        let local = Local::new(self, schur, x_hat);
+        let from = local.gather(self.start.unwrap_or(&local.x_hat));
+        let guess = local.stick_where_pushed(&from);
+        let mut newton = match self.start {
+            None => local.iterate(guess.clone(), GUESS_STEPS.min(self.max_inner)),
+            Some(_) => local.iterate(from.clone(), self.max_inner),
+        };
+        let left = self.max_inner - newton.iterations;
+        if self.start.is_none()
+            && guess != from
+            && left > 0
+            && !matches!(newton.stop, Stop::Converged)
+        {
+            // The guess led nowhere: again from the solve without contact forces, within the
+            // cap on the steps of both.
+            let again = local.iterate(from, left);
+            let history = [newton.history, again.history].concat();
+            newton =
+                Iteration { iterations: newton.iterations + again.iterations, history, ..again };
         }
+        let Iteration { y, stop, iterations, history } = newton;
         let eval = local.evaluate(&y);
         let mut forces = vec![0.0; system.dofs().n_free()];
         for (k, f) in local.to_global(&eval.forces).into_iter().enumerate() {
@@ -323,20 +337,22 @@ impl<'a> Local<'a> {
         // A node that condenses u_ν alone has one slot, on the axis of its normal.
         for (i, q) in frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
             let (idx, axes) = cond.slots(i);
-            let rotate = |old: &[f64], a: usize| -> f64 {
-                axes.iter().zip(old).map(|(&axis, v)| q[a][axis] * v).sum()
+            let rotate = |old: &[f64; 3], a: usize| -> f64 {
+                axes.iter().enumerate().map(|(b, &axis)| q[a][axis] * old[b]).sum()
             };
-            for r in 0..m {
-                let old: Vec<f64> = idx.iter().map(|&k| schur.get(r, k)).collect();
-                for (a, &k) in idx.iter().enumerate() {
-                    schur.set(r, k, rotate(&old, a));
+            let columns: Vec<Vec<f64>> = idx.iter().map(|&k| schur.col(k).to_vec()).collect();
+            for (a, &k) in idx.iter().enumerate() {
+                for (r, out) in schur.col_mut(k).iter_mut().enumerate() {
+                    let mut old = [0.0; 3];
+                    columns.iter().zip(&mut old).for_each(|(c, o)| *o = c[r]);
+                    *out = rotate(&old, a);
                 }
             }
             for col in 0..m {
-                let old: Vec<f64> = idx.iter().map(|&k| schur.get(k, col)).collect();
-                for (a, &k) in idx.iter().enumerate() {
-                    schur.set(k, col, rotate(&old, a));
-                }
+                let column = schur.col_mut(col);
+                let mut old = [0.0; 3];
+                idx.iter().zip(&mut old).for_each(|(&k, o)| *o = column[k]);
+                idx.iter().enumerate().for_each(|(a, &k)| column[k] = rotate(&old, a));
             }
         }
         let mut this = Self {
@@ -365,6 +381,63 @@ impl<'a> Local<'a> {
             cond.slots(i).0.iter().for_each(|&k| this.scale[k] *= surface.weight[i]);
         }
         this
+    }
+
+    /// The semismooth Newton iteration from y, with its line search, until the sets settle
+    /// and the step is at round-off, or `cap` steps.
+    fn iterate(&self, mut y: Vec<f64>, cap: usize) -> Iteration {
+        let semismooth = self.semismooth;
+        let mut history = Vec::new();
+        let mut previous_sets: Option<Vec<u8>> = None;
+        let (mut stop, mut iterations) = (Stop::Cap, cap);
+        for k in 0..cap {
+            let eval = self.evaluate(&y);
+            let delta = match self.newton_step(&y, &eval) {
+                Ok(delta) => delta,
+                Err(e) => {
+                    (stop, iterations) = (Stop::NotFinite(e.to_string()), k + 1);
+                    break;
+                }
+            };
+            let alpha = self.line_search(&y, &delta, self.merit(&eval));
+            y.iter_mut().zip(&delta).for_each(|(a, d)| *a += alpha * d);
+            let size = y.iter().fold(0.0_f64, |a, v| a.max(v.abs())).max(f64::MIN_POSITIVE);
+            let criterion = alpha * delta.iter().fold(0.0_f64, |a, v| a.max(v.abs())) / size;
+            history.push(criterion);
+            let tolerance = STEP_TOLERANCE;
+            (semismooth.step.progress)(Progress::Inner { iteration: k + 1, criterion, tolerance });
+            if !criterion.is_finite() {
+                (stop, iterations) =
+                    (Stop::NotFinite(format!("the Newton step is {criterion}")), k + 1);
+                break;
+            }
+            let settled = alpha == 1.0 && previous_sets.as_ref() == Some(&eval.sets);
+            previous_sets = Some(eval.sets);
+            if (settled && criterion <= STEP_TOLERANCE) || criterion <= STEP_FLOOR {
+                (stop, iterations) = (Stop::Converged, k + 1);
+                break;
+            }
+        }
+        Iteration { y, stop, iterations, history }
+    }
+
+    /// A first guess from the solve without contact forces y: the nodes it pushes through
+    /// the foundation (u_ν above the stop ρ of the normal law) on it and sticking, u_ν = ρ
+    /// and u_τ = 0, the others at y. A whole face pressed onto a plane then starts with
+    /// nearly every set right, instead of slipping everywhere without a normal force; the
+    /// iteration starts from it on a cold start, and from y when it leads nowhere.
+    fn stick_where_pushed(&self, y: &[f64]) -> Vec<f64> {
+        let mut y = y.to_vec();
+        let (cond, step) = (self.semismooth.condensed, self.semismooth.step);
+        for i in (0..cond.u.len()).filter(|&i| cond.kept[i]) {
+            let u = cond.slots(i).0;
+            let stop = step.model.compliance.stop(step.surface.gap[i]);
+            if y[u[0]] > stop {
+                y[u[0]] = stop;
+                u[1..].iter().for_each(|&k| y[k] = 0.0);
+            }
+        }
+        y
     }
 
     /// The condensed entries of a global vector, in local coordinates.
@@ -707,7 +780,7 @@ mod tests {
             max_inner: 100,
             start: None,
         };
-        let result = semismooth.run(&mut system).unwrap();
+        let result = semismooth.run(&mut system, &condensed.free).unwrap();
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
         let local = Local::new(&semismooth, system.schur_complement().unwrap(), x_hat);

@@ -422,8 +422,9 @@ pub struct SolverSection {
     /// The most Γ3 nodes the exact solver condenses into its dense problem; default 2000
     /// (newton only).
     pub max_condensed: Option<usize>,
-    /// The fill-reducing ordering of the factorisation: "auto" (default: AMD and nested
-    /// dissection both analysed, the smaller factor kept), "nd" or "amd".
+    /// The fill-reducing ordering of the factorisation: "auto" (default: nested dissection
+    /// on a 3D mesh, else AMD and nested dissection both analysed and the smaller factor
+    /// kept), "nd" or "amd".
     pub ordering: Option<OrderingKey>,
 }
 

@@ -52,6 +52,34 @@ impl DenseMatrix {
         y
     }
 
+    /// A ← (A + Aᵀ)/2.
+    pub fn symmetrize(&mut self) {
+        for j in 0..self.n() {
+            for i in 0..j {
+                let mean = 0.5 * (self.mat[(i, j)] + self.mat[(j, i)]);
+                self.mat[(i, j)] = mean;
+                self.mat[(j, i)] = mean;
+            }
+        }
+    }
+
+    /// A⁻¹ by LU with partial pivoting; an error when an entry of it is not finite (A
+    /// singular).
+    pub fn inverse(&self) -> Result<DenseMatrix> {
+        use faer::linalg::solvers::DenseSolveCore;
+        let inverse = self.mat.partial_piv_lu().inverse();
+        for j in 0..self.n() {
+            if let Some(i) = (0..self.n()).find(|&i| !inverse[(i, j)].is_finite()) {
+                return Err(Error::SingularSystem {
+                    detail: format!(
+                        "a condensed matrix is singular (entry {i}, {j} of its inverse)"
+                    ),
+                });
+            }
+        }
+        Ok(Self { mat: inverse })
+    }
+
     /// Solves Aᵀ x = b by LU with partial pivoting (the matrix is stored by the columns of
     /// Aᵀ, that is by the rows of A).
     pub fn solve_transposed(&self, b: &[f64]) -> Result<Vec<f64>> {

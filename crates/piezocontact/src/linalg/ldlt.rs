@@ -160,8 +160,9 @@ impl LdltSolver {
         Ok(())
     }
 
-    /// The symbolic analysis with the solver's ordering (for [`Ordering::Auto`], the one of
-    /// AMD and nested dissection whose factor is smaller), and the ordering's name. A factor
+    /// The symbolic analysis with the solver's ordering (for [`Ordering::Auto`], nested
+    /// dissection on a 3D pattern, else the one of AMD and nested dissection whose factor is
+    /// smaller), and the ordering's name. A factor
     /// whose trailing block is read (unknowns kept last) is supernodal.
     fn ordered_symbolic(
         &self,
@@ -192,6 +193,7 @@ impl LdltSolver {
                     "a custom ordering cannot keep unknowns last for a Schur complement".into(),
                 ));
             }
+            Ordering::Auto if ordering::three_dimensional(pattern) => (nd()?, "nd"),
             Ordering::Auto => {
                 let by_nd = nd()?;
                 let by_amd = amd()?;

@@ -13,6 +13,16 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
 use std::sync::Mutex;
 
+/// Stored entries per row of a pattern's lower half above which
+/// [`Ordering::Auto`](super::Ordering::Auto) takes it for a 3D mesh's: P1 tetrahedra give about 30 (a node and its
+/// ~14 neighbours, d + 1 unknowns each, halved), P1 triangles about 11.
+pub const DENSE_ROWS: f64 = 20.0;
+
+/// Whether `pattern` is that of a 3D mesh, by its entries per row.
+pub fn three_dimensional(pattern: &SymmetricPattern) -> bool {
+    pattern.nnz() as f64 > DENSE_ROWS * pattern.n() as f64
+}
+
 /// METIS's API functions install and remove signal handlers through a global state of GKlib:
 /// calls from several threads (a sweep) go one at a time.
 static METIS: Mutex<()> = Mutex::new(());
