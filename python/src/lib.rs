@@ -13,6 +13,7 @@
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use piezocontact::case::Case as CaseFile;
 use piezocontact::output::files::Claimed;
+use piezocontact::path::{Column, PathRun};
 use piezocontact::report::{contact_columns, row_values};
 use piezocontact::run::{ContactRun, StaticRun};
 use pyo3::create_exception;
@@ -87,9 +88,11 @@ fn override_strings(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<Strin
     toml_table(overrides)?.into_iter().map(|(key, value)| Ok(format!("{key}={value}"))).collect()
 }
 
-/// A solved case: a contact run, or a run without contact (no `[contact]` table).
+/// A solved case: a contact run, a loading path, or a run without contact (no `[contact]`
+/// table).
 enum Run {
     Contact(Box<ContactRun>),
+    Path(Box<PathRun>),
     Static(Box<StaticRun>),
 }
 
@@ -112,7 +115,11 @@ fn guarded<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult
 /// `RuntimeWarning` (its results are there, marked `converged = False`).
 fn solve_case(py: Python<'_>, case: CaseFile) -> PyResult<Solution> {
     let run = guarded(py, || {
-        if case.file.contact.is_some() {
+        if case.file.loading.is_some() {
+            let built = case.build()?;
+            PathRun::solve_built(&case, built, case.linear_solver(), &|_| {})
+                .map(|r| Run::Path(Box::new(r)))
+        } else if case.file.contact.is_some() {
             ContactRun::solve(&case).map(|r| Run::Contact(Box::new(r)))
         } else {
             StaticRun::solve(&case).map(|r| Run::Static(Box::new(r)))
@@ -120,9 +127,12 @@ fn solve_case(py: Python<'_>, case: CaseFile) -> PyResult<Solution> {
     })?
     .map_err(case_error)?;
     let solution = Solution { run, case };
-    if let Run::Contact(run) = &solution.run
-        && let Some(failure) = &run.solution.failure
-    {
+    let failure = match &solution.run {
+        Run::Contact(run) => run.solution.failure.as_ref().map(|e| e.to_string()),
+        Run::Path(path) => path.failure.clone(),
+        Run::Static(_) => None,
+    };
+    if let Some(failure) = failure {
         let message = CString::new(format!(
             "{}: {failure}; the partial result is in the Solution (converged = False)",
             solution.case.path.display()
@@ -203,7 +213,17 @@ impl Solution {
     fn parts(&self) -> (&piezocontact::problem::Problem, &piezocontact::dofs::DofMap, &[f64]) {
         match &self.run {
             Run::Contact(r) => (&r.problem, &r.solution.dofs, &r.solution.x),
+            Run::Path(p) => (&p.last.problem, &p.last.solution.dofs, &p.last.solution.x),
             Run::Static(r) => (&r.problem, &r.solution.dofs, &r.solution.x),
+        }
+    }
+
+    /// The contact run: the run itself, or the last step of a path.
+    fn contact_run(&self) -> Option<&ContactRun> {
+        match &self.run {
+            Run::Contact(r) => Some(r),
+            Run::Path(p) => Some(&p.last),
+            Run::Static(_) => None,
         }
     }
 
@@ -228,6 +248,7 @@ impl Solution {
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let summary = match &self.run {
             Run::Contact(r) => r.summary(&self.case),
+            Run::Path(p) => p.summary(&self.case),
             Run::Static(r) => r.summary(&self.case),
         };
         let text = serde_json::to_string(&summary).map_err(case_error)?;
@@ -235,11 +256,11 @@ impl Solution {
     }
 
     /// The contact.csv columns as 1-D numpy arrays (float, and `status` as str), one entry per
-    /// Γ3 node; empty without contact.
+    /// Γ3 node (of the last step of a path); empty without contact.
     #[getter]
     fn contact<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
-        let Run::Contact(run) = &self.run else { return Ok(dict) };
+        let Some(run) = self.contact_run() else { return Ok(dict) };
         let dim = run.problem.mesh.dim();
         let rows: Vec<Vec<f64>> = run.rows.iter().map(|r| row_values(r, dim)).collect();
         for (k, name) in contact_columns(dim).iter().enumerate() {
@@ -273,13 +294,51 @@ impl Solution {
         PyArray1::from_vec(py, phi)
     }
 
-    /// Whether every loop converged (a run without contact always does).
+    /// Whether every loop converged (a run without contact always does; a path when every
+    /// step did).
     #[getter]
     fn converged(&self) -> bool {
         match &self.run {
             Run::Contact(r) => r.solution.converged,
+            Run::Path(p) => p.converged() && p.last.solution.converged,
             Run::Static(_) => true,
         }
+    }
+
+    /// The curve.csv columns of a loading path as 1-D numpy arrays (`step` and
+    /// `newton_steps` as int, `converged` as bool), one entry per step solved; empty for a
+    /// single run.
+    #[getter]
+    fn curve<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        let Run::Path(path) = &self.run else { return Ok(dict) };
+        let numpy = py.import("numpy")?;
+        for (name, column) in path.columns() {
+            match column {
+                Column::Integer(v) => dict.set_item(name, numpy.call_method1("array", (v,))?)?,
+                Column::Real(v) => dict.set_item(name, PyArray1::from_vec(py, v))?,
+                Column::Flag(v) => dict.set_item(name, numpy.call_method1("array", (v,))?)?,
+            }
+        }
+        Ok(dict)
+    }
+
+    /// The state of each step of a loading path: dicts with `u` (n × d) and `phi` (n); empty
+    /// for a single run.
+    #[getter]
+    fn steps<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let Run::Path(path) = &self.run else { return Ok(Vec::new()) };
+        let (_, dofs, _) = self.parts();
+        path.states()
+            .map(|x| {
+                let dict = PyDict::new(py);
+                dict.set_item("u", self.nodal(py, |a, k| x[dofs.u(a, k)])?)?;
+                let n = self.parts().0.mesh.n_nodes();
+                let phi: Vec<f64> = (0..n).map(|a| x[dofs.phi(a)]).collect();
+                dict.set_item("phi", PyArray1::from_vec(py, phi))?;
+                Ok(dict)
+            })
+            .collect()
     }
 
     /// Writes the files `piezocontact run` writes into `directory`; a directory holding
@@ -301,6 +360,7 @@ impl Solution {
         })?;
         match &self.run {
             Run::Contact(run) => Ok(run.write(&self.case, directory)?),
+            Run::Path(path) => Ok(path.write(&self.case, directory)?),
             Run::Static(run) => Ok(run.write(&self.case, directory)?),
         }
     }

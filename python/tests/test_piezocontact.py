@@ -223,3 +223,24 @@ def test_the_table2_example_saves_its_figure(tmp_path):
     example = ROOT / "python" / "examples" / "table2.py"
     subprocess.run([sys.executable, example], cwd=tmp_path, check=True, capture_output=True)
     assert (tmp_path / "table2.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_a_loading_path_gives_its_curve_and_its_steps(tmp_path):
+    s = piezocontact.solve(ROOT / "cases" / "indentation-curve.toml", {"loading.depths": [0.005, 0.01]})
+    assert s.converged
+    curve = s.curve
+    assert list(curve["step"]) == [1, 2] and list(curve["depth"]) == [0.005, 0.01]
+    assert curve["converged"].dtype == bool and curve["converged"].all()
+    # Deeper presses harder; the two electrodes' charges cancel (no charge enters otherwise).
+    assert 0 < curve["force_z"][0] < curve["force_z"][1]
+    total = curve["charge_bottom"] + curve["charge_top"]
+    assert np.all(np.abs(total) <= 1e-10 * np.abs(curve["charge_top"]))
+    steps = s.steps
+    assert len(steps) == 2 and steps[1]["u"].shape == s.u.shape
+    assert np.array_equal(steps[1]["u"], s.u) and np.array_equal(steps[1]["phi"], s.phi)
+    assert not np.array_equal(steps[0]["u"], s.u)
+    s.write(tmp_path / "path")
+    with open(tmp_path / "path" / "curve.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert [float(r["force_z"]) for r in rows] == list(curve["force_z"])
+    assert (tmp_path / "path" / "solution-0002.vtu").exists()

@@ -9,13 +9,16 @@
 
 use crate::say;
 use anyhow::{Result, anyhow, bail};
+use piezocontact::algorithm::solve_contact_with;
 use piezocontact::assembly::secant_moduli;
 use piezocontact::case::{Built, Case};
 use piezocontact::dofs::DofMap;
 use piezocontact::linalg::{LdltSolver, LinearSolver, Ordering, default_solver};
+use piezocontact::path::PathRun;
 use piezocontact::problem::Problem;
 use piezocontact::solver::CoupledSystem;
 use std::path::Path;
+use std::time::Instant;
 
 const PAPER_CASE: &str = include_str!("../../../cases/paper-7.1.toml");
 const PAPER_PV2: &str = include_str!("../../../cases/paper-7.2.toml");
@@ -423,4 +426,54 @@ fn peak_mb() -> f64 {
             line.split_whitespace().nth(1)?.parse::<f64>().ok()
         })
         .map_or(0.0, |kib| kib / 1024.0)
+}
+
+/// `bench --path`: the loading path of `case_file` (`--mesh` replacing its mesh) solved as
+/// a path — each step from the last, the analysis, the factorisation and the condensation
+/// kept — against the same steps solved cold, one solve each, in the same process.
+pub fn path(case_file: &Path, mesh: Option<&Path>) -> Result<()> {
+    let mut overrides = Vec::new();
+    if let Some(mesh) = mesh {
+        let file =
+            std::fs::canonicalize(mesh).map_err(|e| anyhow!("--mesh {}: {e}", mesh.display()))?;
+        overrides.push(format!("mesh.file={:?}", file.display().to_string()));
+    }
+    let case = Case::load(case_file, &overrides)?;
+    let start = Instant::now();
+    let path = PathRun::solve_built(&case, case.build()?, case.linear_solver(), &|_| {})?;
+    let path_seconds = start.elapsed().as_secs_f64();
+    if let Some(failure) = &path.failure {
+        bail!("{}: {failure}", case_file.display());
+    }
+    let start = Instant::now();
+    let (mut factorisations, mut newton, mut difference) = (0, 0, 0.0_f64);
+    for (step, row) in path.loading.steps.iter().zip(&path.curve) {
+        let Built { mut problem, model, settings, .. } = case.build()?;
+        let mut model = model.ok_or_else(|| anyhow!("no [contact] table"))?;
+        problem.load_factor = step.load_factor;
+        model.foundation = model.foundation.translated(path.loading.shift(step));
+        let s = solve_contact_with(&problem, &model, &settings, case.linear_solver(), &|_| {})?;
+        factorisations += s.timings.numeric_count;
+        newton += s.inner_iterations.iter().sum::<usize>();
+        let force: f64 = s.balance.contact.iter().map(|f| f * f).sum::<f64>().sqrt();
+        let path_force: f64 = row.force.iter().map(|f| f * f).sum::<f64>().sqrt();
+        difference = difference.max((force - path_force).abs() / force.max(f64::MIN_POSITIVE));
+    }
+    let cold_seconds = start.elapsed().as_secs_f64();
+    let t = path.last.solution.timings;
+    let path_newton: usize = path.curve.iter().map(|r| r.newton_steps).sum();
+    say!(
+        "{}: {} steps, {} unknowns",
+        case_file.display(),
+        path.curve.len(),
+        path.last.solution.dofs.n_free()
+    );
+    say!("{:>6} {:>9} {:>15} {:>13}", "", "wall_s", "factorisations", "newton_steps");
+    say!("{:>6} {:>9.3} {:>15} {:>13}", "path", path_seconds, t.numeric_count, path_newton);
+    say!("{:>6} {:>9.3} {:>15} {:>13}", "cold", cold_seconds, factorisations, newton);
+    say!(
+        "path / cold: {:.3} (wall time); largest relative difference of the force between a path step and its cold solve {difference:.1e}",
+        path_seconds / cold_seconds
+    );
+    Ok(())
 }

@@ -7,6 +7,7 @@ use piezocontact::case::{Built, Case};
 use piezocontact::dofs::DofMap;
 use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
+use piezocontact::path::PathRun;
 use piezocontact::run::{self, ContactRun, StaticRun};
 use piezocontact_cli::progress::Reporter;
 use piezocontact_cli::{bench, print, reproduce, sweep};
@@ -128,9 +129,15 @@ enum Command {
         #[arg(long, conflicts_with = "lu")]
         contact: bool,
         /// With --contact: a contact case (a .toml file) instead, run as PV1 and as PV2 with
-        /// µ = 0.3, e.g. cases/block-3d.toml (a block whose whole bottom face touches).
-        #[arg(long, requires = "contact", conflicts_with_all = ["sizes", "mesh"])]
+        /// µ = 0.3, e.g. cases/block-3d.toml (a block whose whole bottom face touches); with
+        /// --path: the case whose loading path is timed.
+        #[arg(long, conflicts_with = "sizes")]
         case: Option<PathBuf>,
+        /// Time a loading path (each step from the last, the factorisation kept) against the
+        /// same steps solved cold, in the same run: the path of --case (default
+        /// cases/indentation-curve.toml), --mesh replacing its mesh.
+        #[arg(long, conflicts_with_all = ["contact", "lu", "sizes"])]
+        path: bool,
         /// One measurement of --contact (internal).
         #[arg(long, hide = true)]
         one: Option<String>,
@@ -202,9 +209,16 @@ fn run(command: Command) -> Result<Outcome> {
         }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
-        Command::Bench { sizes, mesh, lu, contact, case, one, ordering } => {
+        Command::Bench { sizes, mesh, lu, contact, case, path, one, ordering } => {
             if let Some(spec) = one {
                 return bench::measure_one(&spec).map(|_| Outcome::Done);
+            }
+            if path {
+                let case = case.unwrap_or_else(|| PathBuf::from("cases/indentation-curve.toml"));
+                return bench::path(&case, mesh.as_deref()).map(|_| Outcome::Done);
+            }
+            if case.is_some() && (!contact || mesh.is_some()) {
+                anyhow::bail!("--case goes with --contact (a case's mesh) or --path (with --mesh)");
             }
             if contact {
                 let targets = match (&mesh, sizes) {
@@ -273,6 +287,32 @@ fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
     let header = run::common_summary(case, &built.problem, &DofMap::new(&built.problem)?);
     let reporter = Reporter::new(case.method_name(), interval);
     let progress = |event| reporter.event(event);
+    if built.loading.is_some() {
+        let path = match PathRun::solve_built(case, built, case.linear_solver(), &progress) {
+            Ok(path) => path,
+            Err(e) => {
+                output::write_summary(out, &run::refusal_summary(header, case, &e))?;
+                return Err(e.into());
+            }
+        };
+        drop(reporter);
+        path.write(case, out)?;
+        print::path_run(&path, case, out);
+        return Ok(match &path.failure {
+            None => Outcome::Done,
+            Some(failure) => {
+                say_err!(
+                    "error: {}: {failure}; the steps before it are in {} (marked \"converged\": false)",
+                    case.path.display(),
+                    out.display()
+                );
+                match &path.last.solution.failure {
+                    Some(piezocontact::Error::NotConverged { .. }) => Outcome::NotConverged,
+                    _ => Outcome::Failed,
+                }
+            }
+        });
+    }
     let run = match ContactRun::solve_built(case, built, case.linear_solver(), &progress) {
         Ok(run) => run,
         Err(e) => {
@@ -358,6 +398,7 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
     if let Some(model) = &model {
         say!("problem: {:?}, foundation: {:?}", case.problem_kind(), model.foundation);
     }
+    print::indentation_moduli(&problem.material, units);
     for warning in case.hypothesis_warnings(&problem.material) {
         say!("warning: {warning}");
     }

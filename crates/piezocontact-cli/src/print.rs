@@ -2,6 +2,10 @@
 
 use crate::say;
 use piezocontact::case::Case;
+use piezocontact::case::schema::Units;
+use piezocontact::material::Material;
+use piezocontact::oracles::{Piezoelectric, plane_strain_modulus};
+use piezocontact::path::PathRun;
 use piezocontact::run::{ContactRun, StaticRun};
 use std::path::Path;
 
@@ -59,6 +63,82 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
     );
     let map = if run.problem.mesh.dim() == 3 { ", contact_map.png/.svg" } else { "" };
     say!("  wrote contact.csv, summary.json, solution.vtu{map} in {}", out.display());
+}
+
+/// Prints a loading path: a line per step, then the last step as a run.
+pub fn path_run(path: &PathRun, case: &Case, out: &Path) {
+    let units = &case.file.units;
+    let dim = path.last.problem.mesh.dim();
+    let force = if dim == 3 {
+        format!("{}·{}²", units.stress, units.length)
+    } else {
+        format!("{}·{}", units.stress, units.length)
+    };
+    say!(
+        "{}: loading path of {} steps, {} solved",
+        case.path.display(),
+        path.loading.steps.len(),
+        path.curve.len()
+    );
+    say!(
+        "  {:>4} {:>12} {:>11} {:>13} {:>13} {:>13} {:>7} {:>10} {:>9}",
+        "step",
+        format!("depth [{}]", units.length),
+        "load factor",
+        format!("|F| [{force}]"),
+        format!("radius [{}]", units.length),
+        format!("p_max [{}]", units.stress),
+        "steps",
+        "KKT",
+        "converged"
+    );
+    for r in &path.curve {
+        let magnitude = r.force.iter().map(|f| f * f).sum::<f64>().sqrt();
+        say!(
+            "  {:>4} {:>12.4e} {:>11.4} {:>13.4e} {:>13.4e} {:>13.4e} {:>7} {:>10.2e} {:>9}",
+            r.step,
+            r.depth,
+            r.load_factor,
+            magnitude,
+            r.contact_radius,
+            r.max_pressure,
+            r.newton_steps,
+            r.kkt_residual,
+            r.converged
+        );
+    }
+    say!("the last step:");
+    contact_run(&path.last, case, out);
+    say!(
+        "  wrote curve.csv, curve.png/.svg, solution-NNNN.vtu and solution.pvd (every step) in {}",
+        out.display()
+    );
+}
+
+/// Prints the indentation moduli of the material's half-space, poled along its outward
+/// normal (the classical solutions with C* in place of E*).
+pub fn indentation_moduli(material: &Material, units: &Units) {
+    let e_star = plane_strain_modulus(material.elasticity.young(), material.elasticity.poisson());
+    let s = &units.stress;
+    say!("indentation of a half-space poled along its outward normal (small strain):");
+    say!("  E/(1 − ν²)          = {e_star:.6} {s} (without the piezoelectric coupling)");
+    let constants = Piezoelectric::of(material);
+    if [constants.e31, constants.e33, constants.e15].iter().all(|e| *e == 0.0) {
+        return;
+    }
+    match constants.indentation() {
+        Ok(m) => {
+            say!("  C* insulating tip   = {:.6} {s}", m.insulating);
+            say!("  C* grounded tip     = {:.6} {s}", m.conducting);
+            say!(
+                "  ϕ/δ insulating tip  = {:.6} {}/{} (surface potential per indentation into the body)",
+                m.potential_ratio,
+                units.potential,
+                units.length
+            );
+        }
+        Err(e) => say!("  C*: not computed ({e})"),
+    }
 }
 
 /// Prints a run without contact.

@@ -45,6 +45,11 @@ impl Elasticity {
         9.0 * self.k0 * self.mu1 / (3.0 * self.k0 + self.mu1)
     }
 
+    /// Poisson's ratio ν = (3 k0 − 2 µ1) / (6 k0 + 2 µ1) [-].
+    pub fn poisson(&self) -> f64 {
+        (3.0 * self.k0 - 2.0 * self.mu1) / (6.0 * self.k0 + 2.0 * self.mu1)
+    }
+
     /// From Young's modulus E [stress] and Poisson's ratio ν, as in [P] Section 7:
     /// µ1 = E/(2 + 2ν), k0 = E/(3 − 6ν).
     pub fn from_young_poisson(young: f64, poisson: f64, law: ElasticLaw) -> Result<Self> {

@@ -9,6 +9,7 @@ use serde_json::{Value, json};
 use std::fmt::Write;
 
 /// Nodal Γ3 quantities in output form.
+#[derive(Clone, Debug)]
 pub struct Row {
     /// Node coordinates (3 components).
     pub x: [f64; 3],

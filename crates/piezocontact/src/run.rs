@@ -61,7 +61,7 @@ impl ContactRun {
         progress: &dyn Fn(Progress),
     ) -> Result<Self> {
         let start = Instant::now();
-        let Built { problem, model, settings, warnings } = built;
+        let Built { problem, model, settings, warnings, .. } = built;
         let model = model.ok_or_else(|| {
             Error::Input(format!("{}: the case has no [contact] table", case.path.display()))
         })?;
@@ -141,10 +141,33 @@ impl ContactRun {
             cause: e.to_string(),
         })?;
         let (problem, solution) = (&self.problem, &self.solution);
+        let fields = ContactFields::new(problem, solution, &self.rows);
+        let csv = report::contact_csv(&self.rows, problem.mesh.dim());
+        files::write_atomic(&out.join("contact.csv"), csv.as_bytes())?;
+        let extra = fields.fields();
+        files::write_results(out, &self.summary(case), problem, &solution.dofs, &solution.x, &extra)
+    }
+}
+
+/// The contact fields of solution.vtu at every node (0 off Γ3).
+pub struct ContactFields {
+    /// 1 separated, 2 contact or stick, 3 slip.
+    status: Vec<f64>,
+    /// −σ_ν [stress].
+    pressure: Vec<f64>,
+    /// σ_τ, 3 components [stress].
+    traction: Vec<f64>,
+    /// The gap [length].
+    gap: Vec<f64>,
+}
+
+impl ContactFields {
+    /// The fields of `solution` with its Γ3 `rows`.
+    pub fn new(problem: &Problem, solution: &ContactSolution, rows: &[Row]) -> Self {
         let n = problem.mesh.n_nodes();
         let (mut status, mut pressure, mut gap) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let mut traction = vec![0.0; 3 * n];
-        for (row, &node) in self.rows.iter().zip(&solution.surface.nodes) {
+        for (row, &node) in rows.iter().zip(&solution.surface.nodes) {
             status[node] = match row.status {
                 NodeStatus::Separated => 1.0,
                 NodeStatus::Contact | NodeStatus::Stick => 2.0,
@@ -154,15 +177,17 @@ impl ContactRun {
             gap[node] = row.gap;
             traction[3 * node..3 * node + 3].copy_from_slice(&row.friction_traction);
         }
-        let extra = [
-            Field { name: "contact_status", components: 1, values: &status },
-            Field { name: "contact_pressure", components: 1, values: &pressure },
-            Field { name: "friction_traction", components: 3, values: &traction },
-            Field { name: "gap", components: 1, values: &gap },
-        ];
-        let csv = report::contact_csv(&self.rows, problem.mesh.dim());
-        files::write_atomic(&out.join("contact.csv"), csv.as_bytes())?;
-        files::write_results(out, &self.summary(case), problem, &solution.dofs, &solution.x, &extra)
+        Self { status, pressure, traction, gap }
+    }
+
+    /// As point fields of a .vtu file.
+    pub fn fields(&self) -> [Field<'_>; 4] {
+        [
+            Field { name: "contact_status", components: 1, values: &self.status },
+            Field { name: "contact_pressure", components: 1, values: &self.pressure },
+            Field { name: "friction_traction", components: 3, values: &self.traction },
+            Field { name: "gap", components: 1, values: &self.gap },
+        ]
     }
 }
 

@@ -53,7 +53,10 @@ pub struct CoupledSystem {
     matrix: Option<SymmetricMatrix>,
     /// f̌ on the free DOFs: assembled once, it does not depend on x_n.
     load: Vec<f64>,
-    /// f̌ plus the Dirichlet lifting of the current matrix, on the free DOFs.
+    /// The Dirichlet lifting of the current matrix (with Hencky's tangent, (K_T − K_sec) x_n),
+    /// on the free DOFs.
+    lifting: Vec<f64>,
+    /// f̌ plus the lifting, on the free DOFs.
     rhs: Vec<f64>,
     /// Time of the pattern [s].
     pattern_seconds: f64,
@@ -108,6 +111,7 @@ impl CoupledSystem {
             solver,
             matrix: None,
             load,
+            lifting: Vec::new(),
             rhs: Vec::new(),
             pattern_seconds,
             assembly_seconds,
@@ -144,11 +148,23 @@ impl CoupledSystem {
     ) -> Result<()> {
         let t = Instant::now();
         let (matrix, lifting) = self.assembler.linearised_matrix(problem, linearisation, blocks)?;
-        self.rhs = self.load.iter().zip(&lifting).map(|(f, l)| f + l).collect();
+        self.lifting = lifting;
+        self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
         self.assembly_seconds += t.elapsed().as_secs_f64();
         self.solver.factorize(&matrix)?;
         self.matrix = Some(matrix);
         Ok(())
+    }
+
+    /// Assembles f̌ again from `problem` — the same mesh and boundary with other loads (a
+    /// step of a loading path) — keeping the matrix and its factorisation.
+    pub fn reload(&mut self, problem: &Problem) {
+        let t = Instant::now();
+        self.load = self.assembler.restrict(&load_vector(problem, self.assembler.dofs()));
+        if !self.lifting.is_empty() {
+            self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
+        }
+        self.assembly_seconds += t.elapsed().as_secs_f64();
     }
 
     /// Solves with the current factorisation for the current right-hand side plus `extra`

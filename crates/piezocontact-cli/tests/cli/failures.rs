@@ -2,7 +2,7 @@
 //! unconverged and exit with their documented code; output directories are never clobbered;
 //! a killed run leaves only complete files.
 
-use super::common::{command, null_paths, root, run_coarse, text};
+use super::common::{command, null_paths, piezocontact, root, run_coarse, text};
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 use std::time::Duration;
@@ -210,4 +210,45 @@ fn a_factor_too_large_for_the_memory_is_refused_before_it_is_computed() {
     assert!(summary["failure"].as_str().unwrap().contains("would need about"), "{summary}");
     assert_eq!(summary["dim"], 3);
     assert!(!out.join("solution.vtu").exists() && !out.join("contact.csv").exists());
+}
+
+/// A loading path whose second step fails (its contact zone outgrows solver.max_condensed)
+/// keeps the first step written — its row of curve.csv, solution-0001.vtu in solution.pvd,
+/// contact.csv and summary.json — says which step failed and why, and exits 4.
+#[test]
+fn a_path_that_fails_at_a_step_keeps_the_steps_before_it() {
+    let out = temp_dir("path-failure");
+    let o = piezocontact(&[
+        "run",
+        "cases/indentation-curve.toml",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "loading.depths=[0.001, 0.02]",
+        "--set",
+        "solver.max_condensed=10",
+    ]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(4), "{t}");
+    assert!(
+        t.contains("step 2 of 2 (depth 2e-2, load factor 1) failed")
+            && t.contains("raise solver.max_condensed"),
+        "{t}"
+    );
+    let curve = std::fs::read_to_string(out.join("curve.csv")).unwrap();
+    let lines: Vec<&str> = curve.lines().collect();
+    assert_eq!(lines.len(), 2, "{curve}");
+    assert!(lines[0].starts_with("step,load_factor,depth,force_x,force_y,force_z,contact_measure,contact_radius,max_pressure,phi_center,phi_mean,stick_measure,slip_measure,newton_steps,kkt_residual,converged,charge_bottom,charge_top"), "{}", lines[0]);
+    assert!(lines[1].starts_with("1,1e0,1e-3,") && lines[1].contains(",true,"), "{}", lines[1]);
+    assert!(out.join("solution-0001.vtu").exists() && !out.join("solution-0002.vtu").exists());
+    let pvd = std::fs::read_to_string(out.join("solution.pvd")).unwrap();
+    assert!(pvd.contains("file=\"solution-0001.vtu\"") && !pvd.contains("0002"), "{pvd}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["converged"], false);
+    assert!(summary["failure"].as_str().unwrap().starts_with("step 2 of 2"), "{summary}");
+    assert_eq!(
+        (summary["path"]["steps"].clone(), summary["path"]["steps_solved"].clone()),
+        (2.into(), 1.into())
+    );
 }

@@ -161,7 +161,7 @@ fn check_validates_the_foundation_and_the_exact_solver_s_keys() {
     for (set, pieces) in [
         (
             "foundation.radius=-1.0",
-            vec!["indentation-3d.toml:", "foundation.radius = -1", "a radius > 0"],
+            vec!["indentation-3d.toml:", "foundation.radius = -1", "a length > 0"],
         ),
         (
             "foundation.normal=[0.0, 0.0, 1.0]",

@@ -241,24 +241,65 @@ impl Condensed {
     }
 }
 
-/// The Schur complement S_W of the free unknowns `wanted` from the current factorisation of
-/// `system`, analysed with the free unknowns `analysed` last (model §11), without analysing
-/// or factorising again. The (W, W) block of B̌⁻¹ is S_W⁻¹: its entries between analysed
-/// unknowns are those of S_A⁻¹, the others come from one solve per wanted unknown that was
-/// not analysed (B̌⁻¹ is symmetric); S_W is the inverse of that block, made symmetric.
-pub fn schur_on(
+/// Where the exact solver's Schur complements come from (model §11): the trailing block of
+/// the factor, whose ordering kept the unknowns `analysed` last, and the last Schur
+/// complement taken by solves from the same factorisation, which the next set starts from.
+#[derive(Clone, Debug, Default)]
+pub struct SchurSource {
+    /// The free unknowns last in the factorisation's ordering.
+    analysed: Vec<usize>,
+    /// The last set served, the factorisation it came from (the count of numeric
+    /// factorisations then) and its Schur complement.
+    last: Option<(Vec<usize>, usize, DenseMatrix)>,
+}
+
+impl SchurSource {
+    /// The factor's ordering keeps `analysed` last.
+    pub fn new(analysed: &[usize]) -> Self {
+        Self { analysed: analysed.to_vec(), last: None }
+    }
+
+    /// The free unknowns last in the factorisation's ordering.
+    pub fn analysed(&self) -> &[usize] {
+        &self.analysed
+    }
+
+    /// The Schur complement S_W of the free unknowns `wanted` from the current factorisation
+    /// of `system`, without analysing or factorising again: read off the factor when W is the
+    /// analysed set, the last one again when W and the factorisation are the same, else from
+    /// the last one of this factorisation (or the factor's) by [`schur_from`].
+    pub fn get(&mut self, system: &mut CoupledSystem, wanted: &[usize]) -> Result<DenseMatrix> {
+        let generation = system.solver_stats().numeric_count;
+        let current = self.last.take().filter(|(_, g, _)| *g == generation);
+        let schur = match current {
+            Some((set, _, s)) if set == wanted => s,
+            Some((set, _, s)) => schur_from(system, &set, s, wanted)?,
+            None if self.analysed == wanted => system.schur_complement()?,
+            None => {
+                let base = system.schur_complement()?;
+                schur_from(system, &self.analysed.clone(), base, wanted)?
+            }
+        };
+        self.last = Some((wanted.to_vec(), generation, schur.clone()));
+        Ok(schur)
+    }
+}
+
+/// The Schur complement S_W of the free unknowns `wanted` from `base`, the Schur complement
+/// S_B of the free unknowns `base_set` of the current factorisation of `system`. The (W, W)
+/// block of B̌⁻¹ is S_W⁻¹: its entries between unknowns of B are those of S_B⁻¹, the others
+/// come from one solve per wanted unknown outside B (B̌⁻¹ is symmetric); S_W is the inverse
+/// of that block, made symmetric.
+pub fn schur_from(
     system: &mut CoupledSystem,
-    analysed: &[usize],
+    base_set: &[usize],
+    base: DenseMatrix,
     wanted: &[usize],
 ) -> Result<DenseMatrix> {
-    let s_analysed = system.schur_complement()?;
-    if analysed == wanted {
-        return Ok(s_analysed);
-    }
     let position: HashMap<usize, usize> =
-        analysed.iter().enumerate().map(|(p, &k)| (k, p)).collect();
-    let inverse = s_analysed.inverse()?;
-    drop(s_analysed);
+        base_set.iter().enumerate().map(|(p, &k)| (k, p)).collect();
+    let inverse = base.inverse()?;
+    drop(base);
     let n = system.dofs().n_free();
     let mut solved: HashMap<usize, Vec<f64>> = HashMap::new();
     for &k in wanted.iter().filter(|k| !position.contains_key(k)) {
@@ -284,7 +325,7 @@ pub fn schur_on(
     Ok(schur)
 }
 
-/// Whether growing the condensation by [`schur_on`] (one solve per new unknown) is cheaper
+/// Whether growing the condensation by [`schur_from`] (one solve per new unknown) is cheaper
 /// than analysing and factorising again with them last, judged by the mean times of the
 /// solves and factorisations so far.
 pub fn cheaper_by_solves(new_unknowns: usize, stats: &SolverStats) -> bool {
@@ -374,7 +415,7 @@ mod transfer_tests {
                 CoupledSystem::with_last(problem, dofs.clone(), last, default_solver()).unwrap();
             let moduli = secant_moduli(problem, system.dofs(), &vec![0.0; dofs.n_total()]).unwrap();
             system.factorize(problem, &moduli, &[]).unwrap();
-            schur_on(&mut system, last, wanted).unwrap()
+            SchurSource::new(last).get(&mut system, wanted).unwrap()
         };
         let (by_solves, by_analysis) = (schur(&analysed, &wanted), schur(&wanted, &wanted));
         let size = (0..wanted.len()).map(|k| by_analysis.get(k, k).abs()).fold(0.0, f64::max);

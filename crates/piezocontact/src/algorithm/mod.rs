@@ -256,54 +256,148 @@ pub fn solve_contact_with(
     solver: Box<dyn LinearSolver>,
     progress: &dyn Fn(Progress),
 ) -> Result<ContactSolution> {
-    let mut method = settings.method.fresh();
-    let dofs = DofMap::new(problem)?;
-    let surface = ContactSurface::new(problem, &dofs)?.with_gaps(
-        problem,
-        &model.foundation,
-        model.compliance.gap,
-    );
-    let mut system = method.prepare(Setup { problem, dofs, surface: &surface, model }, solver)?;
-    let fixed = Fixed::new(problem, &surface, model)?;
-    let mut solution = ContactSolution::start(surface, system.dofs().n_total());
-    let lags = method.lags_contact();
-    let mut linearisation = linearise(problem, system.dofs(), &solution.x, lags)?;
-    // Whether B̌ must be factorised: first, and whenever the linearisation changed.
-    let mut changed = true;
-    for n in 1..=settings.max_outer {
-        progress(Progress::Outer { step: n, max: settings.max_outer });
-        if changed
-            && let Err(e) = system.factorize_linearised(problem, &linearisation, method.blocks())
-        {
-            solution.failure = Some(factorisation_failure(n, e));
-            break;
-        }
-        let s_n = solution.s.clone();
-        let step = fixed.step(problem, model, &solution, &s_n, &linearisation, progress);
-        let inner = method.solve(&step, &mut system)?;
-        let failure = inner_failure(&method.stop_context(n, model.pv2.is_some()), &inner);
-        solution.outer_iterations = n;
-        let x_previous = solution.record(inner, s_n, lags, model, &fixed, &system);
-        if failure.is_some() {
-            solution.failure = failure;
-            break;
-        }
-        let next = linearise(problem, system.dofs(), &solution.x, lags)?;
-        changed = next != linearisation;
-        let criterion =
-            fixed.outer_criterion(problem, &system, &solution, &x_previous, changed, lags);
-        solution.outer_history.push(criterion);
-        linearisation = next;
-        if criterion < method.outer_tolerance() {
-            solution.converged = true;
-            break;
-        }
-        if lags && let Some(failure) = outer_failure(model, &solution) {
-            solution.failure = Some(failure);
-            break;
-        }
+    ContactSolver::new(problem, model, settings, solver)?.solve(problem, model, progress)
+}
+
+/// The outer loop around an inner method, kept between solves of one body: a loading path
+/// (model §14) solves the same mesh again with the foundation moved or the loads scaled,
+/// with the pattern, the symbolic analysis, the factorisation (while Hencky's linearisation
+/// does not change), the method's state (the exact solver's condensation) and the last
+/// solution — the next solve's first iterate — kept.
+pub struct ContactSolver {
+    method: Box<dyn InnerMethod>,
+    system: CoupledSystem,
+    fixed: Fixed,
+    /// Γ3's geometry (the gaps are set by each solve).
+    surface: ContactSurface,
+    /// Hencky's law linearised at the last solution (at 0 before the first solve).
+    linearisation: Linearisation,
+    /// Whether B̌ must be factorised with `linearisation` before the next step.
+    changed: bool,
+    max_outer: usize,
+    /// x and s of the last solve.
+    last: Option<(Vec<f64>, Vec<f64>)>,
+}
+
+impl ContactSolver {
+    /// Sets up the method and the coupled system of `problem` with the caller's `solver`.
+    pub fn new(
+        problem: &Problem,
+        model: &ContactModel,
+        settings: &Settings,
+        solver: Box<dyn LinearSolver>,
+    ) -> Result<Self> {
+        let mut method = settings.method.fresh();
+        let dofs = DofMap::new(problem)?;
+        let surface = ContactSurface::new(problem, &dofs)?.with_gaps(
+            problem,
+            &model.foundation,
+            model.compliance.gap,
+        );
+        let system = method.prepare(Setup { problem, dofs, surface: &surface, model }, solver)?;
+        let fixed = Fixed::new(problem, &surface, model)?;
+        let zero = vec![0.0; system.dofs().n_total()];
+        let linearisation = linearise(problem, system.dofs(), &zero, method.lags_contact())?;
+        let max_outer = settings.max_outer;
+        Ok(Self {
+            method,
+            system,
+            fixed,
+            surface,
+            linearisation,
+            changed: true,
+            max_outer,
+            last: None,
+        })
     }
-    finish(problem, model, settings, &*method, system, solution)
+
+    /// Solves `problem` (the mesh of [`ContactSolver::new`], its loads as they are now) in
+    /// contact with `model`'s foundation, from the last solution (from 0 the first time).
+    pub fn solve(
+        &mut self,
+        problem: &Problem,
+        model: &ContactModel,
+        progress: &dyn Fn(Progress),
+    ) -> Result<ContactSolution> {
+        let surface =
+            self.surface.clone().with_gaps(problem, &model.foundation, model.compliance.gap);
+        let mut solution = ContactSolution::start(surface, self.system.dofs().n_total());
+        if let Some((x, s)) = &self.last {
+            (solution.x, solution.s) = (x.clone(), s.clone());
+        }
+        self.system.reload(problem);
+        let (lags, fixed) = (self.method.lags_contact(), &self.fixed);
+        for n in 1..=self.max_outer {
+            progress(Progress::Outer { step: n, max: self.max_outer });
+            let (linearisation, blocks) = (&self.linearisation, self.method.blocks());
+            if self.changed
+                && let Err(e) = self.system.factorize_linearised(problem, linearisation, blocks)
+            {
+                solution.failure = Some(factorisation_failure(n, e));
+                break;
+            }
+            self.changed = false;
+            let s_n = solution.s.clone();
+            let step = fixed.step(problem, model, &solution, &s_n, linearisation, progress);
+            let inner = self.method.solve(&step, &mut self.system)?;
+            let failure = inner_failure(&self.method.stop_context(n, model.pv2.is_some()), &inner);
+            solution.outer_iterations = n;
+            let x_previous = solution.record(inner, s_n, lags, model, fixed, &self.system);
+            if failure.is_some() {
+                solution.failure = failure;
+                break;
+            }
+            let next = linearise(problem, self.system.dofs(), &solution.x, lags)?;
+            self.changed = next != self.linearisation;
+            let criterion = fixed.outer_criterion(
+                problem,
+                &self.system,
+                &solution,
+                &x_previous,
+                self.changed,
+                lags,
+            );
+            solution.outer_history.push(criterion);
+            self.linearisation = next;
+            if criterion < self.method.outer_tolerance() {
+                solution.converged = true;
+                break;
+            }
+            if lags && let Some(failure) = outer_failure(model, &solution) {
+                solution.failure = Some(failure);
+                break;
+            }
+        }
+        let solution = self.finish(problem, model, solution)?;
+        self.last = Some((solution.x.clone(), solution.s.clone()));
+        Ok(solution)
+    }
+
+    /// The end of a solve: the cap's error if no other stop, timings, the residuals, and the
+    /// method's last word on them.
+    fn finish(
+        &self,
+        problem: &Problem,
+        model: &ContactModel,
+        mut solution: ContactSolution,
+    ) -> Result<ContactSolution> {
+        let method = self.method.as_ref();
+        if !solution.converged && solution.failure.is_none() {
+            solution.failure = Some(outer_cap(model, &solution, self.max_outer, method));
+        }
+        solution.timings = self.system.timings();
+        solution.condensed_nodes = method.condensed_nodes();
+        solution.dofs = self.system.dofs().clone();
+        let constant = method.complementarity_constant();
+        (solution.kkt, solution.balance) = residual::assess(problem, model, constant, &solution)?;
+        if solution.converged
+            && let Some(failure) = method.accept(&solution.kkt, &solution.outer_history)
+        {
+            solution.converged = false;
+            solution.failure = Some(failure);
+        }
+        Ok(solution)
+    }
 }
 
 /// What stays the same over the outer steps: the norm of the stopping rules, R and µ.
@@ -400,33 +494,6 @@ fn factorisation_failure(n: usize, e: Error) -> Error {
                not physical"
             .into(),
     }
-}
-
-/// The end of a solve: the cap's error if no other stop, timings, the residuals, and the
-/// method's last word on them.
-fn finish(
-    problem: &Problem,
-    model: &ContactModel,
-    settings: &Settings,
-    method: &dyn InnerMethod,
-    system: CoupledSystem,
-    mut solution: ContactSolution,
-) -> Result<ContactSolution> {
-    if !solution.converged && solution.failure.is_none() {
-        solution.failure = Some(outer_cap(model, &solution, settings.max_outer, method));
-    }
-    solution.timings = system.timings();
-    solution.condensed_nodes = method.condensed_nodes();
-    solution.dofs = system.into_dofs();
-    let constant = method.complementarity_constant();
-    (solution.kkt, solution.balance) = residual::assess(problem, model, constant, &solution)?;
-    if solution.converged
-        && let Some(failure) = method.accept(&solution.kkt, &solution.outer_history)
-    {
-        solution.converged = false;
-        solution.failure = Some(failure);
-    }
-    Ok(solution)
 }
 
 /// The name of the fixed-point loop in messages.

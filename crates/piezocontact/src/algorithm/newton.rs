@@ -16,7 +16,7 @@
 //! sees (E_Y: Young's modulus). The iteration stops when the sets no longer change and the
 //! step is at round-off; one solve with the contact forces recovers the interior.
 
-use super::condensed::{self, Condensed, Guess, Phi};
+use super::condensed::{self, Condensed, Guess, Phi, SchurSource};
 use super::residual::KktResidual;
 use super::{InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
 use crate::assembly::NodalBlock;
@@ -32,8 +32,8 @@ pub const STEP_TOLERANCE: f64 = 1e-12;
 const STEP_FLOOR: f64 = 1e-15;
 /// Halvings of the line search.
 const HALVINGS: usize = 8;
-/// Newton steps from the first guess of a cold start before starting again from the solve
-/// without contact forces.
+/// Newton steps from the first iterate put onto the foundation before starting again from
+/// the one it was made from.
 const GUESS_STEPS: usize = 30;
 /// Condensed problems solved in one outer step, at most (each after a factorisation).
 const MAX_ROUNDS: usize = 10;
@@ -111,9 +111,9 @@ pub struct Newton {
     c_factor: f64,
     /// The Γ3 unknowns of the condensed problem.
     condensed: Option<Condensed>,
-    /// The free unknowns last in the factorisation's ordering: those of `condensed`, or of
-    /// an earlier condensation that a growth by solves kept.
-    analysed: Vec<usize>,
+    /// The Schur complements: the factor's trailing block (the unknowns of `condensed`, or
+    /// of an earlier condensation that a growth by solves kept) and the last one by solves.
+    schur: SchurSource,
     /// Outer steps solved so far: the first starts from the solve without contact, the next
     /// ones from x_n.
     solved: usize,
@@ -122,7 +122,13 @@ pub struct Newton {
 impl Newton {
     /// The method with `parameters`.
     pub fn new(parameters: Parameters) -> Self {
-        Self { parameters, c_factor: 0.0, condensed: None, analysed: Vec::new(), solved: 0 }
+        Self {
+            parameters,
+            c_factor: 0.0,
+            condensed: None,
+            schur: SchurSource::default(),
+            solved: 0,
+        }
     }
 }
 
@@ -157,7 +163,7 @@ impl InnerMethod for Newton {
         condensed.check_memory(crate::limits::available_memory())?;
         let system = CoupledSystem::with_last(problem, dofs, &condensed.free, solver)?;
         self.c_factor = self.parameters.r / problem.material.elasticity.young();
-        self.analysed = condensed.free.clone();
+        self.schur = SchurSource::new(&condensed.free);
         self.condensed = Some(condensed);
         Ok(system)
     }
@@ -170,9 +176,9 @@ impl InnerMethod for Newton {
         let mut condensed = self.condensed.take().ok_or_else(|| {
             Error::LinearAlgebra("the exact solver solved before it was prepared".into())
         })?;
-        let mut analysed = std::mem::take(&mut self.analysed);
-        let result = self.solve_growing(step, (&mut condensed, &mut analysed), system);
-        (self.condensed, self.analysed) = (Some(condensed), analysed);
+        let mut schur = std::mem::take(&mut self.schur);
+        let result = self.solve_growing(step, (&mut condensed, &mut schur), system);
+        (self.condensed, self.schur) = (Some(condensed), schur);
         self.solved += 1;
         result
     }
@@ -210,7 +216,7 @@ impl InnerMethod for Newton {
 }
 
 impl Newton {
-    /// Solves an outer step with the factorised `system` (ordered with `analysed` last),
+    /// Solves an outer step with the factorised `system` (ordered with `schur.analysed()` last),
     /// growing the condensation until no node left out touches (model §11). A growth takes
     /// the Schur complement of the new set from the factor by solves when that is cheaper
     /// ([`condensed::cheaper_by_solves`]), else orders the new set last and factorises B̌
@@ -219,14 +225,14 @@ impl Newton {
     fn solve_growing(
         &self,
         step: &Step,
-        (condensed, analysed): (&mut Condensed, &mut Vec<usize>),
+        (condensed, schur): (&mut Condensed, &mut SchurSource),
         system: &mut CoupledSystem,
     ) -> Result<InnerResult> {
         let Parameters { max_inner, max_condensed, .. } = self.parameters;
         let c_factor = self.c_factor;
         let start = (self.solved > 0).then_some(step.previous);
         let first = Semismooth { step, condensed, c_factor, max_inner, start };
-        let mut result = first.run(system, analysed)?;
+        let mut result = first.run(system, schur)?;
         let mut rounds = 1;
         while matches!(result.stop, Stop::Converged)
             && let Some(grown) =
@@ -241,15 +247,15 @@ impl Newton {
             rounds += 1;
             grown.check_memory(crate::limits::available_memory())?;
             *condensed = grown;
-            let new = condensed.free.iter().filter(|k| !analysed.contains(k)).count();
+            let new = condensed.free.iter().filter(|k| !schur.analysed().contains(k)).count();
             if !condensed::cheaper_by_solves(new, &system.solver_stats()) {
                 system.put_last(&condensed.free)?;
                 system.factorize_linearised(step.problem, step.linearisation, &[])?;
-                *analysed = condensed.free.clone();
+                *schur = SchurSource::new(&condensed.free);
             }
             let start = Some(result.x.as_slice());
             let next =
-                Semismooth { step, condensed, c_factor, max_inner, start }.run(system, analysed)?;
+                Semismooth { step, condensed, c_factor, max_inner, start }.run(system, schur)?;
             let history = [std::mem::take(&mut result.history), next.history].concat();
             result =
                 InnerResult { iterations: result.iterations + next.iterations, history, ..next };
@@ -274,24 +280,17 @@ struct Semismooth<'a> {
 
 impl Semismooth<'_> {
     /// Solves the condensed problem with the factorised `system` (ordered with the free
-    /// unknowns `analysed` last) and recovers the whole solution.
-    pub fn run(&self, system: &mut CoupledSystem, analysed: &[usize]) -> Result<InnerResult> {
+    /// unknowns `schur.analysed()` last) and recovers the whole solution.
+    pub fn run(&self, system: &mut CoupledSystem, schur: &mut SchurSource) -> Result<InnerResult> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;
-        let schur = condensed::schur_on(system, analysed, &cond.free)?;
-        let local = Local::new(self, schur, x_hat);
+        let local = Local::new(self, schur.get(system, &cond.free)?, x_hat);
         let from = local.gather(self.start.unwrap_or(&local.x_hat));
-        let guess = local.stick_where_pushed(&from);
-        let mut newton = match self.start {
-            None => local.iterate(guess.clone(), GUESS_STEPS.min(self.max_inner)),
-            Some(_) => local.iterate(from.clone(), self.max_inner),
-        };
+        let guess = local.onto_foundation(&from, self.start.is_none());
+        let cap = if guess == from { self.max_inner } else { GUESS_STEPS.min(self.max_inner) };
+        let mut newton = local.iterate(guess.clone(), cap);
         let left = self.max_inner - newton.iterations;
-        if self.start.is_none()
-            && guess != from
-            && left > 0
-            && !matches!(newton.stop, Stop::Converged)
-        {
+        if guess != from && left > 0 && !matches!(newton.stop, Stop::Converged) {
             // The guess led nowhere: again from the solve without contact forces, within the
             // cap on the steps of both.
             let again = local.iterate(from, left);
@@ -421,12 +420,15 @@ impl<'a> Local<'a> {
         Iteration { y, stop, iterations, history }
     }
 
-    /// A first guess from the solve without contact forces y: the nodes it pushes through
-    /// the foundation (u_ν above the stop ρ of the normal law) on it and sticking, u_ν = ρ
-    /// and u_τ = 0, the others at y. A whole face pressed onto a plane then starts with
-    /// nearly every set right, instead of slipping everywhere without a normal force; the
-    /// iteration starts from it on a cold start, and from y when it leads nowhere.
-    fn stick_where_pushed(&self, y: &[f64]) -> Vec<f64> {
+    /// The first iterate from y (the solve without contact forces on a cold start, else the
+    /// last solution): the nodes y pushes through the foundation (u_ν above the stop ρ of the
+    /// normal law) put on it, u_ν = ρ, and on a cold start also sticking, u_τ = 0; the others
+    /// at y. From the solve without contact forces, every such node would carry no normal
+    /// force yet, hence a friction bound s = 0 and a slip everywhere — a whole face pressed
+    /// onto a plane would start with every tangential unknown in the dense system; from the
+    /// last step of a loading path, the nodes the foundation's move pushed through start on
+    /// it. The iteration starts from it, and from y when it leads nowhere.
+    fn onto_foundation(&self, y: &[f64], stick: bool) -> Vec<f64> {
         let mut y = y.to_vec();
         let (cond, step) = (self.semismooth.condensed, self.semismooth.step);
         for i in (0..cond.u.len()).filter(|&i| cond.kept[i]) {
@@ -434,7 +436,9 @@ impl<'a> Local<'a> {
             let stop = step.model.compliance.stop(step.surface.gap[i]);
             if y[u[0]] > stop {
                 y[u[0]] = stop;
-                u[1..].iter().for_each(|&k| y[k] = 0.0);
+                if stick {
+                    u[1..].iter().for_each(|&k| y[k] = 0.0);
+                }
             }
         }
         y
@@ -780,7 +784,7 @@ mod tests {
             max_inner: 100,
             start: None,
         };
-        let result = semismooth.run(&mut system, &condensed.free).unwrap();
+        let result = semismooth.run(&mut system, &mut SchurSource::new(&condensed.free)).unwrap();
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
         let local = Local::new(&semismooth, system.schur_complement().unwrap(), x_hat);

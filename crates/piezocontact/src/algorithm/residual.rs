@@ -51,6 +51,10 @@ pub struct Balance {
     pub reaction: Vec<f64>,
     /// |applied + contact + reaction| / (|applied| + |contact| + |reaction|).
     pub imbalance: f64,
+    /// The charge on each part of Γa (in the order of `boundary.grounded`): the reaction of
+    /// the electric equation, what an electrometer between it and ground reads; a node shared
+    /// by two parts counts in the first [charge·length^(3−d)].
+    pub charges: Vec<f64>,
 }
 
 /// Residuals and balance of a contact solution, with the complementarity constant c =
@@ -62,11 +66,67 @@ pub fn assess(
     solution: &ContactSolution,
 ) -> Result<(KktResidual, Balance)> {
     let dofs = &solution.dofs;
-    let (surface, state, x) = (&solution.surface, &solution.state, &solution.x);
+    let x = &solution.x;
     let dim = problem.mesh.dim();
     let g = secant_moduli(problem, dofs, x)?;
     let (f_int, scale) = internal_force(problem, dofs, x, &g)?;
     let f_ext = load_vector(problem, dofs);
+    let (contact_force, mut kkt) = contact_conditions(problem, model, constant, solution);
+    let (mut r_u, mut s_u, mut r_phi, mut s_phi) = (0.0, 0.0, 0.0, 0.0);
+    let mut balance = Balance {
+        applied: vec![0.0; dim],
+        contact: vec![0.0; dim],
+        reaction: vec![0.0; dim],
+        imbalance: 0.0,
+        charges: Vec::new(),
+    };
+    let mut phi_reaction = vec![0.0; problem.mesh.n_nodes()];
+    for gdof in 0..dofs.n_total() {
+        let residual = f_int[gdof] - f_ext[gdof] - contact_force[gdof];
+        let row_scale = scale[gdof] + f_ext[gdof].abs() + contact_force[gdof].abs();
+        let is_u = gdof < dim * problem.mesh.n_nodes();
+        if is_u {
+            let c = gdof % dim;
+            balance.applied[c] += f_ext[gdof];
+            balance.contact[c] += contact_force[gdof];
+        }
+        match (dofs.free_index(gdof) == CONSTRAINED, is_u) {
+            (true, true) => balance.reaction[gdof % dim] += f_int[gdof] - f_ext[gdof],
+            (true, false) => phi_reaction[gdof - dim * problem.mesh.n_nodes()] = residual,
+            (false, true) => {
+                r_u += residual * residual;
+                s_u += row_scale * row_scale;
+            }
+            (false, false) => {
+                r_phi += residual * residual;
+                s_phi += row_scale * row_scale;
+            }
+        }
+    }
+    let ratio = |r: f64, s: f64| if s > 0.0 { (r / s).sqrt() } else { r.sqrt() };
+    kkt.equilibrium_u = ratio(r_u, s_u);
+    kkt.equilibrium_phi = ratio(r_phi, s_phi);
+    kkt.max = kkt.equilibrium_u.max(kkt.equilibrium_phi).max(kkt.contact).max(kkt.friction);
+    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let total: Vec<f64> =
+        (0..dim).map(|c| balance.applied[c] + balance.contact[c] + balance.reaction[c]).collect();
+    let size = norm(&balance.applied) + norm(&balance.contact) + norm(&balance.reaction);
+    balance.imbalance = if size > 0.0 { norm(&total) / size } else { 0.0 };
+    balance.charges = electrode_charges(problem, &phi_reaction);
+    Ok((kkt, balance))
+}
+
+/// The contact forces and fluxes on the Γ3 rows, Q_c = F_c + Q (module docs), and the
+/// contact, friction and penetration parts of the KKT residual.
+fn contact_conditions(
+    problem: &Problem,
+    model: &ContactModel,
+    constant: f64,
+    solution: &ContactSolution,
+) -> (Vec<f64>, KktResidual) {
+    let dofs = &solution.dofs;
+    let (surface, state, x) = (&solution.surface, &solution.state, &solution.x);
+    let dim = problem.mesh.dim();
     let mut contact_force = vec![0.0; dofs.n_total()];
     let mut kkt = KktResidual::default();
     let max_u = (0..problem.mesh.n_nodes())
@@ -94,45 +154,25 @@ pub fn assess(
             kkt.friction = kkt.friction.max(defect / constant / max_u);
         }
     }
-    let (mut r_u, mut s_u, mut r_phi, mut s_phi) = (0.0, 0.0, 0.0, 0.0);
-    let mut balance = Balance {
-        applied: vec![0.0; dim],
-        contact: vec![0.0; dim],
-        reaction: vec![0.0; dim],
-        imbalance: 0.0,
-    };
-    for gdof in 0..dofs.n_total() {
-        let residual = f_int[gdof] - f_ext[gdof] - contact_force[gdof];
-        let row_scale = scale[gdof] + f_ext[gdof].abs() + contact_force[gdof].abs();
-        let is_u = gdof < dim * problem.mesh.n_nodes();
-        if is_u {
-            let c = gdof % dim;
-            balance.applied[c] += f_ext[gdof];
-            balance.contact[c] += contact_force[gdof];
-        }
-        match (dofs.free_index(gdof) == CONSTRAINED, is_u) {
-            (true, true) => balance.reaction[gdof % dim] += f_int[gdof] - f_ext[gdof],
-            (true, false) => {}
-            (false, true) => {
-                r_u += residual * residual;
-                s_u += row_scale * row_scale;
-            }
-            (false, false) => {
-                r_phi += residual * residual;
-                s_phi += row_scale * row_scale;
+    (contact_force, kkt)
+}
+
+/// The charge on each part of Γa from the reactions of the ϕ rows at its nodes: the ϕ
+/// equations are Gauss's law with its sign turned (model §5), so the charge the electrode
+/// holds is minus the reaction.
+fn electrode_charges(problem: &Problem, phi_reaction: &[f64]) -> Vec<f64> {
+    let mut counted = vec![false; problem.mesh.n_nodes()];
+    let mut charges = Vec::new();
+    for &part in &problem.boundary.grounded {
+        let mut charge = 0.0;
+        for &node in problem.mesh.part_facets(part).flatten() {
+            if !std::mem::replace(&mut counted[node], true) {
+                charge -= phi_reaction[node];
             }
         }
+        charges.push(charge);
     }
-    let ratio = |r: f64, s: f64| if s > 0.0 { (r / s).sqrt() } else { r.sqrt() };
-    kkt.equilibrium_u = ratio(r_u, s_u);
-    kkt.equilibrium_phi = ratio(r_phi, s_phi);
-    kkt.max = kkt.equilibrium_u.max(kkt.equilibrium_phi).max(kkt.contact).max(kkt.friction);
-    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
-    let total: Vec<f64> =
-        (0..dim).map(|c| balance.applied[c] + balance.contact[c] + balance.reaction[c]).collect();
-    let size = norm(&balance.applied) + norm(&balance.contact) + norm(&balance.reaction);
-    balance.imbalance = if size > 0.0 { norm(&total) / size } else { 0.0 };
-    Ok((kkt, balance))
+    charges
 }
 
 #[cfg(test)]

@@ -48,6 +48,7 @@ fn load_vector_on<const D: usize, const N: usize>(problem: &Problem, dofs: &DofM
             f[dofs.phi(node)] += weight * charge(p)
         });
     }
+    f.iter_mut().for_each(|v| *v *= problem.load_factor);
     f
 }
 

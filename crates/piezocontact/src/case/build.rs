@@ -1,17 +1,14 @@
 //! From a validated case file to the objects the solver takes: the mesh, the material, the
 //! problem, the contact model and the settings of the algorithms.
 
-use super::schema::{
-    DiagonalKey, FoundationKind, LawKey, MethodKey, ProblemKey, RegularizationKey,
-};
-use super::validate::positive;
+use super::schema::{DiagonalKey, LawKey, MethodKey, ProblemKey, RegularizationKey};
 use super::{Case, DEFAULTS};
 use crate::algorithm::Settings;
 use crate::algorithm::condensed::Guess;
 use crate::algorithm::newton::{self, Newton};
 use crate::algorithm::uzawa::{self, Uzawa};
+use crate::contact::ContactModel;
 use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
-use crate::contact::{ContactModel, Foundation};
 use crate::error::{Error, Result};
 use crate::material::{ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants};
 use crate::mesh::rectangle::{Diagonal, Rectangle, Segment};
@@ -191,75 +188,6 @@ impl Case {
         Ok(Some(ContactModel { compliance, pv2, foundation, phi0 }))
     }
 
-    /// The foundation of `[foundation]`, checked for a d-dimensional body.
-    pub fn foundation(&self, dim: usize) -> Result<Foundation> {
-        let Some(f) = &self.file.foundation else { return Ok(Foundation::ConstantGap) };
-        let vector = |key: &str, v: &Option<Vec<f64>>| -> Result<[f64; 3]> {
-            let full = format!("foundation.{key}");
-            let v = v.as_ref().ok_or_else(|| {
-                input!(
-                    "{}: {full} is missing: kind = \"{}\" needs it",
-                    self.locate("foundation"),
-                    kind_name(f.kind)
-                )
-            })?;
-            if v.len() != dim || v.iter().any(|x| !x.is_finite()) {
-                return Err(input!(
-                    "{}: {full} = {v:?} must have {dim} finite components (the mesh is {dim}D)",
-                    self.locate(&full)
-                ));
-            }
-            let mut out = [0.0; 3];
-            out[..dim].copy_from_slice(v);
-            Ok(out)
-        };
-        let misplaced = match f.kind {
-            FoundationKind::Plane => {
-                [("center", f.center.is_some()), ("radius", f.radius.is_some())]
-            }
-            FoundationKind::Sphere => {
-                [("point", f.point.is_some()), ("normal", f.normal.is_some())]
-            }
-        };
-        if let Some((key, _)) = misplaced.iter().find(|(_, set)| *set) {
-            return Err(input!(
-                "{}: foundation.{key} does not belong to kind = \"{}\"; remove it (a plane has point and normal, a sphere center and radius)",
-                self.locate(&format!("foundation.{key}")),
-                kind_name(f.kind)
-            ));
-        }
-        match f.kind {
-            FoundationKind::Plane => {
-                let (point, normal) = (vector("point", &f.point)?, vector("normal", &f.normal)?);
-                let norm = normal.iter().map(|v| v * v).sum::<f64>().sqrt();
-                if !(norm > 0.0 && norm.is_finite()) {
-                    return Err(input!(
-                        "{}: foundation.normal = {:?} is not allowed: a nonzero vector, out of the foundation toward the body",
-                        self.locate("foundation.normal"),
-                        f.normal.as_deref().unwrap_or_default()
-                    ));
-                }
-                Ok(Foundation::Plane { point, normal: normal.map(|v| v / norm) })
-            }
-            FoundationKind::Sphere => {
-                let center = vector("center", &f.center)?;
-                let radius = f.radius.ok_or_else(|| {
-                    input!(
-                        "{}: foundation.radius is missing: kind = \"sphere\" needs it",
-                        self.locate("foundation")
-                    )
-                })?;
-                if !positive(radius) {
-                    return Err(input!(
-                        "{}: foundation.radius = {radius} is not allowed: a radius > 0",
-                        self.locate("foundation.radius")
-                    ));
-                }
-                Ok(Foundation::Sphere { center, radius })
-            }
-        }
-    }
-
     /// The algorithms' parameters with their [`DEFAULTS`], after [`Case::contact_settings`]
     /// has checked their ranges.
     pub(super) fn settings_checked(&self) -> Settings {
@@ -373,13 +301,5 @@ impl Case {
             },
         };
         Problem::new(mesh, material, boundary, loads).map_err(|e| self.context(e))
-    }
-}
-
-/// The case-file name of a foundation kind.
-fn kind_name(kind: FoundationKind) -> &'static str {
-    match kind {
-        FoundationKind::Plane => "plane",
-        FoundationKind::Sphere => "sphere",
     }
 }

@@ -15,6 +15,7 @@ macro_rules! input {
 }
 
 mod build;
+mod geometry;
 pub mod overrides;
 pub mod schema;
 pub mod validate;
@@ -23,6 +24,7 @@ use crate::algorithm::Settings;
 use crate::contact::ContactModel;
 use crate::error::{Error, Result};
 use crate::linalg::{LdltSolver, LinearSolver, Ordering};
+use crate::path::Loading;
 use crate::problem::Problem;
 use overrides::apply_override;
 pub use overrides::key_line;
@@ -94,9 +96,10 @@ impl Case {
         self.contact_settings()?;
         let problem = self.problem_checked()?;
         let model = self.contact_model(&problem)?;
+        let loading = self.loading(problem.mesh.dim())?;
         let mut warnings = self.hypothesis_warnings(&problem.material);
         warnings.extend(self.setting_warnings());
-        Ok(Built { problem, model, settings: self.settings_checked(), warnings })
+        Ok(Built { problem, model, settings: self.settings_checked(), warnings, loading })
     }
 
     /// The checked problem alone (for a case without contact).
@@ -135,6 +138,8 @@ pub struct Built {
     pub settings: Settings,
     /// The paper's hypotheses that fail and the keys the method does not read.
     pub warnings: Vec<String>,
+    /// The loading path of `[loading]`, `None` for a single solve.
+    pub loading: Option<Loading>,
 }
 
 #[cfg(test)]
@@ -310,6 +315,34 @@ gap = 0.1
             crate::contact::Foundation::Sphere { center: [2.0, -1.0, 0.0], radius: 0.5 }
         );
         assert_eq!(with(&[]).unwrap(), crate::contact::Foundation::ConstantGap);
+        let cone = with(&[
+            "foundation.kind=\"cone\"",
+            "foundation.apex=[0.0, 0.1]",
+            "foundation.axis=[0.0, 3.0]",
+            "foundation.half_angle=60",
+        ])
+        .unwrap();
+        let axis = [0.0, 1.0, 0.0];
+        let half_angle = 60f64.to_radians();
+        let apex = [0.0, 0.1, 0.0];
+        assert_eq!(cone, crate::contact::Foundation::Cone { apex, axis, half_angle });
+        let punch = with(&[
+            "foundation.kind=\"punch\"",
+            "foundation.center=[0.5, 0.0]",
+            "foundation.axis=[0.0, 1.0]",
+            "foundation.radius=0.2",
+        ])
+        .unwrap();
+        let center = [0.5, 0.0, 0.0];
+        assert_eq!(punch, crate::contact::Foundation::Punch { center, axis, radius: 0.2 });
+    }
+
+    #[test]
+    fn the_foundation_table_s_errors_name_the_key() {
+        let with = |sets: &[&str]| {
+            let c = case(MINIMAL, sets)?;
+            c.foundation(2)
+        };
         for (sets, piece) in [
             (
                 vec!["foundation.kind=\"plane\"", "foundation.point=[0.0, 0.0]"],
@@ -337,7 +370,7 @@ gap = 0.1
                     "foundation.center=[0.0, 0.0]",
                     "foundation.radius=-1",
                 ],
-                "foundation.radius = -1 is not allowed: a radius > 0",
+                "foundation.radius = -1 is not allowed: a length > 0",
             ),
             (
                 vec![
@@ -347,9 +380,54 @@ gap = 0.1
                 ],
                 "foundation.normal does not belong to kind = \"sphere\"",
             ),
-            (vec!["foundation.kind=\"cone\""], "unknown variant `cone`"),
         ] {
             let e = with(&sets).unwrap_err().to_string();
+            assert!(e.contains(piece) && e.starts_with("case.toml"), "{sets:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn the_indenters_errors_name_the_key() {
+        for (sets, piece) in [
+            (vec!["foundation.kind=\"wedge\""], "unknown variant `wedge`"),
+            (
+                vec![
+                    "foundation.kind=\"cone\"",
+                    "foundation.apex=[0.0, 0.0]",
+                    "foundation.axis=[0.0, 1.0]",
+                    "foundation.half_angle=90",
+                ],
+                "foundation.half_angle = 90 is not allowed: degrees between the axis and the flank, in (0, 90)",
+            ),
+            (
+                vec![
+                    "foundation.kind=\"cone\"",
+                    "foundation.apex=[0.0, 0.0]",
+                    "foundation.axis=[0.0, 0.0]",
+                    "foundation.half_angle=60",
+                ],
+                "foundation.axis = [0.0, 0.0] is not allowed: a nonzero vector",
+            ),
+            (
+                vec![
+                    "foundation.kind=\"cone\"",
+                    "foundation.apex=[0.0, 0.0]",
+                    "foundation.axis=[0.0, 1.0]",
+                ],
+                "foundation.half_angle is missing",
+            ),
+            (
+                vec![
+                    "foundation.kind=\"punch\"",
+                    "foundation.center=[0.0, 0.0]",
+                    "foundation.axis=[0.0, 1.0]",
+                    "foundation.radius=0.2",
+                    "foundation.half_angle=30",
+                ],
+                "foundation.half_angle does not belong to kind = \"punch\"",
+            ),
+        ] {
+            let e = case(MINIMAL, &sets).and_then(|c| c.foundation(2)).unwrap_err().to_string();
             assert!(e.contains(piece) && e.starts_with("case.toml"), "{sets:?}: {e}");
         }
     }

@@ -356,6 +356,10 @@ pub enum FoundationKind {
     Plane,
     /// A rigid ball (a disk in 2D), the body outside it: `center` and `radius`.
     Sphere,
+    /// A rigid cone (a wedge in 2D): `apex`, `axis` and `half_angle`.
+    Cone,
+    /// A rigid flat cylindrical punch (a flat strip in 2D): `center`, `axis` and `radius`.
+    Punch,
 }
 
 /// `[foundation]`: the foundation's surface (model §12); without it, the gap `contact.gap`
@@ -364,16 +368,58 @@ pub enum FoundationKind {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FoundationSection {
-    /// "plane" or "sphere".
+    /// "plane", "sphere", "cone" or "punch".
     pub kind: FoundationKind,
     /// Plane: a point of it, d components [length].
     pub point: Option<Vec<f64>>,
     /// Plane: its normal, d components, out of the foundation toward the body (normalised).
     pub normal: Option<Vec<f64>>,
-    /// Sphere: its centre, d components [length].
+    /// Sphere: its centre; punch: the centre of its flat face; d components [length].
     pub center: Option<Vec<f64>>,
-    /// Sphere: its radius [length].
+    /// Sphere: its radius; punch: the radius of its face (the half-width in 2D) [length].
     pub radius: Option<f64>,
+    /// Cone: its apex, d components [length].
+    pub apex: Option<Vec<f64>>,
+    /// Cone, punch: the axis, d components, from the apex (the face) into the indenter, away
+    /// from the body (normalised).
+    pub axis: Option<Vec<f64>>,
+    /// Cone: the half-angle between the axis and the flank [degrees], in (0, 90).
+    pub half_angle: Option<f64>,
+}
+
+/// `[loading]`: a loading path (model §14), one static solve per step: the foundation moved
+/// rigidly by `depth · direction` from its `[foundation]` position, and/or every applied
+/// load multiplied by the step's factor.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadingSection {
+    /// The way the indenter travels, d components (normalised), e.g. [0.0, 0.0, -1.0].
+    pub direction: Option<Vec<f64>>,
+    /// The foundation's displacements along `direction`, one per step [length]: a list, or
+    /// `{ from = a, to = b, steps = n }` for the n depths a + (b − a) k/n, k = 1…n.
+    pub depths: Option<Depths>,
+    /// The factors on f0, q0, f2 and q2, one per step [-].
+    pub load_factors: Option<Vec<f64>>,
+}
+
+/// `loading.depths`: a list, or a range.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a list of depths, or an inline table { from = ..., to = ..., steps = ... }"
+)]
+pub enum Depths {
+    /// The depths of the steps, in order.
+    List(Vec<f64>),
+    /// `steps` equal increments from `from` (excluded) to `to`.
+    Range {
+        /// The depth before the first step [length].
+        from: f64,
+        /// The depth of the last step [length].
+        to: f64,
+        /// The number of steps.
+        steps: usize,
+    },
 }
 
 /// The inner contact method in the case file.
@@ -391,7 +437,8 @@ pub enum MethodKey {
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum OrderingKey {
-    /// Both symbolic analyses, and the smaller factor (the default).
+    /// Nested dissection on a 3D mesh, else both symbolic analyses and the smaller factor
+    /// (the default).
     #[default]
     Auto,
     /// METIS's nested dissection of the mesh nodes.
@@ -446,6 +493,7 @@ pub struct CaseFile {
     pub friction: Option<FrictionSection>,
     pub conductivity: Option<ConductivitySection>,
     pub foundation: Option<FoundationSection>,
+    pub loading: Option<LoadingSection>,
     #[serde(default)]
     pub solver: SolverSection,
 }

@@ -6,9 +6,18 @@
 //!     g_i = n·(x_i − p) / (−n·ν_i)                    (no hit when −n·ν_i ≤ 0)
 //! ball (disk in 2D) of centre c and radius R, the body outside it:
 //!     g_i = the first t with |x_i + t ν_i − c| = R     (no hit when the ray misses it)
+//! cone (wedge in 2D), apex a, unit axis n into it, half-angle α; flat punch, the centre c of
+//! its face, axis n into it, radius b (in 2D a strip of half-width b):
+//!     the solid {w·n ≥ |w| cos α, w = p − a}, {w·n ≥ 0, |w − (w·n) n| ≤ b, w = p − c};
+//!     the line x_i + t ν_i crosses each in one interval [t_in, t_out]; g_i = t_in
 //! ```
 //!
-//! A negative gap is an initial interpenetration that the solution removes. A node whose
+//! For the solids (ball, cone, punch) the gap is where the line x_i + t ν_i enters the solid:
+//! ahead of the node (t_in > 0) when it is outside, behind it (t_in ≤ 0, the way back out) when
+//! it is inside; +∞ when the line misses the solid, the solid lies behind the node, or the way
+//! back out never ends. In 2D the cone and the punch are cut by the plane of the body through
+//! their axis: a wedge and a flat strip. A negative gap is an initial interpenetration that
+//! the solution removes. A node whose
 //! normal misses the foundation cannot touch it: its gap is +∞. The case's `contact.gap` is
 //! added to the distance as an offset.
 
@@ -30,6 +39,24 @@ pub enum Foundation {
         /// Centre [length].
         center: [f64; 3],
         /// Radius [length].
+        radius: f64,
+    },
+    /// A rigid cone (a wedge in 2D), the body outside it.
+    Cone {
+        /// The apex [length].
+        apex: [f64; 3],
+        /// Unit vector from the apex into the cone, away from the body.
+        axis: [f64; 3],
+        /// The half-angle α [rad], in (0, π/2).
+        half_angle: f64,
+    },
+    /// A rigid flat cylindrical punch (a flat strip in 2D) with a sharp edge.
+    Punch {
+        /// The centre of its flat face [length].
+        center: [f64; 3],
+        /// Unit vector along its axis, from the face into the punch, away from the body.
+        axis: [f64; 3],
+        /// The radius of its face (in 2D its half-width) [length].
         radius: f64,
     },
 }
@@ -63,6 +90,98 @@ impl Foundation {
                 // the node cannot be reached.
                 if c < 0.0 || first >= 0.0 { first } else { f64::INFINITY }
             }
+            Self::Cone { .. } | Self::Punch { .. } => self.entry(x, nu),
+        }
+    }
+
+    /// The same surface moved rigidly by `shift` [length] (the constant gap does not move).
+    pub fn translated(&self, shift: [f64; 3]) -> Self {
+        let moved = |p: [f64; 3]| [0, 1, 2].map(|k| p[k] + shift[k]);
+        match *self {
+            Self::ConstantGap => Self::ConstantGap,
+            Self::Plane { point, normal } => Self::Plane { point: moved(point), normal },
+            Self::Sphere { center, radius } => Self::Sphere { center: moved(center), radius },
+            Self::Cone { apex, axis, half_angle } => {
+                Self::Cone { apex: moved(apex), axis, half_angle }
+            }
+            Self::Punch { center, axis, radius } => {
+                Self::Punch { center: moved(center), axis, radius }
+            }
+        }
+    }
+
+    /// For a cone or a punch: the point of the axis the solid starts from (the apex, the
+    /// face's centre) and the axis.
+    fn axis(&self) -> Option<([f64; 3], [f64; 3])> {
+        match *self {
+            Self::Cone { apex, axis, .. } => Some((apex, axis)),
+            Self::Punch { center, axis, .. } => Some((center, axis)),
+            _ => None,
+        }
+    }
+
+    /// Whether the point p is in the cone or the punch (false for the other surfaces).
+    fn contains(&self, p: [f64; 3]) -> bool {
+        match *self {
+            Self::Cone { apex, axis, half_angle } => {
+                let (rho, h) = axial(p, apex, axis);
+                h >= rho.hypot(h) * half_angle.cos()
+            }
+            Self::Punch { center, axis, radius } => {
+                let (rho, h) = axial(p, center, axis);
+                h >= 0.0 && rho <= radius
+            }
+            _ => false,
+        }
+    }
+
+    /// Where the line x + t ν enters a cone or a punch (module docs): the interval of t in the
+    /// solid lies between the roots of its boundary's equations along the line, each piece
+    /// tested at its middle.
+    fn entry(&self, x: [f64; 3], nu: [f64; 3]) -> f64 {
+        let Some((origin, axis)) = self.axis() else { return 0.0 };
+        let d = [0, 1, 2].map(|k| x[k] - origin[k]);
+        let (dn, vn) = (dot(d, axis), dot(nu, axis));
+        let mut roots = Vec::new();
+        if vn != 0.0 {
+            roots.push(-dn / vn); // the plane w·n = 0
+        }
+        let (a, b, c) = match *self {
+            Self::Cone { half_angle, .. } => {
+                // (w·n)² − cos²α |w|² = 0
+                let c2 = half_angle.cos().powi(2);
+                (vn * vn - c2, 2.0 * (dn * vn - c2 * dot(d, nu)), dn * dn - c2 * dot(d, d))
+            }
+            Self::Punch { radius, .. } => {
+                // |w⊥|² − b² = 0, w⊥ = w − (w·n) n
+                let dp = [0, 1, 2].map(|k| d[k] - dn * axis[k]);
+                let vp = [0, 1, 2].map(|k| nu[k] - vn * axis[k]);
+                (dot(vp, vp), 2.0 * dot(dp, vp), dot(dp, dp) - radius * radius)
+            }
+            _ => (0.0, 0.0, 0.0),
+        };
+        roots.extend(quadratic_roots(a, b, c));
+        roots.sort_by(f64::total_cmp);
+        let at = |t: f64| [0, 1, 2].map(|k| x[k] + t * nu[k]);
+        let mut pieces = vec![f64::NEG_INFINITY];
+        pieces.extend(&roots);
+        pieces.push(f64::INFINITY);
+        let mut interval: Option<(f64, f64)> = None;
+        for pair in pieces.windows(2) {
+            let (lo, hi) = (pair[0], pair[1]);
+            let middle = match (lo.is_finite(), hi.is_finite()) {
+                (true, true) => 0.5 * (lo + hi),
+                (true, false) => lo + 1.0 + lo.abs(),
+                (false, true) => hi - 1.0 - hi.abs(),
+                (false, false) => 0.0,
+            };
+            if hi > lo && self.contains(at(middle)) {
+                interval = Some(interval.map_or((lo, hi), |(start, _)| (start, hi)));
+            }
+        }
+        match interval {
+            Some((t_in, t_out)) if t_out >= 0.0 && t_in.is_finite() => t_in,
+            _ => f64::INFINITY,
         }
     }
 
@@ -75,8 +194,44 @@ impl Foundation {
                 let d = [0, 1, 2].map(|k| x[k] - center[k]);
                 dot(d, d).sqrt() - radius
             }
+            Self::Cone { apex, axis, half_angle } => {
+                let (rho, h) = axial(x, apex, axis);
+                let (sin, cos) = half_angle.sin_cos();
+                if rho * sin + h * cos <= 0.0 { rho.hypot(h) } else { rho * cos - h * sin }
+            }
+            Self::Punch { center, axis, radius } => {
+                let (rho, h) = axial(x, center, axis);
+                if h >= 0.0 && rho <= radius {
+                    -h.min(radius - rho)
+                } else {
+                    (rho - radius).max(0.0).hypot((-h).max(0.0))
+                }
+            }
         }
     }
+}
+
+/// The distance ρ of x from the axis through `origin` along the unit `axis`, and its height
+/// h along it.
+fn axial(x: [f64; 3], origin: [f64; 3], axis: [f64; 3]) -> (f64, f64) {
+    let w = [0, 1, 2].map(|k| x[k] - origin[k]);
+    let h = dot(w, axis);
+    let radial = [0, 1, 2].map(|k| w[k] - h * axis[k]);
+    (dot(radial, radial).sqrt(), h)
+}
+
+/// The real roots of a t² + b t + c = 0 (of b t + c = 0 when a = 0).
+fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
+    if a == 0.0 {
+        return if b != 0.0 { vec![-c / b] } else { Vec::new() };
+    }
+    let discriminant = b * b - 4.0 * a * c;
+    if discriminant < 0.0 {
+        return Vec::new();
+    }
+    // The root without cancellation, then the other from their product c/a.
+    let q = -0.5 * (b + b.signum() * discriminant.sqrt());
+    if q == 0.0 { vec![0.0] } else { vec![q / a, c / q] }
 }
 
 #[cfg(test)]
@@ -103,5 +258,40 @@ mod tests {
         // Inside the ball: back out along −ν.
         assert_eq!(ball.distance_along([0.0, 0.0, 1.5], [0.0, 0.0, 1.0]), -0.5);
         assert_eq!((ball.distance([0.0, 0.0, 0.0]), plane.distance([0.0, 0.0, 0.0])), (1.0, 1.0));
+    }
+
+    /// The cone and the punch along the normal of a flat face under them, against the
+    /// closed forms: a cone of half-angle α with its apex at height −δ below the face z = 0
+    /// (pressed in by δ) is met at radius r at g = r cot α − δ; a punch of radius b at the
+    /// same depth at g = −δ inside its radius and nowhere outside.
+    #[test]
+    fn cones_and_punches_along_the_normal() {
+        let up = [0.0, 0.0, 1.0];
+        let (alpha, delta) = (60f64.to_radians(), 0.1);
+        let cone = Foundation::Cone { apex: [0.0, 0.0, -delta], axis: up, half_angle: alpha };
+        for r in [0.0, 0.05, 0.3, 1.0] {
+            let x = [r * 0.6, r * 0.8, 0.0];
+            let g = cone.distance_along(x, up);
+            assert!((g - (r / alpha.tan() - delta)).abs() < 1e-14, "r = {r}: {g}");
+            // The shortest distance is the gap times cos α where the node is outside.
+            let expected = (r / alpha.tan() - delta) * alpha.sin();
+            assert!((cone.distance(x) - expected).abs() < 1e-14, "r = {r}");
+        }
+        // Looking away from the cone: no hit; sideways into its flank: a finite gap.
+        assert_eq!(cone.distance_along([0.5, 0.0, 0.0], [0.0, 0.0, -1.0]), f64::INFINITY);
+        let sideways = cone.distance_along([-1.0, 0.0, 0.5], [1.0, 0.0, 0.0]);
+        assert!((sideways - (1.0 - 0.6 * alpha.tan())).abs() < 1e-14, "{sideways}");
+        let punch = Foundation::Punch { center: [0.0, 0.0, -delta], axis: up, radius: 0.5 };
+        assert_eq!(punch.distance_along([0.3, 0.0, 0.0], up), -delta);
+        assert_eq!(punch.distance_along([0.0, 0.3, 0.0], up), -delta);
+        assert_eq!(punch.distance_along([0.6, 0.0, 0.0], up), f64::INFINITY);
+        assert!((punch.distance_along([0.3, 0.0, -0.3], up) - 0.2).abs() < 1e-15);
+        assert!((punch.distance([0.45, 0.0, 0.0]) + 0.05).abs() < 1e-15);
+        assert!((punch.distance([0.8, 0.0, -0.5]) - 0.5).abs() < 1e-15);
+        // Moved rigidly 0.02 deeper, the gaps fall by 0.02.
+        let deeper = cone.translated([0.0, 0.0, -0.02]);
+        let g =
+            deeper.distance_along([0.3, 0.0, 0.0], up) - cone.distance_along([0.3, 0.0, 0.0], up);
+        assert!((g + 0.02).abs() < 1e-14, "{g}");
     }
 }

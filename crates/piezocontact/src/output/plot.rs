@@ -97,9 +97,31 @@ fn range(values: impl Iterator<Item = f64>, margin: f64) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
+/// A tick label on an axis from `lo` to `hi`: plain decimals, as many as the span needs,
+/// or powers of ten for values far from 1.
+fn tick(v: f64, lo: f64, hi: f64) -> String {
+    let span = (hi - lo).abs().max(f64::MIN_POSITIVE);
+    let size = lo.abs().max(hi.abs());
+    if !(1e-3..1e5).contains(&size) {
+        let digits = ((size / span).log10().ceil().max(0.0) as usize + 1).min(6);
+        return format!("{v:.digits$e}");
+    }
+    let decimals = (1.0 - span.log10().floor()).clamp(0.0, 8.0) as usize;
+    format!("{v:.decimals$}")
+}
+
 /// Draws a line plot.
 pub fn line_plot(plot: &LinePlot, stem: &Path) -> Result<()> {
     both_backends!(stem, (900, 560), |root: &DrawingArea<_, Shift>| draw_lines(root, plot))
+}
+
+/// Draws line plots side by side in one figure.
+pub fn panels(plots: &[LinePlot], stem: &Path) -> Result<()> {
+    let width = 620 * plots.len().max(1) as u32;
+    both_backends!(stem, (width, 520), |root: &DrawingArea<_, Shift>| {
+        let areas = root.split_evenly((1, plots.len().max(1)));
+        plots.iter().zip(&areas).try_for_each(|(plot, area)| draw_lines(area, plot))
+    })
 }
 
 fn draw_lines<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &LinePlot) -> Result<()> {
@@ -144,6 +166,8 @@ fn draw_lines<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &LinePlot
             .configure_mesh()
             .x_desc(&plot.x_label)
             .y_desc(&plot.y_label)
+            .x_label_formatter(&|v| tick(*v, x0, x1))
+            .y_label_formatter(&|v| tick(*v, y0, y1))
             .label_style((FONT, 15))
             .axis_desc_style((FONT, 17))
             .draw()

@@ -16,6 +16,8 @@ mod foundation;
 mod gmsh_io;
 /// Hertz contact in 2D and 3D through the foundation's sphere.
 mod hertz;
+/// Indentation experiments: electrode charges, loading paths, cones and punches.
+mod indentation;
 /// The code's own rules: function lengths, an outer loop that names no method.
 mod layout;
 /// Orderings and threads of the factorisation: same solutions, smaller factors.

@@ -1,0 +1,264 @@
+//! Where the foundation is and where a loading path moves it: `[foundation]` and `[loading]`
+//! checked for a d-dimensional body (model §12, §14).
+
+use super::Case;
+use super::schema::{Depths, FoundationKind, FoundationSection, LoadingSection};
+use super::validate::positive;
+use crate::contact::Foundation;
+use crate::error::{Error, Result};
+use crate::path::{LoadStep, Loading};
+
+/// The keys of one table, read for a d-dimensional body: each error names the key.
+struct Keys<'a> {
+    case: &'a Case,
+    /// "foundation" or "loading".
+    table: &'a str,
+    /// What needs a missing key, e.g. `kind = "cone"`.
+    needs: String,
+    dim: usize,
+}
+
+impl Keys<'_> {
+    fn locate(&self, key: &str) -> String {
+        self.case.locate(&format!("{}.{key}", self.table))
+    }
+
+    fn present<T>(&self, key: &str, v: Option<T>) -> Result<T> {
+        v.ok_or_else(|| {
+            input!(
+                "{}: {}.{key} is missing: {} needs it",
+                self.case.locate(self.table),
+                self.table,
+                self.needs
+            )
+        })
+    }
+
+    /// A point of d finite components.
+    fn vector(&self, key: &str, v: &Option<Vec<f64>>) -> Result<[f64; 3]> {
+        let (v, dim) = (self.present(key, v.as_ref())?, self.dim);
+        if v.len() != dim || v.iter().any(|x| !x.is_finite()) {
+            return Err(input!(
+                "{}: {}.{key} = {v:?} must have {dim} finite components (the mesh is {dim}D)",
+                self.locate(key),
+                self.table
+            ));
+        }
+        let mut out = [0.0; 3];
+        out[..dim].copy_from_slice(v);
+        Ok(out)
+    }
+
+    /// A nonzero vector of d finite components, normalised; `what` says which way it points.
+    fn direction(&self, key: &str, v: &Option<Vec<f64>>, what: &str) -> Result<[f64; 3]> {
+        let d = self.vector(key, v)?;
+        let norm = d.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if !(norm > 0.0 && norm.is_finite()) {
+            return Err(input!(
+                "{}: {}.{key} = {:?} is not allowed: a nonzero vector, {what}",
+                self.locate(key),
+                self.table,
+                v.as_deref().unwrap_or_default()
+            ));
+        }
+        Ok(d.map(|v| v / norm))
+    }
+
+    /// A length > 0.
+    fn length(&self, key: &str, v: Option<f64>) -> Result<f64> {
+        let v = self.present(key, v)?;
+        if !positive(v) {
+            return Err(input!(
+                "{}: {}.{key} = {v} is not allowed: a length > 0",
+                self.locate(key),
+                self.table
+            ));
+        }
+        Ok(v)
+    }
+
+    /// A list of at least one finite number.
+    fn finite(&self, key: &str, values: &[f64]) -> Result<()> {
+        if values.is_empty() {
+            return Err(input!(
+                "{}: {}.{key} is empty: give at least one step",
+                self.locate(key),
+                self.table
+            ));
+        }
+        match values.iter().position(|v| !v.is_finite()) {
+            Some(k) => Err(input!(
+                "{}: {}.{key}[{k}] is not a finite number",
+                self.locate(key),
+                self.table
+            )),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The case-file name of a foundation kind.
+fn kind_name(kind: FoundationKind) -> &'static str {
+    match kind {
+        FoundationKind::Plane => "plane",
+        FoundationKind::Sphere => "sphere",
+        FoundationKind::Cone => "cone",
+        FoundationKind::Punch => "punch",
+    }
+}
+
+/// The `[foundation]` keys of a kind.
+fn kind_keys(kind: FoundationKind) -> &'static [&'static str] {
+    match kind {
+        FoundationKind::Plane => &["point", "normal"],
+        FoundationKind::Sphere => &["center", "radius"],
+        FoundationKind::Cone => &["apex", "axis", "half_angle"],
+        FoundationKind::Punch => &["center", "axis", "radius"],
+    }
+}
+
+/// The key of `f` that its kind does not read, if any.
+fn misplaced_key(f: &FoundationSection) -> Option<&'static str> {
+    let keys = [
+        ("point", f.point.is_some()),
+        ("normal", f.normal.is_some()),
+        ("center", f.center.is_some()),
+        ("radius", f.radius.is_some()),
+        ("apex", f.apex.is_some()),
+        ("axis", f.axis.is_some()),
+        ("half_angle", f.half_angle.is_some()),
+    ];
+    let belongs = kind_keys(f.kind);
+    keys.into_iter().find(|(key, set)| *set && !belongs.contains(key)).map(|(key, _)| key)
+}
+
+impl Case {
+    /// The foundation of `[foundation]`, checked for a d-dimensional body.
+    pub fn foundation(&self, dim: usize) -> Result<Foundation> {
+        let Some(f) = &self.file.foundation else { return Ok(Foundation::ConstantGap) };
+        if let Some(key) = misplaced_key(f) {
+            return Err(input!(
+                "{}: foundation.{key} does not belong to kind = \"{}\"; remove it (a plane has point and normal, a sphere center and radius, a cone apex, axis and half_angle, a punch center, axis and radius)",
+                self.locate(&format!("foundation.{key}")),
+                kind_name(f.kind)
+            ));
+        }
+        let needs = format!("kind = \"{}\"", kind_name(f.kind));
+        let keys = Keys { case: self, table: "foundation", needs, dim };
+        let away = "from the indenter's tip into it, away from the body";
+        Ok(match f.kind {
+            FoundationKind::Plane => Foundation::Plane {
+                point: keys.vector("point", &f.point)?,
+                normal: keys.direction(
+                    "normal",
+                    &f.normal,
+                    "out of the foundation toward the body",
+                )?,
+            },
+            FoundationKind::Sphere => Foundation::Sphere {
+                center: keys.vector("center", &f.center)?,
+                radius: keys.length("radius", f.radius)?,
+            },
+            FoundationKind::Cone => {
+                let degrees = keys.present("half_angle", f.half_angle)?;
+                if !(degrees.is_finite() && degrees > 0.0 && degrees < 90.0) {
+                    return Err(input!(
+                        "{}: foundation.half_angle = {degrees} is not allowed: degrees between the axis and the flank, in (0, 90)",
+                        self.locate("foundation.half_angle")
+                    ));
+                }
+                Foundation::Cone {
+                    apex: keys.vector("apex", &f.apex)?,
+                    axis: keys.direction("axis", &f.axis, away)?,
+                    half_angle: degrees.to_radians(),
+                }
+            }
+            FoundationKind::Punch => Foundation::Punch {
+                center: keys.vector("center", &f.center)?,
+                axis: keys.direction("axis", &f.axis, away)?,
+                radius: keys.length("radius", f.radius)?,
+            },
+        })
+    }
+
+    /// The loading path of `[loading]` for a d-dimensional body, `None` without the table.
+    pub fn loading(&self, dim: usize) -> Result<Option<Loading>> {
+        let Some(l) = &self.file.loading else { return Ok(None) };
+        if self.file.contact.is_none() {
+            return Err(input!(
+                "{}: [loading] is a path of contact solves: the case needs a [contact] table",
+                self.locate("loading")
+            ));
+        }
+        let needs = "loading.depths (it moves the foundation along it)".to_string();
+        let keys = Keys { case: self, table: "loading", needs, dim };
+        let depths = self.depths(&keys, l)?;
+        let mut direction = [0.0; 3];
+        if depths.is_some() {
+            let what = "the way the indenter travels";
+            direction = keys.direction("direction", &l.direction, what)?;
+        } else if l.direction.is_some() {
+            return Err(input!(
+                "{}: loading.direction without loading.depths moves nothing: give the depths, or remove it",
+                keys.locate("direction")
+            ));
+        }
+        if let Some(f) = &l.load_factors {
+            keys.finite("load_factors", f)?;
+        }
+        let steps = match (depths, &l.load_factors) {
+            (None, None) => {
+                return Err(input!(
+                    "{}: [loading] needs loading.depths (the foundation's path) or loading.load_factors (the loads' factors)",
+                    self.locate("loading")
+                ));
+            }
+            (Some(d), Some(f)) if d.len() != f.len() => {
+                return Err(input!(
+                    "{}: loading.depths has {} steps and loading.load_factors {}: give both the same number of steps",
+                    keys.locate("load_factors"),
+                    d.len(),
+                    f.len()
+                ));
+            }
+            (Some(d), f) => d
+                .iter()
+                .enumerate()
+                .map(|(k, &depth)| LoadStep {
+                    depth,
+                    load_factor: f.as_ref().map_or(1.0, |f| f[k]),
+                })
+                .collect(),
+            (None, Some(f)) => {
+                f.iter().map(|&load_factor| LoadStep { depth: 0.0, load_factor }).collect()
+            }
+        };
+        Ok(Some(Loading { direction, steps }))
+    }
+
+    /// The depths of `[loading]`, checked, `None` without them; a case with depths needs a
+    /// foundation to move.
+    fn depths(&self, keys: &Keys, l: &LoadingSection) -> Result<Option<Vec<f64>>> {
+        let depths = match &l.depths {
+            None => return Ok(None),
+            Some(Depths::List(list)) => list.clone(),
+            Some(Depths::Range { from, to, steps }) => {
+                if *steps == 0 {
+                    return Err(input!(
+                        "{}: loading.depths has steps = 0: at least 1",
+                        keys.locate("depths")
+                    ));
+                }
+                (1..=*steps).map(|k| from + (to - from) * k as f64 / *steps as f64).collect()
+            }
+        };
+        keys.finite("depths", &depths)?;
+        if self.file.foundation.is_none() {
+            return Err(input!(
+                "{}: loading.depths moves the foundation, and the case has none: add a [foundation] table (plane, sphere, cone or punch), or scale the loads with loading.load_factors",
+                keys.locate("depths")
+            ));
+        }
+        Ok(Some(depths))
+    }
+}
