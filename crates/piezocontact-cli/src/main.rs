@@ -287,38 +287,25 @@ fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
     let header = run::common_summary(case, &built.problem, &DofMap::new(&built.problem)?);
     let reporter = Reporter::new(case.method_name(), interval);
     let progress = |event| reporter.event(event);
+    // A refusal after validation writes summary.json with the failure, then fails.
+    let refused = |e: piezocontact::Error| -> anyhow::Error {
+        match output::write_summary(out, &run::refusal_summary(header.clone(), case, &e)) {
+            Ok(()) => e.into(),
+            Err(written) => written.into(),
+        }
+    };
     if built.loading.is_some() {
-        let path = match PathRun::solve_built(case, built, case.linear_solver(), &progress) {
+        let path = PathRun::solve_built(case, built, case.linear_solver(), &progress);
+        let path = match path {
             Ok(path) => path,
-            Err(e) => {
-                output::write_summary(out, &run::refusal_summary(header, case, &e))?;
-                return Err(e.into());
-            }
+            Err(e) => return Err(refused(e)),
         };
         drop(reporter);
-        path.write(case, out)?;
-        print::path_run(&path, case, out);
-        return Ok(match &path.failure {
-            None => Outcome::Done,
-            Some(failure) => {
-                say_err!(
-                    "error: {}: {failure}; the steps before it are in {} (marked \"converged\": false)",
-                    case.path.display(),
-                    out.display()
-                );
-                match &path.last.solution.failure {
-                    Some(piezocontact::Error::NotConverged { .. }) => Outcome::NotConverged,
-                    _ => Outcome::Failed,
-                }
-            }
-        });
+        return write_path(&path, case, out);
     }
     let run = match ContactRun::solve_built(case, built, case.linear_solver(), &progress) {
         Ok(run) => run,
-        Err(e) => {
-            output::write_summary(out, &run::refusal_summary(header, case, &e))?;
-            return Err(e.into());
-        }
+        Err(e) => return Err(refused(e)),
     };
     drop(reporter);
     run.write(case, out)?;
@@ -335,6 +322,22 @@ fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
         });
     }
     Ok(Outcome::Done)
+}
+
+/// Writes and reports a loading path; a path that stopped early says which step and why.
+fn write_path(path: &PathRun, case: &Case, out: &Path) -> Result<Outcome> {
+    path.write(case, out)?;
+    print::path_run(path, case, out);
+    let Some(failure) = &path.failure else { return Ok(Outcome::Done) };
+    say_err!(
+        "error: {}: {failure}; the steps before it are in {} (marked \"converged\": false)",
+        case.path.display(),
+        out.display()
+    );
+    Ok(match &path.last.solution.failure {
+        Some(piezocontact::Error::NotConverged { .. }) => Outcome::NotConverged,
+        _ => Outcome::Failed,
+    })
 }
 
 fn check(path: &Path, set: &[String]) -> Result<()> {

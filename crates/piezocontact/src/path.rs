@@ -266,6 +266,11 @@ impl PathRun {
         Ok(Self { loading, curve, states, last, failure })
     }
 
+    /// The Γ3 rows of step k (from 0) of the steps solved.
+    pub fn rows(&self, k: usize) -> &[Row] {
+        &self.states[k].1
+    }
+
     /// x = (u, ϕ) of each step solved, in order (global numbering of the last step's DOF
     /// map).
     pub fn states(&self) -> impl Iterator<Item = &[f64]> {

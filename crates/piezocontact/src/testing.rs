@@ -84,6 +84,7 @@ impl Fixture {
             previous,
             friction_bound,
             linearisation,
+            slip_origin: None,
             progress: &|_| {},
         }
     }

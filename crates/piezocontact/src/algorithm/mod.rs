@@ -23,6 +23,7 @@ pub mod residual;
 pub mod uzawa;
 
 use crate::assembly::{Linearisation, MassNorm, NodalBlock, secant_moduli};
+use crate::contact::law::FrictionPath;
 use crate::contact::model::{friction_bound, nodal_mu, normal_stress};
 use crate::contact::{ContactModel, ContactState, ContactSurface, Mollifier, NodeStatus};
 use crate::dofs::DofMap;
@@ -166,6 +167,9 @@ pub struct Step<'a> {
     pub friction_bound: &'a [f64],
     /// Hencky's law linearised at x_n, with which B̌ was factorised.
     pub linearisation: &'a Linearisation,
+    /// The state the slip is measured from (global; the previous step of a loading path with
+    /// incremental friction), `None` for the paper's static law (from the reference).
+    pub slip_origin: Option<&'a [f64]>,
     /// Told of every inner iteration.
     pub progress: &'a dyn Fn(Progress),
 }
@@ -235,6 +239,8 @@ pub struct ContactSolution {
     pub kkt: KktResidual,
     /// The global force balance at `x`.
     pub balance: Balance,
+    /// The state the slip is measured from (global), empty for the static law.
+    pub slip_origin: Vec<f64>,
 }
 
 /// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it) with the
@@ -324,6 +330,9 @@ impl ContactSolver {
         let mut solution = ContactSolution::start(surface, self.system.dofs().n_total());
         if let Some((x, s)) = &self.last {
             (solution.x, solution.s) = (x.clone(), s.clone());
+            if model.pv2.as_ref().is_some_and(|(f, _)| f.path == FrictionPath::Incremental) {
+                solution.slip_origin = x.clone();
+            }
         }
         self.system.reload(problem);
         let (lags, fixed) = (self.method.lags_contact(), &self.fixed);
@@ -440,6 +449,7 @@ impl Fixed {
             previous: &solution.x,
             friction_bound,
             linearisation,
+            slip_origin: (!solution.slip_origin.is_empty()).then_some(&solution.slip_origin),
             progress,
         }
     }
@@ -600,6 +610,7 @@ impl ContactSolution {
             outer_history: Vec::new(),
             inner_history: Vec::new(),
             timings: Timings::default(),
+            slip_origin: Vec::new(),
         }
     }
 

@@ -53,6 +53,9 @@ struct Local<'a> {
     scale: Vec<f64>,
     /// The global vector of the solve without contact (for prescribed ϕ).
     x_hat: Vec<f64>,
+    /// Where the slip is measured from, in local coordinates (the tangential slots matter):
+    /// 0, or the previous step of a path with incremental friction.
+    origin: Vec<f64>,
 }
 
 /// E and the sets at an iterate.
@@ -362,8 +365,12 @@ impl<'a> Local<'a> {
             c: Vec::new(),
             scale: Vec::new(),
             x_hat,
+            origin: vec![0.0; m],
         };
         this.load = this.schur.mul(&this.gather(&this.x_hat));
+        if let Some(origin) = semismooth.step.slip_origin {
+            this.origin = this.gather(origin);
+        }
         this.c = (0..surface.len())
             .map(|i| {
                 let k = cond.u[i][0];
@@ -437,7 +444,7 @@ impl<'a> Local<'a> {
             if y[u[0]] > stop {
                 y[u[0]] = stop;
                 if stick {
-                    u[1..].iter().for_each(|&k| y[k] = 0.0);
+                    u[1..].iter().for_each(|&k| y[k] = self.origin[k]);
                 }
             }
         }
@@ -532,12 +539,13 @@ impl<'a> Local<'a> {
                 None => (1..dim).for_each(|a| eval.residual[u[a]] = lambda_f[a - 1]),
                 Some((mu, _)) => {
                     let s = node_bound(mu[i], eval.r_sigma[i]);
-                    let z: Vec<f64> = (1..dim).map(|a| lambda_f[a - 1] + c * y[u[a]]).collect();
+                    let slip = |a: usize| y[u[a]] - self.origin[u[a]];
+                    let z: Vec<f64> = (1..dim).map(|a| lambda_f[a - 1] + c * slip(a)).collect();
                     let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
                     if norm < s {
                         eval.sets[i] += 2;
                         for a in 1..dim {
-                            eval.residual[u[a]] = -c * y[u[a]];
+                            eval.residual[u[a]] = -c * slip(a);
                             eval.fixed[u[a]] = true;
                         }
                     } else {
@@ -635,7 +643,8 @@ impl<'a> Local<'a> {
         };
         // Slip: E_t = λ_f − s ẑ, ∂E_t = ∂λ_f − (s/‖z‖)(I − λ̃ẑᵀ)(∂λ_f + c ∂u_τ) − ẑ ∂s.
         let lambda_f: Vec<f64> = (1..dim).map(|b| eval.multipliers.lambda_f[i][b - 1]).collect();
-        let z: Vec<f64> = (1..dim).map(|b| lambda_f[b - 1] + c * y[u[b]]).collect();
+        let z: Vec<f64> =
+            (1..dim).map(|b| lambda_f[b - 1] + c * (y[u[b]] - self.origin[u[b]])).collect();
         let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
         let s = node_bound(mu[i], eval.r_sigma[i]);
         let z_hat: Vec<f64> = z.iter().map(|v| if norm > 0.0 { v / norm } else { 0.0 }).collect();

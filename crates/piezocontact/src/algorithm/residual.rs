@@ -134,7 +134,11 @@ fn contact_conditions(
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
     for i in 0..surface.len() {
-        let (u_nu, u_tau) = surface.split(dofs, x, i);
+        let (u_nu, mut u_tau) = surface.split(dofs, x, i);
+        if !solution.slip_origin.is_empty() {
+            let (_, origin) = surface.split(dofs, &solution.slip_origin, i);
+            (0..3).for_each(|k| u_tau[k] -= origin[k]);
+        }
         let phi = surface.phi(dofs, x, i);
         let (w, node) = (surface.weight[i], surface.nodes[i]);
         for c in 0..dim {

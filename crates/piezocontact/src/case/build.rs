@@ -1,7 +1,9 @@
 //! From a validated case file to the objects the solver takes: the mesh, the material, the
 //! problem, the contact model and the settings of the algorithms.
 
-use super::schema::{DiagonalKey, LawKey, MethodKey, ProblemKey, RegularizationKey};
+use super::schema::{
+    DiagonalKey, FrictionPathKey, LawKey, MethodKey, ProblemKey, RegularizationKey,
+};
 use super::{Case, DEFAULTS};
 use crate::algorithm::Settings;
 use crate::algorithm::condensed::Guess;
@@ -177,9 +179,15 @@ impl Case {
                     RegularizationKey::Identity => Regularization::Identity,
                     RegularizationKey::Mollifier => Regularization::Mollifier { radius: fr.radius },
                 };
+                if fr.path == FrictionPathKey::Incremental && self.method_name() == "uzawa" {
+                    return Err(input!(
+                        "{}: friction.path = \"incremental\" is solved by the exact solver only: set solver.method = \"newton\", or friction.path = \"static\"",
+                        self.locate("friction.path")
+                    ));
+                }
                 let k = conduction.cloned().unwrap_or_default();
                 Some((
-                    Friction { mu: fr.mu, mu_parts, regularization },
+                    Friction { mu: fr.mu, mu_parts, regularization, path: fr.path.into() },
                     Conduction { ke: k.ke, delta: k.delta, truncation: k.truncation },
                 ))
             }

@@ -149,6 +149,7 @@ mod tests {
     use crate::algorithm::{newton, uzawa};
 
     const PAPER_71: &str = include_str!("../../../../cases/paper-7.1.toml");
+    const PAPER_72: &str = include_str!("../../../../cases/paper-7.2.toml");
     const MINIMAL: &str = r#"
 [mesh]
 x = [0.0, 4.0]
@@ -384,6 +385,17 @@ gap = 0.1
             let e = with(&sets).unwrap_err().to_string();
             assert!(e.contains(piece) && e.starts_with("case.toml"), "{sets:?}: {e}");
         }
+    }
+
+    #[test]
+    fn incremental_friction_is_refused_to_the_uzawa_method() {
+        let built = case(PAPER_72, &["friction.path=\"incremental\""]).unwrap().build();
+        let e = built.err().unwrap().to_string();
+        assert!(
+            e.contains("friction.path = \"incremental\" is solved by the exact solver only")
+                && e.contains("solver.method = \"newton\""),
+            "{e}"
+        );
     }
 
     #[test]

@@ -291,6 +291,30 @@ pub struct FrictionSection {
     /// Radius a of the mollifier [length].
     #[serde(default)]
     pub radius: f64,
+    /// On a loading path: "static" (the paper's law at every step, default) or "incremental"
+    /// (the slip since the previous step; model §14).
+    #[serde(default)]
+    pub path: FrictionPathKey,
+}
+
+/// `friction.path` in the case file.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum FrictionPathKey {
+    /// The paper's static law at every step.
+    #[default]
+    Static,
+    /// Quasistatic Coulomb: the slip since the previous step.
+    Incremental,
+}
+
+impl From<FrictionPathKey> for crate::contact::law::FrictionPath {
+    fn from(key: FrictionPathKey) -> Self {
+        match key {
+            FrictionPathKey::Static => Self::Static,
+            FrictionPathKey::Incremental => Self::Incremental,
+        }
+    }
 }
 
 /// The regularisation operator R in the case file.

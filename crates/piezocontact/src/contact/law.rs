@@ -126,6 +126,19 @@ pub struct Friction {
     pub mu_parts: Vec<(usize, f64)>,
     /// R.
     pub regularization: Regularization,
+    /// What the slip is measured from on a loading path (model §14).
+    pub path: FrictionPath,
+}
+
+/// What the friction law's slip is measured from on a loading path (model §14).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FrictionPath {
+    /// The paper's static law at every step: u_τ, from the reference configuration.
+    #[default]
+    Static,
+    /// Quasistatic Coulomb: u_τ − u_τ^{k−1}, the tangential displacement since the previous
+    /// step (from rest at the first: the static law).
+    Incremental,
 }
 
 /// The projection of z on the ball of radius s (any dimension), the closed form of Steps 2–3

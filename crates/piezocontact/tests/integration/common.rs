@@ -153,7 +153,12 @@ pub fn paper_model(pv2: Option<(f64, f64)>, penetration: f64, units: Units) -> C
     };
     let pv2 = pv2.map(|(mu, ke)| {
         (
-            Friction { mu, mu_parts: Vec::new(), regularization: Regularization::Identity },
+            Friction {
+                mu,
+                mu_parts: Vec::new(),
+                regularization: Regularization::Identity,
+                path: Default::default(),
+            },
             // ψ φ_L is a charge density: ψ scales inversely to the potential unit.
             Conduction {
                 ke: ke * units.potential / 1e9,

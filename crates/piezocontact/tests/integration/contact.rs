@@ -381,6 +381,7 @@ fn nonlocal_friction_and_friction_per_part() {
         mu: 0.0,
         mu_parts: vec![(contact, 0.6)],
         regularization: Regularization::Identity,
+        path: Default::default(),
     };
     let by_part = solve(&problem, &per_part, &settings);
     assert!(distance(&problem, &by_part.x, &local.x) < 1e-12);
