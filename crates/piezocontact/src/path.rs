@@ -215,8 +215,13 @@ impl PathRun {
                 )));
             }
         };
-        let mut solver =
-            ContactSolver::new(&problem, &model, &settings, solver).map_err(|e| case.context(e))?;
+        // Set up where the first step puts the foundation: the exact solver's first guess of
+        // the contact zone is that step's.
+        let first = loading.steps.first().map_or([0.0; 3], |s| loading.shift(s));
+        let at_first =
+            ContactModel { foundation: model.foundation.translated(first), ..model.clone() };
+        let mut solver = ContactSolver::new(&problem, &at_first, &settings, solver)
+            .map_err(|e| case.context(e))?;
         let (mut curve, mut states, mut failure) = (Vec::new(), Vec::new(), None);
         let mut last: Option<(ContactModel, ContactSolution, Vec<Row>)> = None;
         let n = loading.steps.len();

@@ -4,9 +4,14 @@
 use super::Case;
 use super::schema::{Depths, FoundationKind, FoundationSection, LoadingSection};
 use super::validate::positive;
-use crate::contact::Foundation;
+use crate::contact::rigid::RigidSurface;
+use crate::contact::{ContactModel, ContactSurface, Foundation};
+use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::path::{LoadStep, Loading};
+use crate::problem::Problem;
+use std::path::Path;
+use std::sync::Arc;
 
 /// The keys of one table, read for a d-dimensional body: each error names the key.
 struct Keys<'a> {
@@ -104,6 +109,7 @@ fn kind_name(kind: FoundationKind) -> &'static str {
         FoundationKind::Sphere => "sphere",
         FoundationKind::Cone => "cone",
         FoundationKind::Punch => "punch",
+        FoundationKind::Surface => "surface",
     }
 }
 
@@ -114,6 +120,7 @@ fn kind_keys(kind: FoundationKind) -> &'static [&'static str] {
         FoundationKind::Sphere => &["center", "radius"],
         FoundationKind::Cone => &["apex", "axis", "half_angle"],
         FoundationKind::Punch => &["center", "axis", "radius"],
+        FoundationKind::Surface => &["file"],
     }
 }
 
@@ -127,6 +134,7 @@ fn misplaced_key(f: &FoundationSection) -> Option<&'static str> {
         ("apex", f.apex.is_some()),
         ("axis", f.axis.is_some()),
         ("half_angle", f.half_angle.is_some()),
+        ("file", f.file.is_some()),
     ];
     let belongs = kind_keys(f.kind);
     keys.into_iter().find(|(key, set)| *set && !belongs.contains(key)).map(|(key, _)| key)
@@ -138,7 +146,7 @@ impl Case {
         let Some(f) = &self.file.foundation else { return Ok(Foundation::ConstantGap) };
         if let Some(key) = misplaced_key(f) {
             return Err(input!(
-                "{}: foundation.{key} does not belong to kind = \"{}\"; remove it (a plane has point and normal, a sphere center and radius, a cone apex, axis and half_angle, a punch center, axis and radius)",
+                "{}: foundation.{key} does not belong to kind = \"{}\"; remove it (a plane has point and normal, a sphere center and radius, a cone apex, axis and half_angle, a punch center, axis and radius, a surface file)",
                 self.locate(&format!("foundation.{key}")),
                 kind_name(f.kind)
             ));
@@ -178,7 +186,38 @@ impl Case {
                 axis: keys.direction("axis", &f.axis, away)?,
                 radius: keys.length("radius", f.radius)?,
             },
+            FoundationKind::Surface => {
+                let file = keys.present("file", f.file.as_ref())?;
+                if dim != 3 {
+                    return Err(input!(
+                        "{}: kind = \"surface\" is a rigid surface in 3D; this mesh is {dim}D: use a plane, a sphere, a cone (a wedge) or a punch (a strip)",
+                        self.locate("foundation.kind")
+                    ));
+                }
+                let full = self.path.parent().unwrap_or(Path::new(".")).join(file);
+                let surface = RigidSurface::read(&full).map_err(|e| {
+                    input!("{}: foundation.file: {e}", self.locate("foundation.file"))
+                })?;
+                Foundation::Surface { surface: Arc::new(surface), shift: [0.0; 3] }
+            }
         })
+    }
+
+    /// Refuses a rigid surface from a file that no Γ3 normal meets: nothing could touch it.
+    pub(super) fn check_reach(&self, problem: &Problem, model: &ContactModel) -> Result<()> {
+        let Foundation::Surface { surface, .. } = &model.foundation else { return Ok(()) };
+        let dofs = DofMap::new(problem)?;
+        let gamma3 =
+            ContactSurface::new(problem, &dofs)?.with_gaps(problem, &model.foundation, 0.0);
+        if gamma3.is_empty() || gamma3.gap.iter().any(|g| g.is_finite()) {
+            return Ok(());
+        }
+        Err(input!(
+            "{}: foundation.file: {}: no normal of the {} Γ3 nodes meets the surface: move it (it is read in the mesh's coordinates) in front of the contact parts",
+            self.locate("foundation.file"),
+            surface.file.display(),
+            gamma3.len()
+        ))
     }
 
     /// The loading path of `[loading]` for a d-dimensional body, `None` without the table.

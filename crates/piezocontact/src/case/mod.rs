@@ -96,6 +96,9 @@ impl Case {
         self.contact_settings()?;
         let problem = self.problem_checked()?;
         let model = self.contact_model(&problem)?;
+        if let Some(model) = &model {
+            self.check_reach(&problem, model)?;
+        }
         let loading = self.loading(problem.mesh.dim())?;
         let mut warnings = self.hypothesis_warnings(&problem.material);
         warnings.extend(self.setting_warnings());

@@ -384,6 +384,8 @@ pub enum FoundationKind {
     Cone,
     /// A rigid flat cylindrical punch (a flat strip in 2D): `center`, `axis` and `radius`.
     Punch,
+    /// A rigid closed surface from a Gmsh or STL file (3D): `file`.
+    Surface,
 }
 
 /// `[foundation]`: the foundation's surface (model §12); without it, the gap `contact.gap`
@@ -392,7 +394,7 @@ pub enum FoundationKind {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FoundationSection {
-    /// "plane", "sphere", "cone" or "punch".
+    /// "plane", "sphere", "cone", "punch" or "surface".
     pub kind: FoundationKind,
     /// Plane: a point of it, d components [length].
     pub point: Option<Vec<f64>>,
@@ -409,6 +411,9 @@ pub struct FoundationSection {
     pub axis: Option<Vec<f64>>,
     /// Cone: the half-angle between the axis and the flank [degrees], in (0, 90).
     pub half_angle: Option<f64>,
+    /// Surface: a closed triangulated surface, a Gmsh .msh or an .stl file relative to the
+    /// case file, in the mesh's units.
+    pub file: Option<String>,
 }
 
 /// `[loading]`: a loading path (model §14), one static solve per step: the foundation moved

@@ -22,7 +22,7 @@
 //! added to the distance as an offset.
 
 /// The foundation's surface.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub enum Foundation {
     /// The paper's: a constant gap along the normal of every Γ3 node (`contact.gap`).
     #[default]
@@ -59,7 +59,17 @@ pub enum Foundation {
         /// The radius of its face (in 2D its half-width) [length].
         radius: f64,
     },
+    /// A rigid closed surface from a file (3D), the solid it bounds the indenter.
+    Surface {
+        /// The surface.
+        surface: Arc<RigidSurface>,
+        /// Its rigid displacement from the file's position [length].
+        shift: [f64; 3],
+    },
 }
+
+use super::rigid::RigidSurface;
+use std::sync::Arc;
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     (0..3).map(|k| a[k] * b[k]).sum()
@@ -91,6 +101,9 @@ impl Foundation {
                 if c < 0.0 || first >= 0.0 { first } else { f64::INFINITY }
             }
             Self::Cone { .. } | Self::Punch { .. } => self.entry(x, nu),
+            Self::Surface { ref surface, shift } => {
+                surface.distance_along([0, 1, 2].map(|k| x[k] - shift[k]), nu)
+            }
         }
     }
 
@@ -106,6 +119,9 @@ impl Foundation {
             }
             Self::Punch { center, axis, radius } => {
                 Self::Punch { center: moved(center), axis, radius }
+            }
+            Self::Surface { ref surface, shift } => {
+                Self::Surface { surface: surface.clone(), shift: moved(shift) }
             }
         }
     }
@@ -207,6 +223,9 @@ impl Foundation {
                     (rho - radius).max(0.0).hypot((-h).max(0.0))
                 }
             }
+            Self::Surface { ref surface, shift } => {
+                surface.distance([0, 1, 2].map(|k| x[k] - shift[k]))
+            }
         }
     }
 }
@@ -288,6 +307,15 @@ mod tests {
         assert!((punch.distance_along([0.3, 0.0, -0.3], up) - 0.2).abs() < 1e-15);
         assert!((punch.distance([0.45, 0.0, 0.0]) + 0.05).abs() < 1e-15);
         assert!((punch.distance([0.8, 0.0, -0.5]) - 0.5).abs() < 1e-15);
+        // In 2D (the plane z = 0, y up): the wedge and the strip.
+        let wedge =
+            Foundation::Cone { apex: [0.0, -delta, 0.0], axis: [0.0, 1.0, 0.0], half_angle: alpha };
+        let g = wedge.distance_along([0.3, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        assert!((g - (0.3 / alpha.tan() - delta)).abs() < 1e-14, "{g}");
+        let strip =
+            Foundation::Punch { center: [0.0, -delta, 0.0], axis: [0.0, 1.0, 0.0], radius: 0.5 };
+        assert_eq!(strip.distance_along([-0.4, 0.0, 0.0], [0.0, 1.0, 0.0]), -delta);
+        assert_eq!(strip.distance_along([-0.6, 0.0, 0.0], [0.0, 1.0, 0.0]), f64::INFINITY);
         // Moved rigidly 0.02 deeper, the gaps fall by 0.02.
         let deeper = cone.translated([0.0, 0.0, -0.02]);
         let g =

@@ -11,6 +11,7 @@ pub mod foundation;
 pub mod law;
 pub mod model;
 pub mod mollifier;
+pub mod rigid;
 
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};

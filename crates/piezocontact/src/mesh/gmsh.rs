@@ -132,6 +132,31 @@ pub fn read(bytes: &[u8]) -> Result<Mesh> {
     Mesh::new(dim as usize, coords, cells, parts)
 }
 
+/// A triangulated surface: points (3 coordinates) and triangles of point indices.
+pub type Triangulation = (Vec<[f64; 3]>, Vec<[usize; 3]>);
+
+/// The triangles of a Gmsh MSH 4.1 file (a surface mesh: every 3-node triangle of it).
+pub fn read_triangles(bytes: &[u8]) -> Result<Triangulation> {
+    let (msh, _) = parse(bytes)?;
+    let (coords, index) = nodes(&msh, 3)?;
+    let points = coords.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect();
+    let mut triangles = Vec::new();
+    for block in blocks(&msh).filter(|b| b.element_type == ElementType::Tri3) {
+        for element in &block.elements {
+            let mut t = [0; 3];
+            for (slot, tag) in t.iter_mut().zip(&element.nodes) {
+                *slot = *index.get(tag).ok_or_else(|| {
+                    Error::Gmsh(format!(
+                        "an element refers to node tag {tag}, which the file does not define"
+                    ))
+                })?;
+            }
+            triangles.push(t);
+        }
+    }
+    Ok((points, triangles))
+}
+
 fn wanted_nodes(t: ElementType) -> usize {
     match t {
         ElementType::Lin2 => 2,

@@ -208,13 +208,15 @@ fn difference(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Each step of a path, started from the last with the factorisation kept, is the solve of
-/// its own problem from scratch: the same x to 1e−9 (measured ~1e−13), the same curve row;
-/// the whole path of three steps factorises once (the law is linear, the condensation grows
-/// by solves); a path of one step is `run` on the moved foundation.
+/// its own problem from scratch: the same x to 1e−9 (measured ~1e−13), the same curve row.
+/// A path whose contact zone shrinks (the ball withdrawn) factorises once: the law is linear
+/// and the condensation of its first step holds every later zone (a zone that grows takes
+/// solves or a factorisation, whichever the last timings say is cheaper). A path of one step
+/// is `run` on the moved foundation.
 #[test]
 fn the_steps_of_a_path_are_the_solves_of_their_problems() {
-    let depths = [0.005, 0.01, 0.015];
-    let case = curve_case(&["loading.depths=[0.005, 0.01, 0.015]"]);
+    let depths = [0.015, 0.01, 0.005];
+    let case = curve_case(&["loading.depths=[0.015, 0.01, 0.005]"]);
     let path =
         PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
     assert!(path.converged() && path.curve.len() == 3, "{:?}", path.failure);
@@ -237,7 +239,7 @@ fn the_steps_of_a_path_are_the_solves_of_their_problems() {
         );
         assert!(d < 1e-9, "step {}: {d}", k + 1);
     }
-    let d = difference(&last.x, &cold(0.015).solution.x);
+    let d = difference(&last.x, &cold(0.005).solution.x);
     assert!(d < 1e-9, "the last step differs from its cold solve by {d}");
     let one = curve_case(&["loading.depths=[0.01]"]);
     let single =
@@ -360,4 +362,37 @@ fn incremental_friction_makes_loading_and_unloading_differ() {
         assert!(of >= 4 && 2 * flipped > of, "incremental: {flipped} of {of}");
         assert_eq!(fixed_flipped, 0, "static: {fixed_flipped} of {fixed_of}");
     }
+}
+
+/// The ball as a triangulated surface (meshes/ball-tip.stl, found by ray casting) presses
+/// the half-space as the analytic ball does: the forces agree within 0.5 % (measured 0.34 %
+/// and 0.32 %: the triangles' sagitta near the contact, ~2e−6, against depths of 1e−3).
+#[test]
+fn a_ball_from_an_stl_file_presses_like_the_analytic_ball() {
+    let file = mesh_file("ball-tip.stl");
+    let surface = format!("kind = \"surface\"\nfile = {:?}", file.display().to_string());
+    let ball = "kind = \"sphere\"\ncenter = [0.0, 0.0, 1.0]\nradius = 1.0";
+    let depths = [0.001, 0.0025];
+    let mesh = "indent-halfspace-coarse.msh";
+    let ours = force_depth(&indentation_case(mesh, &surface, &depths, false));
+    let exact = force_depth(&indentation_case(mesh, ball, &depths, false));
+    for (a, b) in ours.iter().zip(&exact) {
+        println!("δ = {}: force {:.6e} (analytic ball {:.6e})", a.0, a.1, b.1);
+        assert!((a.1 / b.1 - 1.0).abs() < 5e-3, "{a:?} against {b:?}");
+    }
+}
+
+/// A surface that no Γ3 normal meets is refused when the case is built, naming the file.
+#[test]
+fn a_surface_out_of_reach_is_refused() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/block-3d.toml");
+    let overrides = ["foundation.kind=\"surface\"", "foundation.file=\"../meshes/ball-tip.stl\""];
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let e = Case::load(&file, &overrides).unwrap().build().err().unwrap().to_string();
+    assert!(
+        e.contains("foundation.file")
+            && e.contains("ball-tip.stl")
+            && e.contains("no normal of the 1370 Γ3 nodes meets the surface"),
+        "{e}"
+    );
 }
