@@ -375,7 +375,7 @@ pub fn contact(targets: &[String]) -> Result<()> {
          Schur complement, Newton, two solves per factorisation, KKT residual); factorisation_s: one plain \
          pattern + assembly + symbolic + numeric LDLᵀ of the same mesh, the floor; both with \
          solver.ordering = \"auto\" (nested dissection in 3D) on {} \
-         threads; peak_MB: the process's peak resident memory; ratios: contact / factorisation",
+         threads in 3D (one in 2D); peak_MB: the process's peak resident memory; ratios: contact / factorisation",
         rayon::current_num_threads()
     );
     Ok(())

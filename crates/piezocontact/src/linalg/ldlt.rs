@@ -55,15 +55,19 @@ pub struct LdltSolver {
     stats: SolverStats,
     /// The ordering of the next analysis.
     ordering: Ordering,
-    /// The threads of the numeric factorisation and the solves.
-    threads: usize,
+    /// The threads of the numeric factorisation and the solves; `None`: every thread of the
+    /// run on a 3D pattern, one on others (where the supernodes are thin, two threads were
+    /// slower than one: 0.65–0.75 s against 0.37–0.39 s on the paper's bar at 768 × 128).
+    threads: Option<usize>,
+    /// Whether the analysed pattern is a 3D mesh's ([`ordering::three_dimensional`]).
+    three_dimensional: bool,
     /// The number of trailing unknowns kept for the Schur complement (0: none).
     last: usize,
 }
 
 impl LdltSolver {
-    /// A solver with the [`Ordering::Auto`] choice, on every thread of the run, with nothing
-    /// analysed yet.
+    /// A solver with the [`Ordering::Auto`] choice, on every thread of the run for a 3D mesh
+    /// (on one for a 2D mesh's thin supernodes), with nothing analysed yet.
     pub fn new() -> Self {
         Self::with_ordering(Ordering::Auto)
     }
@@ -71,17 +75,22 @@ impl LdltSolver {
     /// A solver whose analyses use `ordering` (a [`Ordering::Custom`] must be a permutation
     /// of the unknowns of the pattern it analyses).
     pub fn with_ordering(ordering: Ordering) -> Self {
-        Self { ordering, threads: rayon::current_num_threads(), ..Self::default() }
+        Self { ordering, ..Self::default() }
     }
 
     /// The same solver on `threads` threads (at least 1).
     pub fn on_threads(self, threads: usize) -> Self {
-        Self { threads: threads.max(1), ..self }
+        Self { threads: Some(threads.max(1)), ..self }
     }
 
     /// faer's parallelism with the solver's threads.
     fn par(&self) -> Par {
-        if self.threads <= 1 { Par::Seq } else { Par::rayon(self.threads) }
+        let threads = match self.threads {
+            Some(threads) => threads,
+            None if self.three_dimensional => rayon::current_num_threads(),
+            None => 1,
+        };
+        if threads <= 1 { Par::Seq } else { Par::rayon(threads) }
     }
 
     /// The entries of D (supernodal: the diagonals of the supernodes' blocks), or every
@@ -137,6 +146,7 @@ impl LdltSolver {
         let t = Instant::now();
         (self.symbolic, self.l_values, self.factorized) = (None, Vec::new(), false);
         let (symbolic, name) = self.ordered_symbolic(pattern, last)?;
+        self.three_dimensional = ordering::three_dimensional(pattern);
         self.stats.symbolic_seconds += t.elapsed().as_secs_f64();
         let bytes = self.predicted_bytes(&symbolic, pattern);
         let what = format!(
