@@ -342,7 +342,7 @@ fn write_path(path: &PathRun, case: &Case, out: &Path) -> Result<Outcome> {
 
 fn check(path: &Path, set: &[String]) -> Result<()> {
     let case = Case::load(path, set)?;
-    let Built { problem, model, .. } = case.build()?;
+    let Built { problem, model, loading, .. } = case.build()?;
     let dofs = piezocontact::dofs::DofMap::new(&problem)?;
     let (mesh, units) = (&problem.mesh, &case.file.units);
     let (lo, hi) = mesh.bounding_box();
@@ -400,6 +400,9 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
     );
     if let Some(model) = &model {
         say!("problem: {:?}, foundation: {:?}", case.problem_kind(), model.foundation);
+    }
+    if let Some(loading) = &loading {
+        print::loading(loading, problem.mesh.dim(), units);
     }
     print::indentation_moduli(&problem.material, units);
     for warning in case.hypothesis_warnings(&problem.material) {

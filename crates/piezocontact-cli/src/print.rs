@@ -5,7 +5,7 @@ use piezocontact::case::Case;
 use piezocontact::case::schema::Units;
 use piezocontact::material::Material;
 use piezocontact::oracles::{Piezoelectric, plane_strain_modulus};
-use piezocontact::path::PathRun;
+use piezocontact::path::{Loading, PathRun};
 use piezocontact::run::{ContactRun, StaticRun};
 use std::path::Path;
 
@@ -112,6 +112,28 @@ pub fn path_run(path: &PathRun, case: &Case, out: &Path) {
     say!(
         "  wrote curve.csv, curve.png/.svg, solution-NNNN.vtu and solution.pvd (every step) in {}",
         out.display()
+    );
+}
+
+/// Prints a loading path: its direction and each step's depth and load factor.
+pub fn loading(loading: &Loading, dim: usize, units: &Units) {
+    let steps: Vec<String> = loading
+        .steps
+        .iter()
+        .map(|s| {
+            if s.load_factor == 1.0 {
+                format!("{}", s.depth)
+            } else {
+                format!("{} (×{})", s.depth, s.load_factor)
+            }
+        })
+        .collect();
+    say!(
+        "loading path: {} steps along {:?}, depths [{}] {} (× load factor where not 1)",
+        loading.steps.len(),
+        &loading.direction[..dim],
+        steps.join(", "),
+        units.length
     );
 }
 

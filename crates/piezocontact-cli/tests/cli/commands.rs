@@ -263,6 +263,34 @@ fn check_prints_the_mesh_and_dof_summary() {
     assert!(t.contains("note: p_ν is bounded by M_p = 1"), "{t}");
 }
 
+/// `check` of a loading path prints its steps and the material's indentation moduli: for
+/// PZT-5A, E/(1 − ν²) from its E and ν, and C* for both tips (the insulating one the stiffer,
+/// both above E*: the coupling stiffens the contact).
+#[test]
+fn check_prints_the_path_and_the_indentation_moduli() {
+    let o = piezocontact(&[
+        "check",
+        "cases/indentation-curve.toml",
+        "--set",
+        "loading.depths=[0.01, 0.02]",
+    ]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(
+        t.contains("loading path: 2 steps along [0.0, 0.0, -1.0], depths [0.01, 0.02] m"),
+        "{t}"
+    );
+    let e_star = 58.7102 / (1.0 - 0.3912f64.powi(2));
+    assert!(t.contains(&format!("E/(1 − ν²)          = {e_star:.6} GPa")), "{t}");
+    let value = |label: &str| -> f64 {
+        let line = t.lines().find(|l| l.contains(label)).unwrap_or_else(|| panic!("{label}: {t}"));
+        line.split('=').nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap()
+    };
+    let (insulating, grounded) = (value("C* insulating tip"), value("C* grounded tip"));
+    assert!(insulating > grounded && grounded > e_star, "{t}");
+    assert!(t.contains("GV/m (surface potential per indentation into the body)"), "{t}");
+}
+
 /// 1-based line of the first line of the paper case that starts with `prefix`.
 fn line_of(prefix: &str) -> usize {
     let case = std::fs::read_to_string(root().join("cases/paper-7.1.toml")).unwrap();
