@@ -449,9 +449,9 @@ pub fn path(case_file: &Path, mesh: Option<&Path>) -> Result<()> {
     let (mut factorisations, mut newton, mut difference) = (0, 0, 0.0_f64);
     for (step, row) in path.loading.steps.iter().zip(&path.curve) {
         let Built { mut problem, model, settings, .. } = case.build()?;
-        let mut model = model.ok_or_else(|| anyhow!("no [contact] table"))?;
+        let model = model.ok_or_else(|| anyhow!("no [contact] table"))?;
         problem.load_factor = step.load_factor;
-        model.foundation = model.foundation.translated(path.loading.shift(step));
+        let model = path.loading.model_at(&model, step);
         let s = solve_contact_with(&problem, &model, &settings, case.linear_solver(), &|_| {})?;
         factorisations += s.timings.numeric_count;
         newton += s.inner_iterations.iter().sum::<usize>();

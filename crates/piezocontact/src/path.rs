@@ -11,7 +11,7 @@ use crate::linalg::LinearSolver;
 use crate::output::files;
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
 use crate::report::{self, Row};
-use crate::run::{ContactFields, ContactRun};
+use crate::run::{self, ContactFields, ContactRun};
 use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
 use std::f64::consts::PI;
@@ -38,9 +38,10 @@ pub struct LoadStep {
 }
 
 impl Loading {
-    /// The foundation's rigid displacement at `step` [length].
-    pub fn shift(&self, step: &LoadStep) -> [f64; 3] {
-        self.direction.map(|v| v * step.depth)
+    /// `model` with its foundation where `step` moves it: rigidly, by depth · direction.
+    pub fn model_at(&self, model: &ContactModel, step: &LoadStep) -> ContactModel {
+        let shift = self.direction.map(|v| v * step.depth);
+        ContactModel { foundation: model.foundation.translated(shift), ..model.clone() }
     }
 }
 
@@ -206,43 +207,29 @@ impl PathRun {
     ) -> Result<Self> {
         let start = Instant::now();
         let Built { mut problem, model, settings, warnings, loading } = built;
-        let (model, loading) = match (model, loading) {
-            (Some(m), Some(l)) => (m, l),
-            _ => {
-                return Err(Error::Input(format!(
-                    "{}: the case has no [loading] path of contact solves",
-                    case.path.display()
-                )));
-            }
-        };
+        let model = run::contact_model(case, &problem, model)?;
+        let loading = loading.ok_or_else(|| {
+            Error::Input(format!("{}: the case has no [loading] table", case.path.display()))
+        })?;
         // Set up where the first step puts the foundation: the exact solver's first guess of
         // the contact zone is that step's.
-        let first = loading.steps.first().map_or([0.0; 3], |s| loading.shift(s));
         let at_first =
-            ContactModel { foundation: model.foundation.translated(first), ..model.clone() };
+            loading.steps.first().map_or_else(|| model.clone(), |s| loading.model_at(&model, s));
         let mut solver = ContactSolver::new(&problem, &at_first, &settings, solver)
             .map_err(|e| case.context(e))?;
         let (mut curve, mut states, mut failure) = (Vec::new(), Vec::new(), None);
         let mut last: Option<(ContactModel, ContactSolution, Vec<Row>)> = None;
         let n = loading.steps.len();
         for (k, load) in loading.steps.iter().enumerate() {
-            log::info!(
-                "step {} of {n}: depth {:e}, load factor {}",
-                k + 1,
-                load.depth,
-                load.load_factor
-            );
-            problem.load_factor = load.load_factor;
-            let step_model = ContactModel {
-                foundation: model.foundation.translated(loading.shift(load)),
-                ..model.clone()
-            };
             let what = format!(
                 "step {} of {n} (depth {:e}, load factor {})",
                 k + 1,
                 load.depth,
                 load.load_factor
             );
+            log::info!("{what}");
+            problem.load_factor = load.load_factor;
+            let step_model = loading.model_at(&model, load);
             let solution = match solver.solve(&problem, &step_model, progress) {
                 Ok(solution) => solution,
                 Err(e) if k > 0 => {
@@ -317,8 +304,7 @@ impl PathRun {
     /// summary.json of the path, curve.csv, solution-NNNN.vtu per step with solution.pvd, and
     /// the curves' figure (curve.png and .svg).
     pub fn write(&self, case: &Case, out: &Path) -> Result<()> {
-        self.last.write(case, out)?;
-        files::write_summary(out, &self.summary(case))?;
+        self.last.write_with_summary(case, out, &self.summary(case))?;
         let problem = &self.last.problem;
         let parts = self.electrodes();
         let csv = curve_csv(&self.curve, problem.mesh.dim(), &parts);

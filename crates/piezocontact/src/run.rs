@@ -62,15 +62,7 @@ impl ContactRun {
     ) -> Result<Self> {
         let start = Instant::now();
         let Built { problem, model, settings, warnings, .. } = built;
-        let model = model.ok_or_else(|| {
-            Error::Input(format!("{}: the case has no [contact] table", case.path.display()))
-        })?;
-        if problem.boundary.contact.is_empty() {
-            return Err(Error::Input(format!(
-                "{}: [contact] is given but boundary.contact names no boundary part",
-                case.locate("boundary")
-            )));
-        }
+        let model = contact_model(case, &problem, model)?;
         let solution = solve_contact_with(&problem, &model, &settings, solver, progress)
             .map_err(|e| case.context(e))?;
         let rows = report::rows(&problem, &model, &solution);
@@ -124,7 +116,13 @@ impl ContactRun {
     /// Writes the files of a contact run into `out`: contact.csv, summary.json and
     /// solution.vtu, and for a 3D body the map of Γ3 (contact_map.png and .svg).
     pub fn write(&self, case: &Case, out: &Path) -> Result<()> {
-        self.write_results(case, out)?;
+        self.write_with_summary(case, out, &self.summary(case))
+    }
+
+    /// [`ContactRun::write`] with `summary` as summary.json (a loading path's, which adds the
+    /// path to the last step's).
+    pub fn write_with_summary(&self, case: &Case, out: &Path, summary: &Value) -> Result<()> {
+        self.write_results(out, summary)?;
         if self.problem.mesh.dim() == 3 {
             let units = &case.file.units;
             let title = if case.file.title.is_empty() { "Γ3" } else { case.file.title.as_str() };
@@ -134,8 +132,8 @@ impl ContactRun {
         Ok(())
     }
 
-    /// contact.csv, summary.json and solution.vtu.
-    fn write_results(&self, case: &Case, out: &Path) -> Result<()> {
+    /// contact.csv, `summary` as summary.json, and solution.vtu.
+    fn write_results(&self, out: &Path, summary: &Value) -> Result<()> {
         std::fs::create_dir_all(out).map_err(|e| Error::Io {
             what: format!("cannot create {}", out.display()),
             cause: e.to_string(),
@@ -145,7 +143,7 @@ impl ContactRun {
         let csv = report::contact_csv(&self.rows, problem.mesh.dim());
         files::write_atomic(&out.join("contact.csv"), csv.as_bytes())?;
         let extra = fields.fields();
-        files::write_results(out, &self.summary(case), problem, &solution.dofs, &solution.x, &extra)
+        files::write_results(out, summary, problem, &solution.dofs, &solution.x, &extra)
     }
 }
 
@@ -189,6 +187,25 @@ impl ContactFields {
             Field { name: "gap", components: 1, values: &self.gap },
         ]
     }
+}
+
+/// The contact model of a built case, refused without a `[contact]` table or without
+/// contact parts.
+pub fn contact_model(
+    case: &Case,
+    problem: &Problem,
+    model: Option<ContactModel>,
+) -> Result<ContactModel> {
+    let model = model.ok_or_else(|| {
+        Error::Input(format!("{}: the case has no [contact] table", case.path.display()))
+    })?;
+    if problem.boundary.contact.is_empty() {
+        return Err(Error::Input(format!(
+            "{}: [contact] is given but boundary.contact names no boundary part",
+            case.locate("boundary")
+        )));
+    }
+    Ok(model)
 }
 
 /// A solved case without contact (no `[contact]` table: Γ3, if named, is free).

@@ -218,12 +218,13 @@ impl Condensed {
     }
 
     /// Checks that the dense work of the condensation — the Schur complement, its factor
-    /// block and the Newton systems, about 5 dense m × m matrices — fits in `available`
+    /// block, the one kept for the next set, the block inverted to reach a new set and the
+    /// Newton systems, about 7 dense m × m matrices — fits in `available`
     /// bytes.
     pub fn check_memory(&self, available: f64) -> Result<()> {
         let m = self.len() as f64;
         crate::limits::check_memory(
-            5.0 * 8.0 * m * m,
+            7.0 * 8.0 * m * m,
             available,
             &format!("the exact solver's dense matrices of {} condensed Γ3 unknowns", self.len()),
             "use solver.method = \"uzawa\", lower solver.max_condensed, or name a smaller contact part (boundary.contact)",
@@ -259,9 +260,16 @@ impl SchurSource {
         Self { analysed: analysed.to_vec(), last: None }
     }
 
-    /// The free unknowns last in the factorisation's ordering.
-    pub fn analysed(&self) -> &[usize] {
-        &self.analysed
+    /// The solves [`SchurSource::get`] would make for `wanted` with the current
+    /// factorisation of `system`: the wanted unknowns outside the set it would start from.
+    pub fn solves_for(&self, system: &CoupledSystem, wanted: &[usize]) -> usize {
+        let generation = system.solver_stats().numeric_count;
+        let base = match &self.last {
+            Some((set, g, _)) if *g == generation => set,
+            _ => &self.analysed,
+        };
+        let base: std::collections::HashSet<usize> = base.iter().copied().collect();
+        wanted.iter().filter(|k| !base.contains(k)).count()
     }
 
     /// The Schur complement S_W of the free unknowns `wanted` from the current factorisation
@@ -355,7 +363,7 @@ mod tests {
         let e = many.check_memory(16.0 * 2f64.powi(30)).unwrap_err().to_string();
         assert!(
             e.contains("30000 condensed Γ3 unknowns")
-                && e.contains("33.5 GiB")
+                && e.contains("46.9 GiB")
                 && e.contains("uzawa"),
             "{e}"
         );

@@ -281,6 +281,8 @@ pub struct ContactSolver {
     /// Whether B̌ must be factorised with `linearisation` before the next step.
     changed: bool,
     max_outer: usize,
+    /// The load factor f̌ was assembled with.
+    load_factor: f64,
     /// x and s of the last solve.
     last: Option<(Vec<f64>, Vec<f64>)>,
 }
@@ -313,11 +315,12 @@ impl ContactSolver {
             linearisation,
             changed: true,
             max_outer,
+            load_factor: problem.load_factor,
             last: None,
         })
     }
 
-    /// Solves `problem` (the mesh of [`ContactSolver::new`], its loads as they are now) in
+    /// Solves `problem` (that of [`ContactSolver::new`], its loads scaled by its `load_factor`) in
     /// contact with `model`'s foundation, from the last solution (from 0 the first time).
     pub fn solve(
         &mut self,
@@ -334,7 +337,10 @@ impl ContactSolver {
                 solution.slip_origin = x.clone();
             }
         }
-        self.system.reload(problem);
+        if problem.load_factor != self.load_factor {
+            self.system.reload(problem);
+            self.load_factor = problem.load_factor;
+        }
         let (lags, fixed) = (self.method.lags_contact(), &self.fixed);
         for n in 1..=self.max_outer {
             progress(Progress::Outer { step: n, max: self.max_outer });

@@ -219,7 +219,7 @@ impl InnerMethod for Newton {
 }
 
 impl Newton {
-    /// Solves an outer step with the factorised `system` (ordered with `schur.analysed()` last),
+    /// Solves an outer step with the factorised `system` (ordered with the unknowns `schur` was made for last),
     /// growing the condensation until no node left out touches (model §11). A growth takes
     /// the Schur complement of the new set from the factor by solves when that is cheaper
     /// ([`condensed::cheaper_by_solves`]), else orders the new set last and factorises B̌
@@ -250,8 +250,8 @@ impl Newton {
             rounds += 1;
             grown.check_memory(crate::limits::available_memory())?;
             *condensed = grown;
-            let new = condensed.free.iter().filter(|k| !schur.analysed().contains(k)).count();
-            if !condensed::cheaper_by_solves(new, &system.solver_stats()) {
+            let solves = schur.solves_for(system, &condensed.free);
+            if !condensed::cheaper_by_solves(solves, &system.solver_stats()) {
                 system.put_last(&condensed.free)?;
                 system.factorize_linearised(step.problem, step.linearisation, &[])?;
                 *schur = SchurSource::new(&condensed.free);
@@ -283,7 +283,7 @@ struct Semismooth<'a> {
 
 impl Semismooth<'_> {
     /// Solves the condensed problem with the factorised `system` (ordered with the free
-    /// unknowns `schur.analysed()` last) and recovers the whole solution.
+    /// unknowns `schur` was made for last) and recovers the whole solution.
     pub fn run(&self, system: &mut CoupledSystem, schur: &mut SchurSource) -> Result<InnerResult> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;

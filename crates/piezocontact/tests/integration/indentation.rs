@@ -396,3 +396,32 @@ fn a_surface_out_of_reach_is_refused() {
         "{e}"
     );
 }
+
+/// A path of load factors (the paper's bar, its load halved then whole) gives at each step the
+/// single run of the scaled loads: f̌ is assembled again only when the factor changes.
+#[test]
+fn a_path_of_load_factors_scales_the_loads() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/paper-7.1.toml");
+    let sets = ["mesh.nx=24", "mesh.ny=4", "solver.method=\"newton\""];
+    let overrides = |extra: &[&str]| -> Vec<String> {
+        sets.iter().chain(extra).map(|s| s.to_string()).collect()
+    };
+    let case = Case::load(&file, &overrides(&["loading.load_factors=[0.5, 0.5, 1.0]"])).unwrap();
+    let path =
+        PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
+    assert!(path.converged() && path.curve.len() == 3, "{:?}", path.failure);
+    let single = Case::load(&file, &overrides(&[])).unwrap();
+    for (k, factor) in [0.5, 0.5, 1.0].into_iter().enumerate() {
+        let mut built = single.build().unwrap();
+        built.problem.load_factor = factor;
+        let run = ContactRun::solve_built(&single, built, default_solver(), &|_| {}).unwrap();
+        let (ours, theirs) = (path.curve[k].force[1], -run.solution.balance.contact[1]);
+        println!("step {}: factor {factor}, force {ours:.6e} (single run {theirs:.6e})", k + 1);
+        assert!(
+            (ours - theirs).abs() <= 1e-9 * theirs.abs(),
+            "step {}: {ours} against {theirs}",
+            k + 1
+        );
+    }
+    assert!((path.curve[2].force[1] / path.curve[0].force[1] - 1.0).abs() > 0.1);
+}
