@@ -117,7 +117,7 @@ fn solve_case(py: Python<'_>, case: CaseFile) -> PyResult<Solution> {
     let run = guarded(py, || {
         if case.file.loading.is_some() {
             let built = case.build()?;
-            PathRun::solve_built(&case, built, case.linear_solver(), &|_| {})
+            PathRun::solve_built(&case, built, case.linear_solver()?, &|_| {})
                 .map(|r| Run::Path(Box::new(r)))
         } else if case.file.contact.is_some() {
             ContactRun::solve(&case).map(|r| Run::Contact(Box::new(r)))

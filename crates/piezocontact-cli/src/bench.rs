@@ -161,7 +161,7 @@ fn ratios(rows: &[(&str, usize, Row)]) {
 }
 
 /// A case around a Gmsh mesh: every boundary part clamped and grounded.
-fn mesh_case(path: &Path) -> Result<Case> {
+pub(crate) fn mesh_case(path: &Path) -> Result<Case> {
     let bytes = std::fs::read(path).map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
     let mesh =
         piezocontact::mesh::gmsh::read(&bytes).map_err(|e| anyhow!("{}: {e}", path.display()))?;
@@ -385,6 +385,10 @@ pub fn contact(targets: &[String]) -> Result<()> {
 /// "contactK,TARGET".
 pub fn measure_one(spec: &str) -> Result<()> {
     let (kind, target) = spec.split_once(',').ok_or_else(|| anyhow!("--one {spec}"))?;
+    #[cfg(feature = "petsc")]
+    if kind == "faer" {
+        return crate::bench_petsc::measure_faer(Path::new(target));
+    }
     let mut problems = contact_problems(target)?;
     if kind == "plain" {
         let problem = problems.swap_remove(0).1.problem()?;
@@ -418,7 +422,7 @@ pub fn measure_one(spec: &str) -> Result<()> {
 }
 
 /// Peak resident memory of this process [MB] (VmHWM of /proc/self/status; 0 elsewhere).
-fn peak_mb() -> f64 {
+pub(crate) fn peak_mb() -> f64 {
     std::fs::read_to_string("/proc/self/status")
         .ok()
         .and_then(|t| {
@@ -440,7 +444,7 @@ pub fn path(case_file: &Path, mesh: Option<&Path>) -> Result<()> {
     }
     let case = Case::load(case_file, &overrides)?;
     let start = Instant::now();
-    let path = PathRun::solve_built(&case, case.build()?, case.linear_solver(), &|_| {})?;
+    let path = PathRun::solve_built(&case, case.build()?, case.linear_solver()?, &|_| {})?;
     let path_seconds = start.elapsed().as_secs_f64();
     if let Some(failure) = &path.failure {
         bail!("{}: {failure}", case_file.display());
@@ -452,7 +456,7 @@ pub fn path(case_file: &Path, mesh: Option<&Path>) -> Result<()> {
         let model = model.ok_or_else(|| anyhow!("no [contact] table"))?;
         problem.load_factor = step.load_factor;
         let model = path.loading.model_at(&model, step);
-        let s = solve_contact_with(&problem, &model, &settings, case.linear_solver(), &|_| {})?;
+        let s = solve_contact_with(&problem, &model, &settings, case.linear_solver()?, &|_| {})?;
         factorisations += s.timings.numeric_count;
         newton += s.inner_iterations.iter().sum::<usize>();
         let force: f64 = s.balance.contact.iter().map(|f| f * f).sum::<f64>().sqrt();

@@ -10,7 +10,7 @@ use piezocontact::output::files as output;
 use piezocontact::path::PathRun;
 use piezocontact::run::{self, ContactRun, StaticRun};
 use piezocontact_cli::progress::Reporter;
-use piezocontact_cli::{bench, print, reproduce, sweep};
+use piezocontact_cli::{bench, print, processes, reproduce, sweep};
 use piezocontact_cli::{say, say_err};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -26,6 +26,10 @@ struct Cli {
     /// No progress and no report on stdout; errors and warnings still go to stderr.
     #[arg(short, long, global = true)]
     quiet: bool,
+    /// Options for PETSc's options database (solver.backend = "petsc"), in PETSc's syntax,
+    /// e.g. "-mat_mumps_icntl_14 60 -mat_mumps_icntl_4 2".
+    #[arg(long, global = true, value_name = "OPTIONS", allow_hyphen_values = true)]
+    petsc_options: Option<String>,
     #[command(subcommand)]
     command: Command,
 }
@@ -138,6 +142,11 @@ enum Command {
         /// cases/indentation-curve.toml), --mesh replacing its mesh.
         #[arg(long, conflicts_with_all = ["contact", "lu", "sizes"])]
         path: bool,
+        /// The linear-solver backend to time on --mesh: "faer" (default) or "petsc" (PETSc +
+        /// MUMPS on the processes of mpirun, beside faer's in the same run; a build with the
+        /// feature `petsc`).
+        #[arg(long, default_value = "faer", value_parser = ["faer", "petsc"], requires = "mesh", conflicts_with_all = ["contact", "path", "lu"])]
+        backend: String,
         /// One measurement of --contact (internal).
         #[arg(long, hide = true)]
         one: Option<String>,
@@ -171,24 +180,25 @@ fn main() -> ExitCode {
     if cli.quiet {
         piezocontact_cli::say::set_quiet();
     }
+    if let Err(e) = processes::start(cli.petsc_options.as_deref()) {
+        return processes::fail(&format!("error: {e:#}"), 1);
+    }
     match run(cli.command) {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
         Ok(Outcome::NotConverged) => ExitCode::from(3),
         Ok(Outcome::Failed) => ExitCode::from(4),
-        Err(e) => {
-            say_err!("error: {e:#}");
-            ExitCode::from(1)
-        }
+        Err(e) => processes::fail(&format!("error: {e:#}"), 1),
     }
 }
 
 fn run(command: Command) -> Result<Outcome> {
     match command {
         Command::Run { case, out, set, force, progress_interval } => {
-            let _claim = claim(&out, force)?;
+            let _claim = processes::is_root().then(|| claim(&out, force)).transpose()?;
             run_case(&case, &out, &set, progress_interval)
         }
         Command::Sweep { case, set_list, set, reference, jobs, out, force } => {
+            one_process("sweep")?;
             let _claim = claim(&out, force)?;
             let request = sweep::SweepRequest {
                 case: &case,
@@ -201,6 +211,7 @@ fn run(command: Command) -> Result<Outcome> {
             Ok(if sweep::sweep(&request)? { Outcome::Done } else { Outcome::NotConverged })
         }
         Command::Reproduce { out, mesh, jobs, force } => {
+            one_process("reproduce")?;
             let _claim = claim(&out, force)?;
             let converged =
                 reproduce::reproduce(&reproduce::Request { out: out.clone(), mesh, jobs })?;
@@ -209,9 +220,12 @@ fn run(command: Command) -> Result<Outcome> {
         }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
-        Command::Bench { sizes, mesh, lu, contact, case, path, one, ordering } => {
+        Command::Bench { sizes, mesh, lu, contact, case, path, one, ordering, backend } => {
             if let Some(spec) = one {
                 return bench::measure_one(&spec).map(|_| Outcome::Done);
+            }
+            if backend == "petsc" {
+                return bench_backend(mesh.as_deref()).map(|_| Outcome::Done);
             }
             if path {
                 let case = case.unwrap_or_else(|| PathBuf::from("cases/indentation-curve.toml"));
@@ -242,6 +256,30 @@ fn run(command: Command) -> Result<Outcome> {
             bench::run(&target, &variants, lu).map(|_| Outcome::Done)
         }
     }
+}
+
+/// `bench --mesh FILE --backend petsc`.
+#[cfg(feature = "petsc")]
+fn bench_backend(mesh: Option<&Path>) -> Result<()> {
+    let mesh = mesh.ok_or_else(|| anyhow::anyhow!("--backend petsc needs --mesh FILE"))?;
+    piezocontact_cli::bench_petsc::run(mesh)
+}
+
+#[cfg(not(feature = "petsc"))]
+fn bench_backend(_mesh: Option<&Path>) -> Result<()> {
+    anyhow::bail!(
+        "--backend petsc needs piezocontact built with the PETSc backend: cargo build --release --features petsc (Debian packages petsc-dev and openmpi-bin)"
+    )
+}
+
+/// Refuses a command that runs its cases in parallel on one machine under mpirun.
+fn one_process(command: &str) -> Result<()> {
+    if processes::size() > 1 {
+        anyhow::bail!(
+            "{command} runs its cases in parallel on this machine: run it without mpirun (mpirun goes with run, check and bench)"
+        );
+    }
+    Ok(())
 }
 
 /// Claims the output directory; a foreign directory's error names the command's options.
@@ -275,7 +313,9 @@ fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Resu
             "the case has no [contact] table: Γ3 is treated as free (traction and charge free)"
         );
     }
-    run.write(&case, out)?;
+    if processes::is_root() {
+        run.write(&case, out)?;
+    }
     print::static_run(&run, &case, out);
     Ok(Outcome::Done)
 }
@@ -289,13 +329,16 @@ fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
     let progress = |event| reporter.event(event);
     // A refusal after validation writes summary.json with the failure, then fails.
     let refused = |e: piezocontact::Error| -> anyhow::Error {
+        if !processes::is_root() {
+            return e.into();
+        }
         match output::write_summary(out, &run::refusal_summary(header.clone(), case, &e)) {
             Ok(()) => e.into(),
             Err(written) => written.into(),
         }
     };
     if built.loading.is_some() {
-        let path = PathRun::solve_built(case, built, case.linear_solver(), &progress);
+        let path = PathRun::solve_built(case, built, case.linear_solver()?, &progress);
         let path = match path {
             Ok(path) => path,
             Err(e) => return Err(refused(e)),
@@ -303,12 +346,14 @@ fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
         drop(reporter);
         return write_path(&path, case, out);
     }
-    let run = match ContactRun::solve_built(case, built, case.linear_solver(), &progress) {
+    let run = match ContactRun::solve_built(case, built, case.linear_solver()?, &progress) {
         Ok(run) => run,
         Err(e) => return Err(refused(e)),
     };
     drop(reporter);
-    run.write(case, out)?;
+    if processes::is_root() {
+        run.write(case, out)?;
+    }
     print::contact_run(&run, case, out);
     if let Some(failure) = &run.solution.failure {
         say_err!(
@@ -326,7 +371,9 @@ fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
 
 /// Writes and reports a loading path; a path that stopped early says which step and why.
 fn write_path(path: &PathRun, case: &Case, out: &Path) -> Result<Outcome> {
-    path.write(case, out)?;
+    if processes::is_root() {
+        path.write(case, out)?;
+    }
     print::path_run(path, case, out);
     let Some(failure) = &path.failure else { return Ok(Outcome::Done) };
     say_err!(

@@ -30,7 +30,9 @@ impl Reporter {
     /// `interval` apart (the first after `interval`).
     pub fn new(method: &'static str, interval: Duration) -> Self {
         let terminal = std::io::stdout().is_terminal();
-        let bar = (terminal && !quiet()).then(|| {
+        // Process 0 alone reports a run under mpirun.
+        let shown = !quiet() && crate::processes::is_root();
+        let bar = (terminal && shown).then(|| {
             let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stdout());
             bar.set_style(
                 ProgressStyle::with_template("{spinner} {elapsed} {msg}")
@@ -41,7 +43,7 @@ impl Reporter {
         });
         Self {
             bar,
-            plain: !terminal && !quiet(),
+            plain: !terminal && shown,
             method,
             outer: Cell::new((0, 0)),
             last: Cell::new(Instant::now()),

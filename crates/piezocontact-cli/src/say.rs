@@ -19,6 +19,13 @@ pub enum Stream {
 
 static CLOSED: [AtomicBool; 2] = [AtomicBool::new(false), AtomicBool::new(false)];
 static QUIET: AtomicBool = AtomicBool::new(false);
+static SILENT: AtomicBool = AtomicBool::new(false);
+
+/// Drops every line from now on, to both streams (the processes but the first of a run
+/// under mpirun, which report nothing; their errors go through [`crate::processes::fail`]).
+pub fn set_silent() {
+    SILENT.store(true, Ordering::Relaxed);
+}
 
 /// Drops the reports on stdout from now on (`--quiet`); errors still reach stderr.
 pub fn set_quiet() {
@@ -33,7 +40,8 @@ pub fn quiet() -> bool {
 /// Writes `args` and a newline to `stream`, unless it is closed (or stdout is quiet).
 pub fn line(stream: Stream, args: std::fmt::Arguments) {
     let closed = &CLOSED[stream as usize];
-    if closed.load(Ordering::Relaxed) || (matches!(stream, Stream::Out) && quiet()) {
+    let dropped = SILENT.load(Ordering::Relaxed) || (matches!(stream, Stream::Out) && quiet());
+    if closed.load(Ordering::Relaxed) || dropped {
         return;
     }
     let written = match stream {

@@ -40,7 +40,7 @@ impl ContactRun {
     /// Solves a case that has a `[contact]` table and contact parts, with the default linear
     /// solver.
     pub fn solve(case: &Case) -> Result<Self> {
-        Self::solve_with(case, case.linear_solver(), &|_| {})
+        Self::solve_with(case, case.linear_solver()?, &|_| {})
     }
 
     /// [`ContactRun::solve`] with the caller's linear `solver`, telling `progress` of each
@@ -228,7 +228,7 @@ impl StaticRun {
         let start = Instant::now();
         let problem = case.problem()?;
         let solution =
-            solve_without_contact(&problem, case.linear_solver()).map_err(|e| case.context(e))?;
+            solve_without_contact(&problem, case.linear_solver()?).map_err(|e| case.context(e))?;
         let (dofs, x) = (&solution.dofs, &solution.x);
         let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
         let max_u = (0..n)
@@ -293,6 +293,7 @@ pub fn common_summary(case: &Case, problem: &Problem, dofs: &DofMap) -> Value {
         "nodes": problem.mesh.n_nodes(),
         "elements": problem.mesh.n_cells(),
         "dofs": { "total": dofs.n_total(), "free": dofs.n_free(), "free_u": dofs.n_free_u(), "free_phi": dofs.n_free() - dofs.n_free_u() },
+        "backend": { "name": case.backend_name(), "processes": crate::linalg::processes() },
     })
 }
 

@@ -181,3 +181,40 @@ fn check_validates_the_foundation_and_the_exact_solver_s_keys() {
     let o = piezocontact(&["check", "cases/indentation-3d.toml"]);
     assert!(o.status.success() && text(&o).contains("foundation: Sphere"), "{}", text(&o));
 }
+
+/// A build without the PETSc backend refuses it where it is asked for, with the command that
+/// builds it: the case key (before any work), bench's --backend and --petsc-options.
+#[cfg(not(feature = "petsc"))]
+#[test]
+fn the_petsc_backend_is_refused_by_a_build_without_it() {
+    let backend = "solver.backend=\"petsc\"";
+    let out = temp_dir("petsc-refused");
+    let out = out.join("run");
+    for args in [
+        vec!["check", "cases/paper-7.2.toml", "--set", backend],
+        vec!["run", "cases/paper-7.2.toml", "--set", backend, "--out", out.to_str().unwrap()],
+        vec!["bench", "--mesh", "meshes/cube.msh", "--backend", "petsc"],
+        vec!["check", "cases/paper-7.2.toml", "--petsc-options", "-mat_mumps_icntl_14 60"],
+    ] {
+        let output = piezocontact(&args);
+        let stderr = text(&output);
+        assert_eq!(output.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(stderr.contains("--features petsc"), "{args:?}: {stderr}");
+        if args.contains(&backend) {
+            assert!(stderr.contains("solver.backend"), "{args:?}: {stderr}");
+        }
+    }
+}
+
+/// solver.ordering is faer's: with the PETSc backend the case is warned that MUMPS orders
+/// the matrix itself.
+#[test]
+fn an_ordering_with_the_petsc_backend_is_reported_unused() {
+    let file = root().join("cases/paper-7.2.toml");
+    let sets = ["solver.backend=\"petsc\"".to_string(), "solver.ordering=\"nd\"".to_string()];
+    let case = piezocontact::case::Case::load(&file, &sets).unwrap();
+    let warnings = case.setting_warnings();
+    assert!(warnings.iter().any(|w| w.contains("solver.ordering") && w.contains("MUMPS")));
+    let faer = piezocontact::case::Case::load(&file, &sets[1..]).unwrap();
+    assert!(faer.setting_warnings().iter().all(|w| !w.contains("solver.ordering")));
+}

@@ -93,6 +93,7 @@ impl Case {
 
     /// Validates the case once and builds everything a run needs.
     pub fn build(&self) -> Result<Built> {
+        self.check_backend()?;
         self.contact_settings()?;
         let problem = self.problem_checked()?;
         let model = self.contact_model(&problem)?;
@@ -107,19 +108,54 @@ impl Case {
 
     /// The checked problem alone (for a case without contact).
     pub fn problem(&self) -> Result<Problem> {
+        self.check_backend()?;
         self.contact_settings()?;
         self.problem_checked()
     }
 
-    /// The linear solver the case asks for: sparse LDLᵀ with `solver.ordering`, on the run's
-    /// threads.
-    pub fn linear_solver(&self) -> Box<dyn LinearSolver> {
+    /// The linear solver the case asks for (`solver.backend`): faer's sparse LDLᵀ with
+    /// `solver.ordering` on the run's threads, or PETSc + MUMPS on the run's processes.
+    pub fn linear_solver(&self) -> Result<Box<dyn LinearSolver>> {
         let ordering = match self.file.solver.ordering.unwrap_or(DEFAULTS.ordering) {
             OrderingKey::Auto => Ordering::Auto,
             OrderingKey::Nd => Ordering::NestedDissection,
             OrderingKey::Amd => Ordering::Amd,
         };
-        Box::new(LdltSolver::with_ordering(ordering))
+        match self.file.solver.backend.unwrap_or(DEFAULTS.backend) {
+            BackendKey::Faer => Ok(Box::new(LdltSolver::with_ordering(ordering))),
+            BackendKey::Petsc => self.petsc_solver(),
+        }
+    }
+
+    #[cfg(feature = "petsc")]
+    fn petsc_solver(&self) -> Result<Box<dyn LinearSolver>> {
+        Ok(Box::new(crate::linalg::PetscSolver::new()?))
+    }
+
+    #[cfg(not(feature = "petsc"))]
+    fn petsc_solver(&self) -> Result<Box<dyn LinearSolver>> {
+        self.check_backend()?;
+        Err(Error::Input("the PETSc backend is not built in".into()))
+    }
+
+    /// Refuses `solver.backend = "petsc"` in a build without the PETSc backend, with the
+    /// command that builds it.
+    fn check_backend(&self) -> Result<()> {
+        if cfg!(feature = "petsc") || self.file.solver.backend != Some(BackendKey::Petsc) {
+            return Ok(());
+        }
+        Err(Error::Input(format!(
+            "{}: solver.backend = \"petsc\" needs piezocontact built with the PETSc backend: install petsc-dev and openmpi-bin (Debian), then cargo build --release --features petsc; or use solver.backend = \"faer\"",
+            self.locate("solver.backend")
+        )))
+    }
+
+    /// The name of the linear-solver backend the case chooses (`solver.backend`).
+    pub fn backend_name(&self) -> &'static str {
+        match self.file.solver.backend.unwrap_or(DEFAULTS.backend) {
+            BackendKey::Faer => "faer",
+            BackendKey::Petsc => "petsc",
+        }
     }
 
     /// The name of the inner method the case chooses (`solver.method`).

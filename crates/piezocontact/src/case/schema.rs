@@ -45,6 +45,8 @@ pub struct Defaults {
     pub max_condensed: usize,
     /// solver.ordering.
     pub ordering: OrderingKey,
+    /// solver.backend.
+    pub backend: BackendKey,
 }
 
 /// The defaults: the paper's values for its constants and for Uzawa, round-off for Newton,
@@ -69,6 +71,7 @@ pub const DEFAULTS: Defaults = Defaults {
     max_outer: 100,
     max_condensed: 2000,
     ordering: OrderingKey::Auto,
+    backend: BackendKey::Faer,
 };
 
 /// The case's consistent unit system, used for labels only (model §9): the numbers in the file
@@ -476,6 +479,18 @@ pub enum OrderingKey {
     Amd,
 }
 
+/// The linear-solver backend in the case file.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum BackendKey {
+    /// faer's sparse LDLᵀ on this machine's threads (the default; pure Rust).
+    #[default]
+    Faer,
+    /// PETSc's distributed matrix and MUMPS's LDLᵀ, on the processes of `mpirun` (a build
+    /// with the cargo feature `petsc`).
+    Petsc,
+}
+
 /// `[solver]`: the algorithms' parameters (model §7). Defaults: [`DEFAULTS`].
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -502,6 +517,9 @@ pub struct SolverSection {
     /// on a 3D mesh, else AMD and nested dissection both analysed and the smaller factor
     /// kept), "nd" or "amd".
     pub ordering: Option<OrderingKey>,
+    /// The linear-solver backend: "faer" (default) or "petsc" (PETSc + MUMPS under
+    /// mpirun; a build with the feature `petsc`).
+    pub backend: Option<BackendKey>,
 }
 
 /// A whole case file.

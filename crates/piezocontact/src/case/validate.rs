@@ -4,7 +4,7 @@
 
 use super::Case;
 use super::build::MethodParameters;
-use super::schema::{MethodKey, ProblemKey, RegularizationKey};
+use super::schema::{BackendKey, MethodKey, ProblemKey, RegularizationKey};
 use crate::error::{Error, Result};
 use crate::material::{ElasticLaw, Material};
 
@@ -165,7 +165,7 @@ impl Case {
                 [("tol", s.tol.is_some()), ("max_condensed", s.max_condensed.is_some())],
             ),
         };
-        unused
+        let mut warnings: Vec<String> = unused
             .iter()
             .filter(|(_, set)| *set)
             .map(|(key, _)| {
@@ -174,7 +174,14 @@ impl Case {
                     self.locate(&format!("solver.{key}"))
                 )
             })
-            .collect()
+            .collect();
+        if s.backend == Some(BackendKey::Petsc) && s.ordering.is_some() {
+            warnings.push(format!(
+                "{}: solver.ordering is faer's; with solver.backend = \"petsc\" MUMPS chooses its own ordering (PETSc option -mat_mumps_icntl_7)",
+                self.locate("solver.ordering")
+            ));
+        }
+        warnings
     }
 
     /// The bounds and Lipschitz constants of p_ν and h_ν ((h5), (h6)) and the quantity that

@@ -49,10 +49,14 @@
 mod dense;
 mod ldlt;
 pub mod ordering;
+#[cfg(feature = "petsc")]
+pub mod petsc;
 mod sparse;
 
 pub use dense::DenseMatrix;
 pub use ldlt::LdltSolver;
+#[cfg(feature = "petsc")]
+pub use petsc::PetscSolver;
 pub use sparse::{SymmetricMatrix, SymmetricPattern};
 
 use crate::error::Result;
@@ -141,6 +145,15 @@ fn check_length(what: &str, expected: usize, got: usize) -> Result<()> {
         return Ok(());
     }
     Err(crate::Error::Length { what: what.into(), expected, got })
+}
+
+/// The processes of the run: those of PETSc's communicator once the PETSc backend has
+/// started, else 1.
+pub fn processes() -> usize {
+    #[cfg(feature = "petsc")]
+    return petsc::rank_and_size().1;
+    #[cfg(not(feature = "petsc"))]
+    1
 }
 
 /// The default backend: [`LdltSolver`] with the [`Ordering::Auto`] choice on the run's threads.

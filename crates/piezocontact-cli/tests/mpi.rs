@@ -1,0 +1,154 @@
+//! `piezocontact run` under `mpirun` with the PETSc backend: the same files as the serial
+//! run on faer, to 1e−9; one process that fails ends them all with one message.
+//! Run with `cargo test -p piezocontact-cli --features petsc --test mpi` (Open MPI's mpirun on
+//! PATH).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn out_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("piezocontact-mpi-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// `mpirun -n N piezocontact ARGS` from the repository's root (N = 0: without mpirun).
+fn run(n: usize, args: &[&str]) -> Output {
+    let exe = env!("CARGO_BIN_EXE_piezocontact");
+    let mut command = if n == 0 {
+        Command::new(exe)
+    } else {
+        let mut c = Command::new("mpirun");
+        c.args(["--allow-run-as-root", "--oversubscribe", "--timeout", "300", "-n"]);
+        c.arg(n.to_string()).arg(exe);
+        c
+    };
+    command.current_dir(root()).args(args).output().expect("mpirun (Open MPI) on PATH")
+}
+
+/// The numeric columns of a contact.csv.
+fn columns(file: &Path) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(file).unwrap();
+    let mut lines = text.lines();
+    let width = lines.next().unwrap().split(',').count();
+    let mut columns = vec![Vec::new(); width];
+    for line in lines {
+        for (k, cell) in line.split(',').enumerate() {
+            if let Ok(v) = cell.trim().parse::<f64>() {
+                columns[k].push(v);
+            }
+        }
+    }
+    columns
+}
+
+/// Every column of `a` equals `b`'s within `tolerance` of the column's largest magnitude.
+fn assert_same_csv(a: &Path, b: &Path, tolerance: f64) {
+    let (a, b) = (columns(a), columns(b));
+    assert_eq!(a.len(), b.len());
+    for (k, (x, y)) in a.iter().zip(&b).enumerate() {
+        assert_eq!(x.len(), y.len(), "column {k}");
+        let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+        let worst = x.iter().zip(y).map(|(p, q)| (p - q).abs() / scale).fold(0.0, f64::max);
+        assert!(worst <= tolerance, "column {k}: relative difference {worst:e}");
+    }
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+/// The case run serially on faer and under mpirun on PETSc with 1, 2, 3 processes.
+fn same_as_serial(case: &str, sets: &[&str], name: &str, counts: &[usize]) {
+    let serial = out_dir(&format!("{name}-faer"));
+    let mut args = vec!["run", case, "-q"];
+    sets.iter().for_each(|s| args.extend(["--set", s]));
+    let faer = run(0, &[&args[..], &["--out", serial.to_str().unwrap()]].concat());
+    assert!(faer.status.success(), "{}", String::from_utf8_lossy(&faer.stderr));
+    for &n in counts {
+        let out = out_dir(&format!("{name}-petsc-{n}"));
+        let petsc =
+            [&args[..], &["--set", "solver.backend=\"petsc\"", "--out", out.to_str().unwrap()]];
+        let result = run(n, &petsc.concat());
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert!(result.status.success(), "mpirun -n {n}: {stderr}");
+        assert_same_csv(&out.join("contact.csv"), &serial.join("contact.csv"), 1e-9);
+        let (s, f) = (summary(&out), summary(&serial));
+        assert_eq!(s["backend"]["processes"], n, "processes in summary.json");
+        assert_eq!(s["backend"]["name"], "petsc");
+        assert_eq!(s["converged"], true);
+        if f["method"] == "newton" {
+            let kkt = s["kkt_residual"]["max"].as_f64().unwrap();
+            assert!(kkt <= 1e-10, "mpirun -n {n}: KKT residual {kkt:e}");
+        }
+        let files = std::fs::read_dir(&out).unwrap().count();
+        assert_eq!(files, std::fs::read_dir(&serial).unwrap().count(), "the same files");
+        let _ = std::fs::remove_dir_all(&out);
+    }
+    let _ = std::fs::remove_dir_all(&serial);
+}
+
+#[test]
+fn example_7_2_under_mpirun_is_the_serial_run() {
+    same_as_serial("cases/paper-7.2.toml", &["solver.method=\"newton\""], "7.2-newton", &[1, 2, 3]);
+    same_as_serial("cases/paper-7.2.toml", &[], "7.2-uzawa", &[2]);
+}
+
+#[test]
+fn indentation_3d_under_mpirun_is_the_serial_run() {
+    same_as_serial("cases/indentation-3d.toml", &[], "indentation", &[2]);
+}
+
+#[test]
+fn a_process_that_fails_ends_every_process_with_one_message() {
+    // Process 1 reads a case that does not exist, process 0 a good one (Open MPI's
+    // colon syntax gives each its own arguments).
+    let exe = env!("CARGO_BIN_EXE_piezocontact");
+    let out = out_dir("failing");
+    let out = out.to_str().unwrap();
+    let backend = "solver.backend=\"petsc\"";
+    let start = Instant::now();
+    let result = Command::new("mpirun")
+        .args(["--allow-run-as-root", "--oversubscribe", "--timeout", "120"])
+        .args(["-n", "1", exe, "run", "cases/paper-7.2.toml", "--set", backend, "--out", out])
+        .args([":", "-n", "1", exe, "run", "cases/missing.toml", "--set", backend, "--out", out])
+        .current_dir(root())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(!result.status.success());
+    assert!(start.elapsed() < Duration::from_secs(100), "ended by mpirun's timeout: {stderr}");
+    assert_eq!(stderr.matches("error: ").count(), 1, "one message: {stderr}");
+    assert!(
+        stderr.contains("cases/missing.toml") && stderr.contains("(process 1 of 2)"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn a_mumps_error_ends_the_run_with_mumps_s_diagnosis() {
+    // A memory cap of 1 MB (MUMPS's ICNTL(23)) that no factor fits in.
+    let out = out_dir("mumps-error");
+    let args = [
+        "run",
+        "cases/paper-7.2.toml",
+        "--set",
+        "solver.backend=\"petsc\"",
+        "--petsc-options",
+        "-mat_mumps_icntl_23 1",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let result = run(2, &args);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(4), "{stderr}");
+    assert_eq!(stderr.matches("INFOG(1) = -19").count(), 1, "one message: {stderr}");
+    assert!(stderr.contains("-mat_mumps_icntl_23"), "{stderr}");
+    assert_eq!(summary(&out)["converged"], false);
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -1,0 +1,597 @@
+//! The C API of PETSc 3.18 (with MUMPS) and the few MPI calls the backend makes, wrapped in
+//! safe types. Every `unsafe` call of the PETSc backend is in this file.
+//!
+//! The declarations follow the headers of Debian's `libpetsc-real3.18-dev`: `PetscInt` is a
+//! 32-bit int, `PetscScalar` a real double, `PetscErrorCode` an int; MPI is Open MPI, whose
+//! handles are pointers (`MPI_DOUBLE` is the address of `ompi_mpi_double`). The build script
+//! checks the first three in `petscconf.h` and refuses another configuration.
+//!
+//! Errors: PETSc's error handler is set to return the error without printing it; each
+//! non-zero code becomes [`Error::LinearAlgebra`] with PETSc's own text and message.
+
+#![allow(unsafe_code)]
+
+use crate::error::{Error, Result};
+use std::ffi::{CStr, CString, c_char, c_int, c_void};
+use std::ptr::null_mut;
+use std::sync::OnceLock;
+
+/// PETSc's index type (32-bit in the configuration the build script accepts).
+pub type PetscInt = i32;
+type Code = c_int;
+type Handle = *mut c_void;
+
+/// An Open MPI communicator, datatype or operation.
+type MpiHandle = *mut c_void;
+
+#[repr(C)]
+struct Opaque {
+    _private: [u8; 0],
+}
+
+type ErrorHandler = unsafe extern "C" fn(
+    MpiHandle,
+    c_int,
+    *const c_char,
+    *const c_char,
+    Code,
+    c_int,
+    *const c_char,
+    *mut c_void,
+) -> Code;
+
+#[link(name = "mpi")]
+unsafe extern "C" {
+    static ompi_mpi_double: Opaque;
+    static ompi_mpi_op_max: Opaque;
+    fn MPI_Comm_rank(comm: MpiHandle, rank: *mut c_int) -> c_int;
+    fn MPI_Comm_size(comm: MpiHandle, size: *mut c_int) -> c_int;
+    fn MPI_Bcast(buf: *mut c_void, n: c_int, ty: MpiHandle, root: c_int, comm: MpiHandle) -> c_int;
+    fn MPI_Allreduce(
+        send: *const c_void,
+        recv: *mut c_void,
+        n: c_int,
+        ty: MpiHandle,
+        op: MpiHandle,
+        comm: MpiHandle,
+    ) -> c_int;
+    fn MPI_Gather(
+        send: *const c_void,
+        n_send: c_int,
+        send_ty: MpiHandle,
+        recv: *mut c_void,
+        n_recv: c_int,
+        recv_ty: MpiHandle,
+        root: c_int,
+        comm: MpiHandle,
+    ) -> c_int;
+    fn MPI_Abort(comm: MpiHandle, code: c_int) -> c_int;
+}
+
+unsafe extern "C" {
+    static PETSC_COMM_WORLD: MpiHandle;
+    fn PetscInitializeNoArguments() -> Code;
+    fn PetscFinalize() -> Code;
+    fn PetscOptionsInsertString(options: Handle, text: *const c_char) -> Code;
+    fn PetscPushErrorHandler(handler: ErrorHandler, ctx: *mut c_void) -> Code;
+    fn PetscReturnErrorHandler(
+        comm: MpiHandle,
+        line: c_int,
+        func: *const c_char,
+        file: *const c_char,
+        n: Code,
+        p: c_int,
+        mess: *const c_char,
+        ctx: *mut c_void,
+    ) -> Code;
+    fn PetscErrorMessage(code: c_int, text: *mut *const c_char, specific: *mut *mut c_char)
+    -> Code;
+    fn MatCreateAIJ(
+        comm: MpiHandle,
+        m: PetscInt,
+        n: PetscInt,
+        big_m: PetscInt,
+        big_n: PetscInt,
+        d_nz: PetscInt,
+        d_nnz: *const PetscInt,
+        o_nz: PetscInt,
+        o_nnz: *const PetscInt,
+        mat: *mut Handle,
+    ) -> Code;
+    fn MatSetOption(mat: Handle, option: c_int, flag: c_int) -> Code;
+    fn MatSetValues(
+        mat: Handle,
+        m: PetscInt,
+        rows: *const PetscInt,
+        n: PetscInt,
+        cols: *const PetscInt,
+        values: *const f64,
+        mode: c_int,
+    ) -> Code;
+    fn MatAssemblyBegin(mat: Handle, kind: c_int) -> Code;
+    fn MatAssemblyEnd(mat: Handle, kind: c_int) -> Code;
+    fn MatGetRow(
+        mat: Handle,
+        row: PetscInt,
+        n: *mut PetscInt,
+        cols: *mut *const PetscInt,
+        values: *mut *const f64,
+    ) -> Code;
+    fn MatRestoreRow(
+        mat: Handle,
+        row: PetscInt,
+        n: *mut PetscInt,
+        cols: *mut *const PetscInt,
+        values: *mut *const f64,
+    ) -> Code;
+    fn MatMult(mat: Handle, x: Handle, y: Handle) -> Code;
+    fn MatCreateVecs(mat: Handle, right: *mut Handle, left: *mut Handle) -> Code;
+    fn MatDestroy(mat: *mut Handle) -> Code;
+    fn MatGetFactor(mat: Handle, kind: *const c_char, ftype: c_int, factor: *mut Handle) -> Code;
+    fn MatFactorSetSchurIS(factor: Handle, is: Handle) -> Code;
+    fn MatCholeskyFactorSymbolic(
+        factor: Handle,
+        mat: Handle,
+        perm: Handle,
+        info: *const c_void,
+    ) -> Code;
+    fn MatCholeskyFactorNumeric(factor: Handle, mat: Handle, info: *const c_void) -> Code;
+    fn MatFactorCreateSchurComplement(factor: Handle, s: *mut Handle, status: *mut c_int) -> Code;
+    fn MatGetSize(mat: Handle, m: *mut PetscInt, n: *mut PetscInt) -> Code;
+    fn MatDenseGetArrayRead(mat: Handle, values: *mut *const f64) -> Code;
+    fn MatDenseRestoreArrayRead(mat: Handle, values: *mut *const f64) -> Code;
+    fn MatMumpsSetIcntl(factor: Handle, icntl: PetscInt, value: PetscInt) -> Code;
+    fn MatMumpsGetInfog(factor: Handle, icntl: PetscInt, value: *mut PetscInt) -> Code;
+    fn MatSolve(factor: Handle, b: Handle, x: Handle) -> Code;
+    fn VecGetArray(v: Handle, values: *mut *mut f64) -> Code;
+    fn VecRestoreArray(v: Handle, values: *mut *mut f64) -> Code;
+    fn VecGetLocalSize(v: Handle, n: *mut PetscInt) -> Code;
+    fn VecScatterCreateToAll(v: Handle, ctx: *mut Handle, all: *mut Handle) -> Code;
+    fn VecScatterBegin(ctx: Handle, x: Handle, y: Handle, mode: c_int, dir: c_int) -> Code;
+    fn VecScatterEnd(ctx: Handle, x: Handle, y: Handle, mode: c_int, dir: c_int) -> Code;
+    fn VecScatterDestroy(ctx: *mut Handle) -> Code;
+    fn VecDestroy(v: *mut Handle) -> Code;
+    fn ISCreateGeneral(
+        comm: MpiHandle,
+        n: PetscInt,
+        idx: *const PetscInt,
+        mode: c_int,
+        is: *mut Handle,
+    ) -> Code;
+    fn ISDestroy(is: *mut Handle) -> Code;
+    fn atexit(f: extern "C" fn()) -> c_int;
+}
+
+const PETSC_TRUE: c_int = 1;
+const INSERT_VALUES: c_int = 1;
+const MAT_FINAL_ASSEMBLY: c_int = 0;
+const MAT_SYMMETRIC: c_int = 1;
+const MAT_NEW_NONZERO_ALLOCATION_ERR: c_int = 19;
+const MAT_FACTOR_CHOLESKY: c_int = 2;
+const PETSC_COPY_VALUES: c_int = 0;
+const SCATTER_FORWARD: c_int = 0;
+
+/// The library's error for a PETSc error code, with PETSc's text and message.
+fn check(code: Code, what: &str) -> Result<()> {
+    if code == 0 {
+        return Ok(());
+    }
+    let (mut text, mut specific): (*const c_char, *mut c_char) = (std::ptr::null(), null_mut());
+    // SAFETY: PetscErrorMessage writes two pointers to static strings (or null) owned by PETSc.
+    unsafe { PetscErrorMessage(code, &mut text, &mut specific) };
+    let read = |p: *const c_char| {
+        // SAFETY: a non-null pointer from PetscErrorMessage is a NUL-terminated string.
+        (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_string_lossy().trim().to_string())
+    };
+    let message = [read(text), read(specific)].into_iter().flatten().collect::<Vec<_>>();
+    Err(Error::LinearAlgebra(format!("PETSc, {what}: {} (error {code})", message.join(": "))))
+}
+
+/// An MPI error code as the library's error.
+fn check_mpi(code: c_int, what: &str) -> Result<()> {
+    match code {
+        0 => Ok(()),
+        _ => Err(Error::LinearAlgebra(format!("MPI, {what}: error {code}"))),
+    }
+}
+
+/// PETSc's initialisation: `Ok` once PETSc runs, or the error that stopped it (kept, so that
+/// every later call reports it).
+static SESSION: OnceLock<std::result::Result<(), String>> = OnceLock::new();
+
+/// Starts PETSc (and MPI) once per process, with `options` (PETSc's command-line syntax,
+/// e.g. "-mat_mumps_icntl_14 50") in its options database; PETSc finalises when the process
+/// exits. Later calls return at once; their options are ignored.
+pub fn initialize(options: &str) -> Result<()> {
+    let result = SESSION.get_or_init(|| start(options).map_err(|e| e.to_string()));
+    result.clone().map_err(Error::LinearAlgebra)
+}
+
+fn start(options: &str) -> Result<()> {
+    let options = CString::new(options)
+        .map_err(|_| Error::Input("--petsc-options: a NUL character in the options".into()))?;
+    // SAFETY: called once per process (guarded by SESSION), before any other PETSc call.
+    check(unsafe { PetscInitializeNoArguments() }, "PetscInitialize")?;
+    // SAFETY: PETSc is initialised; the handler is PETSc's own; `finalize` has C linkage.
+    unsafe {
+        check(PetscPushErrorHandler(PetscReturnErrorHandler, null_mut()), "error handler")?;
+        check(PetscOptionsInsertString(null_mut(), options.as_ptr()), "options")?;
+        atexit(finalize);
+    }
+    Ok(())
+}
+
+extern "C" fn finalize() {
+    // SAFETY: registered by `start` after a successful initialisation, run once at exit.
+    unsafe { PetscFinalize() };
+}
+
+/// PETSC_COMM_WORLD; PETSc must be initialised.
+fn world() -> MpiHandle {
+    // SAFETY: a global of PETSc, set by PetscInitialize and constant afterwards.
+    unsafe { PETSC_COMM_WORLD }
+}
+
+/// Whether PETSc has been started in this process.
+pub fn is_initialized() -> bool {
+    matches!(SESSION.get(), Some(Ok(())))
+}
+
+/// This process's rank and the number of processes (0 and 1 before PETSc is started).
+pub fn rank_and_size() -> (usize, usize) {
+    if !is_initialized() {
+        return (0, 1);
+    }
+    let (mut rank, mut size) = (0, 1);
+    // SAFETY: PETSc (hence MPI) is initialised; the outputs are plain ints.
+    unsafe {
+        MPI_Comm_rank(world(), &mut rank);
+        MPI_Comm_size(world(), &mut size);
+    }
+    (rank as usize, size as usize)
+}
+
+/// Broadcasts `values` from rank 0 to every process (the same length everywhere).
+pub fn broadcast(values: &mut [f64]) -> Result<()> {
+    let n = c_int::try_from(values.len())
+        .map_err(|_| Error::LinearAlgebra("a broadcast of more than 2³¹ values".into()))?;
+    // SAFETY: `values` is a valid buffer of n doubles on every process.
+    let code = unsafe {
+        MPI_Bcast(values.as_mut_ptr().cast(), n, (&raw const ompi_mpi_double) as _, 0, world())
+    };
+    check_mpi(code, "broadcast")
+}
+
+/// The largest of `value` over the processes.
+pub fn max_over_processes(value: f64) -> Result<f64> {
+    let mut out = value;
+    // SAFETY: one double in and out on every process.
+    let code = unsafe {
+        MPI_Allreduce(
+            (&raw const value).cast(),
+            (&raw mut out).cast(),
+            1,
+            (&raw const ompi_mpi_double) as _,
+            (&raw const ompi_mpi_op_max) as _,
+            world(),
+        )
+    };
+    check_mpi(code, "reduction").map(|_| out)
+}
+
+/// `value` of every process, on rank 0 (empty on the others).
+pub fn gather(value: f64) -> Result<Vec<f64>> {
+    let (rank, size) = rank_and_size();
+    let mut all = vec![0.0; if rank == 0 { size } else { 0 }];
+    let ty = (&raw const ompi_mpi_double) as MpiHandle;
+    // SAFETY: one double sent by each process, `size` received on rank 0 only.
+    let code = unsafe {
+        MPI_Gather((&raw const value).cast(), 1, ty, all.as_mut_ptr().cast(), 1, ty, 0, world())
+    };
+    check_mpi(code, "gather").map(|_| all)
+}
+
+/// Ends every process of the run with `code` (after an error on this one).
+pub fn abort(code: i32) -> ! {
+    // SAFETY: MPI is initialised; MPI_Abort does not return.
+    unsafe { MPI_Abort(world(), code) };
+    std::process::exit(code)
+}
+
+/// A distributed sparse matrix (MPIAIJ, or SeqAIJ on one process).
+#[derive(Debug)]
+pub struct Matrix(Handle);
+
+// SAFETY: PETSc objects are used by one thread at a time (the backend is behind `&mut`).
+unsafe impl Send for Matrix {}
+
+impl Matrix {
+    /// An n × n AIJ matrix whose `local` rows are this process's, preallocated with
+    /// `diagonal[k]` entries of owned row k in the owned columns and `off[k]` outside.
+    pub fn new(local: usize, n: usize, diagonal: &[PetscInt], off: &[PetscInt]) -> Result<Self> {
+        let (local, n) = (index(local)?, index(n)?);
+        let mut mat = null_mut();
+        // SAFETY: the preallocation arrays have one entry per local row.
+        unsafe {
+            check(
+                MatCreateAIJ(
+                    world(),
+                    local,
+                    local,
+                    n,
+                    n,
+                    0,
+                    diagonal.as_ptr(),
+                    0,
+                    off.as_ptr(),
+                    &mut mat,
+                ),
+                "MatCreateAIJ",
+            )?;
+            let this = Self(mat);
+            check(MatSetOption(mat, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption")?;
+            Ok(this)
+        }
+    }
+
+    /// Puts `values` at (row, cols) of an owned row.
+    pub fn set_row(&mut self, row: PetscInt, cols: &[PetscInt], values: &[f64]) -> Result<()> {
+        assert_eq!(cols.len(), values.len());
+        let n = cols.len() as PetscInt;
+        // SAFETY: `cols` and `values` have n entries.
+        let code = unsafe {
+            MatSetValues(self.0, 1, &row, n, cols.as_ptr(), values.as_ptr(), INSERT_VALUES)
+        };
+        check(code, "MatSetValues")
+    }
+
+    /// Final assembly after the values are set; marks the matrix symmetric.
+    pub fn assemble(&mut self) -> Result<()> {
+        // SAFETY: a valid matrix; collective on every process.
+        unsafe {
+            check(MatAssemblyBegin(self.0, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin")?;
+            check(MatAssemblyEnd(self.0, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd")?;
+            check(MatSetOption(self.0, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption")
+        }
+    }
+
+    /// The stored (column, value) pairs of an owned row.
+    pub fn row(&self, row: PetscInt) -> Result<Vec<(usize, f64)>> {
+        let (mut n, mut cols, mut values) = (0, std::ptr::null(), std::ptr::null());
+        // SAFETY: MatGetRow gives n columns and values valid until MatRestoreRow.
+        unsafe {
+            check(MatGetRow(self.0, row, &mut n, &mut cols, &mut values), "MatGetRow")?;
+            let out = (0..n as usize).map(|k| (*cols.add(k) as usize, *values.add(k))).collect();
+            check(MatRestoreRow(self.0, row, &mut n, &mut cols, &mut values), "MatRestoreRow")?;
+            Ok(out)
+        }
+    }
+
+    /// y = A x.
+    pub fn mult(&self, x: &Vector, y: &mut Vector) -> Result<()> {
+        // SAFETY: vectors made by `vectors` of this matrix.
+        check(unsafe { MatMult(self.0, x.0, y.0) }, "MatMult")
+    }
+
+    /// A distributed vector with this matrix's row layout.
+    pub fn vector(&self) -> Result<Vector> {
+        let mut v = null_mut();
+        // SAFETY: a valid assembled matrix.
+        check(unsafe { MatCreateVecs(self.0, &mut v, null_mut()) }, "MatCreateVecs")?;
+        Ok(Vector(v))
+    }
+}
+
+impl Drop for Matrix {
+    fn drop(&mut self) {
+        // SAFETY: the handle was made by PETSc and is destroyed once.
+        unsafe { MatDestroy(&mut self.0) };
+    }
+}
+
+/// A MUMPS LDLᵀ factorisation (`sym = 2`) of a [`Matrix`], with an optional Schur set.
+#[derive(Debug)]
+pub struct Factor(Handle);
+
+// SAFETY: as for Matrix.
+unsafe impl Send for Factor {}
+
+impl Factor {
+    /// MUMPS's symbolic analysis of `matrix` with the unknowns `schur` (given on rank 0
+    /// only; empty elsewhere and for none) kept for the Schur complement.
+    pub fn analyse(matrix: &Matrix, schur: &[PetscInt]) -> Result<Self> {
+        let mut factor = null_mut();
+        // SAFETY: a valid assembled matrix; the IS copies the indices.
+        unsafe {
+            let mumps = c"mumps";
+            check(
+                MatGetFactor(matrix.0, mumps.as_ptr(), MAT_FACTOR_CHOLESKY, &mut factor),
+                "MatGetFactor (is PETSc built with MUMPS?)",
+            )?;
+            let this = Self(factor);
+            if schur_total(schur)? > 0 {
+                let mut is = null_mut();
+                let n = schur.len() as PetscInt;
+                let code = ISCreateGeneral(world(), n, schur.as_ptr(), PETSC_COPY_VALUES, &mut is);
+                check(code, "ISCreateGeneral")?;
+                let code = MatFactorSetSchurIS(factor, is);
+                ISDestroy(&mut is);
+                check(code, "MatFactorSetSchurIS")?;
+            }
+            let code = MatCholeskyFactorSymbolic(factor, matrix.0, null_mut(), std::ptr::null());
+            check(code, "MUMPS analysis")?;
+            this.check_mumps("analysis")?;
+            Ok(this)
+        }
+    }
+
+    /// Numeric factorisation of `matrix` (the analysed pattern, new values). With a Schur
+    /// set, solves are then of the interior rows (ICNTL(26) = 0, which PETSc's analysis and
+    /// factorisation reset).
+    pub fn factorize(&mut self, matrix: &Matrix, schur: bool) -> Result<()> {
+        // SAFETY: a factor analysed with this matrix's pattern.
+        unsafe {
+            check(
+                MatCholeskyFactorNumeric(self.0, matrix.0, std::ptr::null()),
+                "MUMPS factorisation",
+            )?;
+            self.check_mumps("factorisation")?;
+            if schur {
+                check(MatMumpsSetIcntl(self.0, 26, 0), "MatMumpsSetIcntl")?;
+            }
+        }
+        Ok(())
+    }
+
+    /// MUMPS's own error after a phase: PETSc records it in the factor without returning an
+    /// error code, so INFOG(1) < 0 is read here (the same on every process).
+    fn check_mumps(&self, phase: &str) -> Result<()> {
+        let (code, detail) = (self.infog(1)?, self.infog(2)?);
+        if code >= 0 {
+            return Ok(());
+        }
+        let why = match code {
+            -8 | -9 | -11 | -14 | -15 | -17 | -20 => {
+                "its working memory is too small: raise it with --petsc-options \"-mat_mumps_icntl_14 60\" (percent of the analysis's estimate; default 20)"
+            }
+            -10 => {
+                "the matrix is numerically singular: check that the body is clamped (Γ1) and grounded (Γa)"
+            }
+            -13 => {
+                "an allocation failed: the factor does not fit in memory; use more processes or a coarser mesh"
+            }
+            -19 => "the memory cap -mat_mumps_icntl_23 is too small for the factor",
+            _ => "see MUMPS's manual, section \"Error diagnostics\"",
+        };
+        let message =
+            format!("MUMPS {phase} failed with INFOG(1) = {code}, INFOG(2) = {detail}: {why}");
+        Err(if code == -10 {
+            Error::SingularSystem { detail: message }
+        } else {
+            Error::LinearAlgebra(message)
+        })
+    }
+
+    /// MUMPS's INFOG(k) (global information, the same on every process).
+    pub fn infog(&self, k: PetscInt) -> Result<PetscInt> {
+        let mut value = 0;
+        // SAFETY: a valid MUMPS factor.
+        check(unsafe { MatMumpsGetInfog(self.0, k, &mut value) }, "MatMumpsGetInfog")?;
+        Ok(value)
+    }
+
+    /// The dense Schur complement (column-major, m × m) on rank 0; empty elsewhere.
+    pub fn schur_complement(&self) -> Result<Vec<f64>> {
+        let (mut s, mut status) = (null_mut(), 0);
+        // SAFETY: a factor with a Schur set, numerically factorised; S is a copy we destroy.
+        unsafe {
+            check(MatFactorCreateSchurComplement(self.0, &mut s, &mut status), "Schur complement")?;
+            let s = Matrix(s);
+            if rank_and_size().0 != 0 {
+                return Ok(Vec::new());
+            }
+            let (mut m, mut n) = (0, 0);
+            check(MatGetSize(s.0, &mut m, &mut n), "MatGetSize")?;
+            let mut values = std::ptr::null();
+            check(MatDenseGetArrayRead(s.0, &mut values), "MatDenseGetArrayRead")?;
+            let out = std::slice::from_raw_parts(values, (m * n) as usize).to_vec();
+            check(MatDenseRestoreArrayRead(s.0, &mut values), "MatDenseRestoreArrayRead")?;
+            Ok(out)
+        }
+    }
+
+    /// x = A⁻¹ b (with a Schur set: the interior rows, the Schur unknowns at zero).
+    pub fn solve(&self, b: &Vector, x: &mut Vector) -> Result<()> {
+        // SAFETY: vectors of the factorised matrix's layout.
+        check(unsafe { MatSolve(self.0, b.0, x.0) }, "MUMPS solve")
+    }
+}
+
+impl Drop for Factor {
+    fn drop(&mut self) {
+        // SAFETY: made by MatGetFactor, destroyed once.
+        unsafe { MatDestroy(&mut self.0) };
+    }
+}
+
+/// The number of Schur unknowns over all processes.
+fn schur_total(schur: &[PetscInt]) -> Result<usize> {
+    Ok(max_over_processes(schur.len() as f64)? as usize)
+}
+
+/// A distributed vector.
+#[derive(Debug)]
+pub struct Vector(Handle);
+
+// SAFETY: as for Matrix.
+unsafe impl Send for Vector {}
+
+impl Vector {
+    /// Runs `f` on this process's entries.
+    pub fn with_local<T>(&mut self, f: impl FnOnce(&mut [f64]) -> T) -> Result<T> {
+        let (mut n, mut values) = (0, null_mut());
+        // SAFETY: the array has the local size and is valid until VecRestoreArray.
+        unsafe {
+            check(VecGetLocalSize(self.0, &mut n), "VecGetLocalSize")?;
+            check(VecGetArray(self.0, &mut values), "VecGetArray")?;
+            let out = f(std::slice::from_raw_parts_mut(values, n as usize));
+            check(VecRestoreArray(self.0, &mut values), "VecRestoreArray")?;
+            Ok(out)
+        }
+    }
+}
+
+impl Drop for Vector {
+    fn drop(&mut self) {
+        // SAFETY: made by PETSc, destroyed once.
+        unsafe { VecDestroy(&mut self.0) };
+    }
+}
+
+/// Gathers a distributed vector whole onto every process.
+#[derive(Debug)]
+pub struct Gather {
+    context: Handle,
+    all: Vector,
+}
+
+// SAFETY: as for Matrix.
+unsafe impl Send for Gather {}
+
+impl Gather {
+    /// The gather of vectors laid out as `like`.
+    pub fn new(like: &Vector) -> Result<Self> {
+        let (mut context, mut all) = (null_mut(), null_mut());
+        // SAFETY: a valid vector; PETSc makes the scatter and the sequential vector.
+        let code = unsafe { VecScatterCreateToAll(like.0, &mut context, &mut all) };
+        check(code, "VecScatterCreateToAll")?;
+        Ok(Self { context, all: Vector(all) })
+    }
+
+    /// Copies the whole of `v` into `out` on every process.
+    pub fn run(&mut self, v: &Vector, out: &mut [f64]) -> Result<()> {
+        // SAFETY: `v` has the layout the scatter was made for.
+        unsafe {
+            let (x, y) = (v.0, self.all.0);
+            check(VecScatterBegin(self.context, x, y, INSERT_VALUES, SCATTER_FORWARD), "scatter")?;
+            check(VecScatterEnd(self.context, x, y, INSERT_VALUES, SCATTER_FORWARD), "scatter")?;
+        }
+        self.all.with_local(|all| out.copy_from_slice(all))
+    }
+}
+
+impl Drop for Gather {
+    fn drop(&mut self) {
+        // SAFETY: made by VecScatterCreateToAll, destroyed once.
+        unsafe { VecScatterDestroy(&mut self.context) };
+    }
+}
+
+/// `n` as a PETSc index, or the error that PETSc's 32-bit indices cannot hold it.
+pub fn index(n: usize) -> Result<PetscInt> {
+    PetscInt::try_from(n).map_err(|_| {
+        Error::Input(format!(
+            "{n} unknowns are more than PETSc's 32-bit indices hold (2³¹ − 1); use a PETSc built with --with-64-bit-indices"
+        ))
+    })
+}

@@ -1,0 +1,374 @@
+//! [`PetscSolver`]: PETSc's distributed AIJ matrix and MUMPS's LDLᵀ (symmetric indefinite,
+//! `sym = 2`) behind the [`LinearSolver`] seam, with the [`SchurComplement`] capability from
+//! MUMPS's Schur complement; built with the cargo feature `petsc` (model §15).
+//!
+//! Every process runs the same program on the same mesh and holds the same pattern and
+//! values (the seam's contract, [`super`]); this backend hands each process's contiguous
+//! block of rows to PETSc, which distributes the factor over the processes. Vectors cross the
+//! seam whole: a solve scatters the owned rows of the right-hand side and gathers the solution
+//! back to every process.
+//!
+//! As [`super::LdltSolver`], the matrix is scaled symmetrically by its diagonal,
+//! `D A D` with `D = diag(|a_ii|^{-1/2})`, so that the u and ϕ blocks meet on equal terms in
+//! MUMPS's pivoting. MUMPS's inertia (INFOG(12), the negative pivots) is checked against the
+//! quasi-definite matrix's: one per ϕ row (on one process: see
+//! [`PetscSolver::check_inertia`]).
+//!
+//! With a Schur set, MUMPS leaves the Schur block out of the factor and returns S dense on
+//! rank 0, which broadcasts it; a solve is then the interior with the Schur unknowns at zero
+//! (MUMPS's ICNTL(26) = 0), so a whole solve is two of them around a dense solve with S:
+//! y = K_ii⁻¹ b_i, x_c = S⁻¹ (b_c − K_ci y), x_i = K_ii⁻¹ (b_i − K_ic x_c).
+
+mod ffi;
+
+pub use ffi::{abort, gather, initialize, is_initialized, max_over_processes, rank_and_size};
+
+use super::{DenseMatrix, LinearSolver, SchurComplement, SolverStats, SymmetricMatrix};
+use super::{SymmetricPattern, check_length};
+use crate::error::{Error, Result};
+use ffi::{Factor, Gather, Matrix, PetscInt, Vector};
+use std::time::Instant;
+
+/// The rows of the matrix this process owns and where their entries come from.
+#[derive(Debug)]
+struct Rows {
+    /// Order of the matrix.
+    n: usize,
+    /// The owned rows: `start..end`.
+    start: usize,
+    end: usize,
+    /// Per owned row: its columns (increasing) and, for each, the index of the entry in the
+    /// lower-triangle values of the seam's matrix.
+    columns: Vec<Vec<(PetscInt, usize)>>,
+}
+
+impl Rows {
+    /// PETSc's split of n rows over the processes (the first n mod size get one more), and
+    /// the full symmetric rows of the owned block from the lower-triangle `pattern`.
+    fn new(pattern: &SymmetricPattern) -> Result<Self> {
+        let n = pattern.n();
+        ffi::index(n)?;
+        let (rank, size) = rank_and_size();
+        let start = rank * (n / size) + rank.min(n % size);
+        let end = start + n / size + usize::from(rank < n % size);
+        let mut columns = vec![Vec::new(); end - start];
+        let symbolic = pattern.symbolic();
+        for j in 0..n {
+            let range = symbolic.col_range(j);
+            for (k, &i) in range.clone().zip(&symbolic.row_idx()[range]) {
+                if (start..end).contains(&i) {
+                    columns[i - start].push((j as PetscInt, k));
+                }
+                if i != j && (start..end).contains(&j) {
+                    columns[j - start].push((i as PetscInt, k));
+                }
+            }
+        }
+        columns.iter_mut().for_each(|c| c.sort_unstable());
+        Ok(Self { n, start, end, columns })
+    }
+
+    /// PETSc's preallocation: per owned row, entries in the owned columns and outside.
+    fn preallocation(&self) -> (Vec<PetscInt>, Vec<PetscInt>) {
+        let owned = |c: &&(PetscInt, usize)| (self.start..self.end).contains(&(c.0 as usize));
+        let diagonal = self.columns.iter().map(|c| c.iter().filter(owned).count() as PetscInt);
+        let total = self.columns.iter().map(|c| c.len() as PetscInt);
+        let diagonal: Vec<PetscInt> = diagonal.collect();
+        let off = total.zip(&diagonal).map(|(t, d)| t - d).collect();
+        (diagonal, off)
+    }
+}
+
+/// The PETSc objects of one analysis.
+#[derive(Debug)]
+struct Distributed {
+    matrix: Matrix,
+    factor: Option<Factor>,
+    b: Vector,
+    x: Vector,
+    gather: Gather,
+}
+
+/// MUMPS's LDLᵀ of the distributed matrix (see the module's documentation).
+#[derive(Debug, Default)]
+pub struct PetscSolver {
+    rows: Option<Rows>,
+    distributed: Option<Distributed>,
+    /// +1 for u rows, −1 for ϕ rows.
+    signs: Vec<i8>,
+    /// The unknowns kept for the Schur complement (empty: none).
+    last: Vec<usize>,
+    /// D = diag(|a_ii|^{-1/2}) of the last factorised matrix.
+    scaling: Vec<f64>,
+    /// S of the scaled matrix (on every process) and its inverse, with a Schur set.
+    schur: Option<(DenseMatrix, DenseMatrix)>,
+    stats: SolverStats,
+}
+
+impl PetscSolver {
+    /// The backend on every process of the run, starting PETSc (and MPI) if needed.
+    pub fn new() -> Result<Self> {
+        initialize("")?;
+        Ok(Self::default())
+    }
+
+    /// The owned rows `start..end` of the last analysis.
+    pub fn owned_rows(&self) -> Option<std::ops::Range<usize>> {
+        self.rows.as_ref().map(|r| r.start..r.end)
+    }
+
+    /// The distributed matrix's owned rows as PETSc stores them: (row, column, value), for
+    /// the check that it is the seam's matrix.
+    pub fn owned_entries(&self) -> Result<Vec<(usize, usize, f64)>> {
+        let (Some(rows), Some(d)) = (&self.rows, &self.distributed) else {
+            return Ok(Vec::new());
+        };
+        let mut out = Vec::new();
+        for i in rows.start..rows.end {
+            let scaled = d.matrix.row(i as PetscInt)?;
+            let unscale = |(j, v): (usize, f64)| (i, j, v / (self.scaling[i] * self.scaling[j]));
+            out.extend(scaled.into_iter().map(unscale));
+        }
+        Ok(out)
+    }
+
+    fn analyze_rows(
+        &mut self,
+        pattern: &SymmetricPattern,
+        signs: &[i8],
+        last: &[usize],
+    ) -> Result<()> {
+        check_length("pivot signs", pattern.n(), signs.len())?;
+        if let Some(&bad) = last.iter().find(|&&i| i >= pattern.n()) {
+            return Err(Error::LinearAlgebra(format!("Schur unknown {bad} of {}", pattern.n())));
+        }
+        let t = Instant::now();
+        self.distributed = None;
+        self.schur = None;
+        self.rows = Some(Rows::new(pattern)?);
+        self.signs = signs.to_vec();
+        self.last = last.to_vec();
+        self.stats.symbolic_seconds += t.elapsed().as_secs_f64();
+        self.stats.ordering = "mumps";
+        Ok(())
+    }
+
+    /// The distributed matrix with the scaled values of `matrix`, made at the first
+    /// factorisation after an analysis and refilled afterwards.
+    fn fill(&mut self, matrix: &SymmetricMatrix) -> Result<()> {
+        let rows = self.rows.as_ref().ok_or_else(|| {
+            Error::LinearAlgebra("PETSc backend: factorize before analyze".into())
+        })?;
+        check_length("matrix order", rows.n, matrix.n())?;
+        let diagonal = matrix.diagonal();
+        self.scaling = diagonal.iter().map(|d| 1.0 / d.abs().sqrt()).collect();
+        if let Some(i) = diagonal.iter().position(|d| *d == 0.0 || !d.is_finite()) {
+            return Err(Error::SingularSystem { detail: format!("zero diagonal entry {i}") });
+        }
+        if self.distributed.is_none() {
+            let (diagonal, off) = rows.preallocation();
+            let matrix = Matrix::new(rows.end - rows.start, rows.n, &diagonal, &off)?;
+            let (b, x) = (matrix.vector()?, matrix.vector()?);
+            let gather = Gather::new(&x)?;
+            self.distributed = Some(Distributed { matrix, factor: None, b, x, gather });
+        }
+        let d = self.distributed.as_mut().expect("made above");
+        let values = matrix.lower().val();
+        let (mut cols, mut vals) = (Vec::new(), Vec::new());
+        for (k, row) in rows.columns.iter().enumerate() {
+            let i = rows.start + k;
+            cols.clear();
+            vals.clear();
+            for &(j, at) in row {
+                cols.push(j);
+                vals.push(values[at] * self.scaling[i] * self.scaling[j as usize]);
+            }
+            d.matrix.set_row(i as PetscInt, &cols, &vals)?;
+        }
+        d.matrix.assemble()
+    }
+
+    /// MUMPS's analysis (at the first factorisation after [`LinearSolver::analyze`]) and
+    /// numeric factorisation, with the inertia checked; the analysis's time [s].
+    fn factor(&mut self) -> Result<f64> {
+        let d = self.distributed.as_mut().expect("filled");
+        let mut analysis = 0.0;
+        if d.factor.is_none() {
+            let t = Instant::now();
+            let schur: Vec<PetscInt> = match rank_and_size().0 {
+                0 => self.last.iter().map(|&i| i as PetscInt).collect(),
+                _ => Vec::new(),
+            };
+            let factor = Factor::analyse(&d.matrix, &schur)?;
+            // INFOG(17): the memory MUMPS's analysis estimates for the factorisation, summed
+            // over the processes [MB].
+            self.stats.factor_bytes = f64::from(factor.infog(17)?) * 1e6;
+            d.factor = Some(factor);
+            analysis = t.elapsed().as_secs_f64();
+            self.stats.symbolic_seconds += analysis;
+        }
+        let factor = d.factor.as_mut().expect("analysed");
+        factor.factorize(&d.matrix, !self.last.is_empty())?;
+        // INFOG(29): entries of the factor (negative: millions of entries).
+        let entries = factor.infog(29)?;
+        self.stats.factor_len = if entries < 0 {
+            entries.unsigned_abs() as usize * 1_000_000
+        } else {
+            entries as usize
+        };
+        if rank_and_size().1 == 1 {
+            let negative = factor.infog(12)? as usize;
+            self.check_inertia(negative)?;
+        }
+        Ok(analysis)
+    }
+
+    /// MUMPS's count of negative pivots against the quasi-definite matrix's: one per ϕ row
+    /// outside the Schur set. On more than one process MUMPS factorises the root of its tree
+    /// with ScaLAPACK, whose pivots it does not count, and the check is not made.
+    fn check_inertia(&self, negative: usize) -> Result<()> {
+        let mut schur = vec![false; self.signs.len()];
+        self.last.iter().for_each(|&c| schur[c] = true);
+        let expected = (0..self.signs.len()).filter(|&i| self.signs[i] < 0 && !schur[i]).count();
+        if negative == expected {
+            return Ok(());
+        }
+        Err(Error::SingularSystem {
+            detail: format!(
+                "MUMPS found {negative} negative pivots where the quasi-definite matrix has {expected} (one per free ϕ unknown)"
+            ),
+        })
+    }
+
+    /// S of the scaled matrix from MUMPS, broadcast from rank 0, and its inverse.
+    fn read_schur(&mut self) -> Result<()> {
+        let m = self.last.len();
+        let factor = self.distributed.as_ref().and_then(|d| d.factor.as_ref()).expect("factorised");
+        let mut values = factor.schur_complement()?;
+        values.resize(m * m, 0.0);
+        ffi::broadcast(&mut values)?;
+        let mut s = DenseMatrix::zeros(m);
+        for j in 0..m {
+            s.col_mut(j).copy_from_slice(&values[j * m..(j + 1) * m]);
+        }
+        s.symmetrize();
+        let inverse = s.inverse()?;
+        self.schur = Some((s, inverse));
+        Ok(())
+    }
+
+    /// One MUMPS solve of the scaled system: `rhs` whole in, the whole solution out (with a
+    /// Schur set, the interior with the Schur unknowns at zero).
+    fn mumps_solve(&mut self, rhs: &mut [f64]) -> Result<()> {
+        let rows = self.rows.as_ref().expect("analysed");
+        let d = self.distributed.as_mut().expect("factorised");
+        d.b.with_local(|b| b.copy_from_slice(&rhs[rows.start..rows.end]))?;
+        d.factor.as_ref().expect("factorised").solve(&d.b, &mut d.x)?;
+        d.gather.run(&d.x, rhs)?;
+        self.last.iter().for_each(|&c| rhs[c] = 0.0);
+        Ok(())
+    }
+
+    /// y = A x of the scaled matrix, whole vectors on every process.
+    fn multiply(&mut self, x: &[f64]) -> Result<Vec<f64>> {
+        let rows = self.rows.as_ref().expect("analysed");
+        let d = self.distributed.as_mut().expect("filled");
+        d.b.with_local(|b| b.copy_from_slice(&x[rows.start..rows.end]))?;
+        d.matrix.mult(&d.b, &mut d.x)?;
+        let mut y = vec![0.0; rows.n];
+        d.gather.run(&d.x, &mut y)?;
+        Ok(y)
+    }
+
+    /// The whole solve with a Schur set (the module's documentation): two interior solves
+    /// around a dense solve with S, in the scaled system.
+    fn solve_with_schur(&mut self, b: &mut [f64]) -> Result<()> {
+        let mut y = b.to_vec();
+        self.mumps_solve(&mut y)?;
+        let k_y = self.multiply(&y)?;
+        let (_, inverse) = self.schur.as_ref().expect("read at factorisation");
+        let reduced: Vec<f64> = self.last.iter().map(|&c| b[c] - k_y[c]).collect();
+        let x_c = inverse.mul(&reduced);
+        let mut e = vec![0.0; b.len()];
+        self.last.iter().zip(&x_c).for_each(|(&c, &v)| e[c] = v);
+        let k_e = self.multiply(&e)?;
+        b.iter_mut().zip(&k_e).for_each(|(b, k)| *b -= k);
+        self.mumps_solve(b)?;
+        self.last.iter().zip(&x_c).for_each(|(&c, &v)| b[c] = v);
+        Ok(())
+    }
+}
+
+impl LinearSolver for PetscSolver {
+    fn name(&self) -> &str {
+        "PETSc + MUMPS LDLᵀ"
+    }
+
+    fn analyze(&mut self, pattern: &SymmetricPattern, signs: &[i8]) -> Result<()> {
+        self.analyze_rows(pattern, signs, &[])
+    }
+
+    fn factorize(&mut self, matrix: &SymmetricMatrix) -> Result<()> {
+        let t = Instant::now();
+        self.fill(matrix)?;
+        let analysis = self.factor()?;
+        if !self.last.is_empty() {
+            self.read_schur()?;
+        }
+        self.stats.numeric_seconds += t.elapsed().as_secs_f64() - analysis;
+        self.stats.numeric_count += 1;
+        Ok(())
+    }
+
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+        let t = Instant::now();
+        let n = self.rows.as_ref().map_or(0, |r| r.n);
+        check_length("right-hand side", n, rhs.len())?;
+        if self.distributed.as_ref().is_none_or(|d| d.factor.is_none()) {
+            return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
+        }
+        rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
+        if self.last.is_empty() {
+            self.mumps_solve(rhs)?;
+        } else {
+            self.solve_with_schur(rhs)?;
+        }
+        rhs.iter_mut().zip(&self.scaling).for_each(|(x, s)| *x *= s);
+        self.stats.solve_seconds += t.elapsed().as_secs_f64();
+        self.stats.solve_count += 1;
+        Ok(())
+    }
+
+    fn stats(&self) -> SolverStats {
+        self.stats
+    }
+
+    fn schur(&mut self) -> Option<&mut dyn SchurComplement> {
+        Some(self)
+    }
+}
+
+impl SchurComplement for PetscSolver {
+    fn analyze_with_last(
+        &mut self,
+        pattern: &SymmetricPattern,
+        signs: &[i8],
+        last: &[usize],
+    ) -> Result<()> {
+        self.analyze_rows(pattern, signs, last)
+    }
+
+    fn schur_complement(&self) -> Result<DenseMatrix> {
+        let (s, _) = self.schur.as_ref().ok_or_else(|| {
+            Error::LinearAlgebra("PETSc backend: Schur complement before factorize".into())
+        })?;
+        let m = self.last.len();
+        let mut out = DenseMatrix::zeros(m);
+        for (a, &i) in self.last.iter().enumerate() {
+            for (b, &j) in self.last.iter().enumerate() {
+                out.set(a, b, s.get(a, b) / (self.scaling[i] * self.scaling[j]));
+            }
+        }
+        Ok(out)
+    }
+}

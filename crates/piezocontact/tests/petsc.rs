@@ -1,0 +1,183 @@
+//! The PETSc + MUMPS backend against faer's LDLᵀ, under `mpirun` with 1, 2 and 3 processes.
+//!
+//! Each test starts itself again under `mpirun -n N` (Open MPI's, found on PATH) for each N;
+//! the processes run the test's body, in which every assertion is checked on every process.
+//! Run with `cargo test -p piezocontact --features petsc --test petsc`.
+
+use piezocontact::case::Case;
+use piezocontact::dofs::DofMap;
+use piezocontact::linalg::petsc::{self, PetscSolver};
+use piezocontact::linalg::{LdltSolver, LinearSolver, SymmetricMatrix};
+use piezocontact::run::ContactRun;
+use piezocontact::solver::{CoupledSystem, solve_without_contact};
+use std::path::PathBuf;
+use std::process::Command;
+
+/// The process counts every test runs with.
+const PROCESSES: [usize; 3] = [1, 2, 3];
+
+/// Runs `body` on N processes for each N of [`PROCESSES`]: from the test harness, starts
+/// this test under mpirun (and asserts that every process passed); under mpirun, runs it.
+fn on_processes(test: &str, body: impl FnOnce()) {
+    if std::env::var_os("OMPI_COMM_WORLD_SIZE").is_some() {
+        // A failed assertion on one process ends them all (the others would wait for it).
+        let report = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            report(info);
+            petsc::abort(101);
+        }));
+        body();
+        return;
+    }
+    for n in PROCESSES {
+        let status = Command::new("mpirun")
+            .args(["--allow-run-as-root", "--oversubscribe", "--timeout", "600", "-n"])
+            .arg(n.to_string())
+            .arg(std::env::current_exe().unwrap())
+            .args(["--exact", test, "--test-threads=1", "--nocapture"])
+            .status()
+            .expect("mpirun (Open MPI) on PATH");
+        assert!(status.success(), "{test} under mpirun -n {n}: {status}");
+    }
+}
+
+fn case(name: &str, overrides: &[&str]) -> Case {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../cases").join(name);
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    Case::load(&file, &overrides).unwrap()
+}
+
+fn petsc_solver() -> Box<dyn LinearSolver> {
+    Box::new(PetscSolver::new().unwrap())
+}
+
+fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
+    let norm = |v: &mut dyn Iterator<Item = f64>| v.map(|x| x * x).sum::<f64>().sqrt();
+    norm(&mut a.iter().zip(b).map(|(x, y)| x - y)) / norm(&mut b.iter().copied())
+}
+
+#[test]
+fn mumps_solves_the_coupled_system_as_faer_does() {
+    on_processes("mumps_solves_the_coupled_system_as_faer_does", || {
+        let problem = case("paper-7.2.toml", &[]).problem().unwrap();
+        let faer = solve_without_contact(&problem, Box::new(LdltSolver::new())).unwrap();
+        let mumps = solve_without_contact(&problem, petsc_solver()).unwrap();
+        let difference = relative_difference(&mumps.x, &faer.x);
+        assert!(difference < 1e-10, "‖x_mumps − x_faer‖/‖x_faer‖ = {difference:e}");
+        assert!(mumps.relative_residual < 1e-10, "residual {:e}", mumps.relative_residual);
+    });
+}
+
+#[test]
+fn each_process_holds_its_rows_of_the_same_matrix() {
+    on_processes("each_process_holds_its_rows_of_the_same_matrix", || {
+        let problem = case("paper-7.2.toml", &[]).problem().unwrap();
+        let dofs = DofMap::new(&problem).unwrap();
+        let mut solver = PetscSolver::new().unwrap();
+        let mut system =
+            CoupledSystem::new(&problem, dofs.clone(), &[], Box::new(PetscSolver::new().unwrap()))
+                .unwrap();
+        let moduli = vec![1.0; problem.mesh.n_cells()];
+        system.factorize(&problem, &moduli, &[]).unwrap();
+        let matrix: &SymmetricMatrix = system.matrix().unwrap();
+        let signs = system.dofs().signs();
+        solver.analyze(system.assembler().pattern(), &signs).unwrap();
+        solver.factorize(matrix).unwrap();
+        let (rank, size) = petsc::rank_and_size();
+        let rows = solver.owned_rows().unwrap();
+        let n = matrix.n();
+        assert!(rows.len() == n / size || rows.len() == n / size + 1, "rank {rank}: {rows:?}");
+        // Every entry of the owned rows, both triangles, as the serial matrix has it.
+        let mut serial = std::collections::HashMap::new();
+        for (i, j, v) in matrix.lower_entries() {
+            serial.insert((i, j), v);
+            serial.insert((j, i), v);
+        }
+        let owned: usize = serial.keys().filter(|(i, _)| rows.contains(i)).count();
+        let entries = solver.owned_entries().unwrap();
+        assert_eq!(entries.len(), owned, "rank {rank}: stored entries");
+        for (i, j, v) in entries {
+            let expected = serial[&(i, j)];
+            assert!(
+                (v - expected).abs() <= 1e-14 * expected.abs(),
+                "({i}, {j}): {v} vs {expected}"
+            );
+        }
+        let covered = petsc::gather(rows.len() as f64).unwrap();
+        if rank == 0 {
+            assert_eq!(covered.iter().sum::<f64>() as usize, n, "rows of all processes");
+        }
+    });
+}
+
+#[test]
+fn mumps_schur_complement_is_faers() {
+    on_processes("mumps_schur_complement_is_faers", || {
+        let problem = case("paper-7.2.toml", &[]).problem().unwrap();
+        let dofs = DofMap::new(&problem).unwrap();
+        // Unknowns of both kinds, out of order.
+        let last = [40, 7, dofs.n_free() - 1, 1000, 3, dofs.n_free() / 2];
+        let moduli = vec![1.0; problem.mesh.n_cells()];
+        let mut both =
+            [Box::new(LdltSolver::new()) as Box<dyn LinearSolver>, petsc_solver()].map(|solver| {
+                let mut system =
+                    CoupledSystem::with_last(&problem, dofs.clone(), &last, solver).unwrap();
+                system.factorize(&problem, &moduli, &[]).unwrap();
+                system
+            });
+        let [faer, mumps] = &mut both;
+        let (s_faer, s_mumps) =
+            (faer.schur_complement().unwrap(), mumps.schur_complement().unwrap());
+        for a in 0..last.len() {
+            for b in 0..last.len() {
+                let (x, y) = (s_mumps.get(a, b), s_faer.get(a, b));
+                let scale = (s_faer.get(a, a) * s_faer.get(b, b)).abs().sqrt();
+                assert!((x - y).abs() <= 1e-10 * scale, "S[{a}, {b}]: {x} vs {y}");
+            }
+        }
+        // A whole solve through the Schur complement.
+        let (x_faer, x_mumps) = (faer.solve(None).unwrap(), mumps.solve(None).unwrap());
+        for (name, sys, x) in [("faer", &*faer, &x_faer), ("mumps", &*mumps, &x_mumps)] {
+            let free = sys.assembler().restrict(x);
+            let ax = sys.matrix().unwrap().mul(&free);
+            let residual = relative_difference(&ax, sys.rhs());
+            assert!(residual < 1e-10, "{name}: ‖B̌x − f̌‖/‖f̌‖ = {residual:e}");
+        }
+        let difference = relative_difference(&x_mumps, &x_faer);
+        assert!(difference < 1e-11, "solve with a Schur set: {difference:e}");
+    });
+}
+
+/// The contact run of `case` with both backends: the same Γ3 fields and KKT bound.
+fn same_contact(name: &str, overrides: &[&str], tolerance: f64) {
+    let case = case(name, overrides);
+    let faer = ContactRun::solve_with(&case, Box::new(LdltSolver::new()), &|_| {}).unwrap();
+    let mumps = ContactRun::solve_with(&case, petsc_solver(), &|_| {}).unwrap();
+    assert!(faer.solution.converged && mumps.solution.converged);
+    let distance = mumps.distance_to(&faer).unwrap();
+    assert!(distance < tolerance, "{name} {overrides:?}: ‖x − x_faer‖_X/‖x_faer‖_X = {distance:e}");
+    let field = |run: &ContactRun| -> Vec<f64> {
+        run.rows.iter().flat_map(|r| [r.u_nu, r.sigma_nu, r.phi, r.sigma_tau[0]]).collect()
+    };
+    let difference = relative_difference(&field(&mumps), &field(&faer));
+    assert!(difference < tolerance, "{name} {overrides:?}: Γ3 rows differ by {difference:e}");
+    let (k_faer, k_mumps) = (faer.solution.kkt.max, mumps.solution.kkt.max);
+    if faer.settings.method.name() == "newton" {
+        assert!(k_mumps <= 1e-10, "{name}: KKT residual {k_mumps:e} (faer: {k_faer:e})");
+    }
+}
+
+#[test]
+fn example_7_2_is_faers_with_uzawa_and_newton() {
+    on_processes("example_7_2_is_faers_with_uzawa_and_newton", || {
+        same_contact("paper-7.2.toml", &[], 1e-9);
+        same_contact("paper-7.2.toml", &["solver.method=\"newton\""], 1e-9);
+    });
+}
+
+#[test]
+fn indentation_3d_is_faers() {
+    on_processes("indentation_3d_is_faers", || {
+        same_contact("indentation-3d.toml", &[], 1e-9);
+    });
+}
