@@ -71,7 +71,7 @@ pub fn run(mesh: &Path) -> Result<()> {
         max(&faer.peak_mb)
     );
     say!(
-        "pattern_s, assembly_s: every process's pattern and assembly of the whole matrix (the seam's contract); analysis_s: MUMPS's analysis with the owned rows' map (faer: nested dissection's); numeric_s: the hand-over of the owned rows to PETSc's MPIAIJ matrix and MUMPS's LDLᵀ (faer: its LDLᵀ on {} threads); peak_MB: VmHWM of each process",
+        "pattern_s, assembly_s: process 0's pattern and assembly of its nodes' rows; analysis_s: MUMPS's analysis with the owned rows' map (faer: nested dissection's); numeric_s: the hand-over of the owned rows to PETSc's MPIAIJ matrix and MUMPS's LDLᵀ (faer: its LDLᵀ on {} threads); peak_MB: VmHWM of each process",
         rayon::current_num_threads()
     );
     Ok(())

@@ -58,6 +58,22 @@ impl DofMap {
         Ok(Self { dim, n_nodes, free, n_free_u, n_free: next, prescribed })
     }
 
+    /// The free unknowns of each node (u components and ϕ).
+    pub fn free_per_node(&self) -> Vec<usize> {
+        let mut count = vec![0; self.n_nodes];
+        for (g, &k) in self.free.iter().enumerate() {
+            if k != CONSTRAINED {
+                let node = if g < self.n_nodes * self.dim {
+                    g / self.dim
+                } else {
+                    g - self.n_nodes * self.dim
+                };
+                count[node] += 1;
+            }
+        }
+        count
+    }
+
     /// Global index of u_i at `node`.
     pub fn u(&self, node: usize, i: usize) -> usize {
         node * self.dim + i

@@ -297,7 +297,7 @@ mod tests {
             let t: f64 = deviator.iter().flatten().map(|v| v * v).sum();
             *part = (4.0 * problem.material.elasticity.dg(t), deviator);
         }
-        let assembler = Assembler::new(problem, dofs.clone(), &[]).unwrap();
+        let assembler = Assembler::new(problem, dofs.clone(), &[], None).unwrap();
         let (matrix, _) = assembler.linearised_matrix(problem, &whole, &[]).unwrap();
         let force = |x: &[f64]| {
             let moduli = secant_moduli(problem, &dofs, x).unwrap();

@@ -47,6 +47,11 @@ pub type NodalBlock = [[f64; 3]; 3];
 ///
 /// Besides the element matrices, the matrix may carry a d × d block on the u DOFs of given
 /// nodes: the r M term of Algorithms 2 and 4 on the Γ3 nodes (model §7).
+///
+/// For a distributed backend ([`crate::linalg::Distributed`]) the assembler holds the rows of
+/// the nodes its process owns: the pattern keeps the entries whose row or column belongs to
+/// an owned node, and only the cells that touch an owned node are summed, so that the owned
+/// rows are complete and the rest of the matrix is absent (the lifting's other rows partial).
 #[derive(Debug)]
 pub struct Assembler {
     dofs: DofMap,
@@ -61,15 +66,27 @@ pub struct Assembler {
     /// Nodes that carry a nodal block, and the slots of their [`nodal_pairs`].
     block_nodes: Vec<usize>,
     block_slots: Vec<usize>,
+    /// Per free unknown: whether its row is complete (its node owned); `None`: all are.
+    complete: Option<Vec<bool>>,
 }
+
+/// A slot of an entry that a distributed assembler's pattern leaves out.
+const SKIPPED: u32 = u32::MAX;
 
 impl Assembler {
     /// Builds the sparsity pattern (once per run) on the DOFs of `dofs`, with room for nodal
-    /// blocks on `block_nodes`.
-    pub fn new(problem: &Problem, dofs: DofMap, block_nodes: &[usize]) -> Result<Self> {
+    /// blocks on `block_nodes`; with `owned` (one flag per mesh node), for the rows of the
+    /// owned nodes alone.
+    pub fn new(
+        problem: &Problem,
+        dofs: DofMap,
+        block_nodes: &[usize],
+        owned: Option<&[bool]>,
+    ) -> Result<Self> {
         let mesh = &problem.mesh;
         let dim = mesh.dim();
-        let pattern = lower_pattern(mesh, &dofs)?;
+        let pattern = lower_pattern(mesh, &dofs, owned)?;
+        let kept = |c: usize| owned.is_none_or(|o| mesh.cell(c).iter().any(|&a| o[a]));
         let (nnz, n_free) = (pattern.nnz(), dofs.n_free());
         if nnz + n_free > u32::MAX as usize {
             return Err(Error::LinearAlgebra(format!(
@@ -77,30 +94,47 @@ impl Assembler {
                 u32::MAX
             )));
         }
-        let counts: Vec<usize> = (0..mesh.n_cells())
-            .into_par_iter()
-            .map(|c| with_simplex!(dim, cell_pair_count(problem, &dofs, c)))
-            .collect();
+        let counts: Vec<usize> =
+            (0..mesh.n_cells())
+                .into_par_iter()
+                .map(|c| {
+                    if kept(c) { with_simplex!(dim, cell_pair_count(problem, &dofs, c)) } else { 0 }
+                })
+                .collect();
         let cell_offsets = offsets(&counts);
         let mut cell_slots = vec![0u32; cell_offsets[mesh.n_cells()]];
+        let partial = owned.is_some();
         for_ranges(&cell_offsets, &mut cell_slots, |c, out| {
-            with_simplex!(dim, cell_slots_into(problem, &dofs, &pattern, c, out))
+            with_simplex!(dim, cell_slots_into(problem, &dofs, &pattern, c, (out, partial)))
         })?;
         let mut block_slots = Vec::new();
         for &node in block_nodes {
             for (_, _, r, c) in nodal_pairs(&dofs, dim, node) {
-                block_slots.push(pattern.position(r, c).ok_or_else(missing(r, c))?);
+                let slot = pattern.position(r, c).or(partial.then_some(SKIPPED as usize));
+                block_slots.push(slot.ok_or_else(missing(r, c))?);
             }
         }
+        let mut groups = node_disjoint_groups(mesh);
+        if partial {
+            groups.iter_mut().for_each(|g| g.retain(|&c| kept(c)));
+            groups.retain(|g| !g.is_empty());
+        }
+        let complete = owned.map(|o| (0..dofs.n_free()).map(|k| o[pattern.group(k)]).collect());
         Ok(Self {
             dofs,
             pattern,
             cell_offsets,
             cell_slots,
-            groups: node_disjoint_groups(mesh),
+            groups,
             block_nodes: block_nodes.to_vec(),
             block_slots,
+            complete,
         })
+    }
+
+    /// Per free unknown, whether its row of the matrix is complete (`None`: every row is).
+    pub fn complete_rows(&self) -> Option<&[bool]> {
+        self.complete.as_deref()
     }
 
     /// The DOF map.
@@ -172,7 +206,9 @@ impl Assembler {
                 .map(move |(i, j, ..)| blocks.get(b).map_or(0.0, |k| k[i][j]))
         });
         for (&slot, value) in self.block_slots.iter().zip(block_values) {
-            add(&sums[slot], value);
+            if slot != SKIPPED as usize {
+                add(&sums[slot], value);
+            }
         }
         let mut values: Vec<f64> =
             sums.into_iter().map(|s| f64::from_bits(s.into_inner())).collect();
@@ -286,9 +322,10 @@ fn node_neighbours(mesh: &Mesh) -> (Vec<usize>, Vec<usize>) {
 }
 
 /// The lower-triangle pattern of B̌ on the free DOFs: free DOFs k ≥ j of the nodes that share a
-/// cell with the node of column j. Free numbers follow global numbers, in which every u comes
-/// before every ϕ, so the rows come out sorted.
-fn lower_pattern(mesh: &Mesh, dofs: &DofMap) -> Result<SymmetricPattern> {
+/// cell with the node of column j — with `owned`, only the pairs of which one node is owned.
+/// Free numbers follow global numbers, in which every u comes before every ϕ, so the rows
+/// come out sorted.
+fn lower_pattern(mesh: &Mesh, dofs: &DofMap, owned: Option<&[bool]>) -> Result<SymmetricPattern> {
     let (ptr, neighbours) = node_neighbours(mesh);
     let (dim, n) = (mesh.dim(), dofs.n_free());
     let mut global_of_free = vec![0usize; n];
@@ -300,11 +337,13 @@ fn lower_pattern(mesh: &Mesh, dofs: &DofMap) -> Result<SymmetricPattern> {
     let node_of = |dof: usize| {
         if dof < dim * mesh.n_nodes() { dof / dim } else { dof - dim * mesh.n_nodes() }
     };
+    let is_owned = |a: usize| owned.is_none_or(|o| o[a]);
     let rows_of = |j: usize| {
         let a = node_of(global_of_free[j]);
-        let near = &neighbours[ptr[a]..ptr[a + 1]];
-        let u = near.iter().flat_map(move |&b| (0..dim).map(move |i| dofs.u(b, i)));
-        let phi = near.iter().map(|&b| dofs.phi(b));
+        let near =
+            neighbours[ptr[a]..ptr[a + 1]].iter().filter(move |&&b| is_owned(a) || is_owned(b));
+        let u = near.clone().flat_map(move |&b| (0..dim).map(move |i| dofs.u(b, i)));
+        let phi = near.map(|&b| dofs.phi(b));
         u.chain(phi).map(|dof| dofs.free_index(dof)).filter(move |&k| k != CONSTRAINED && k >= j)
     };
     let counts: Vec<usize> = (0..n).into_par_iter().map(|j| rows_of(j).count()).collect();
@@ -351,22 +390,26 @@ fn cell_pair_count<const D: usize, const N: usize>(
     local_pairs(dofs, local_dofs::<D, N>(dofs, problem.mesh.cell(c)), N * (D + 1)).count()
 }
 
-/// The slots of the [`local_pairs`] of cell `c`.
+/// The slots of the [`local_pairs`] of cell `c`; with `partial`, an entry the pattern leaves
+/// out gets [`SKIPPED`].
 fn cell_slots_into<const D: usize, const N: usize>(
     problem: &Problem,
     dofs: &DofMap,
     pattern: &SymmetricPattern,
     c: usize,
-    out: &mut [u32],
+    (out, partial): (&mut [u32], bool),
 ) -> Result<()> {
     let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
     for (slot, (_, _, r, col)) in out.iter_mut().zip(local_pairs(dofs, global, N * (D + 1))) {
-        let s = if col == CONSTRAINED {
-            pattern.nnz() + r
+        *slot = if col == CONSTRAINED {
+            (pattern.nnz() + r) as u32
         } else {
-            pattern.position(r, col).ok_or_else(missing(r, col))?
+            match pattern.position(r, col) {
+                Some(s) => s as u32,
+                None if partial => SKIPPED,
+                None => return Err(missing(r, col)()),
+            }
         };
-        *slot = s as u32;
     }
     Ok(())
 }
@@ -406,6 +449,9 @@ fn add_cell<const D: usize, const N: usize>(
         }
     }
     for (&slot, (p, q, _, col)) in slots.iter().zip(local_pairs(dofs, global, N * (D + 1))) {
+        if slot == SKIPPED {
+            continue;
+        }
         let value = if col == CONSTRAINED { k[p][q] * dofs.prescribed(global[q]) } else { k[p][q] };
         add(&sums[slot as usize], value);
     }

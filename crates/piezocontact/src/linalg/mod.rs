@@ -27,16 +27,17 @@
 //!
 //! The traits are shaped so that a backend whose rows live on several processes (PETSc with
 //! MUMPS under `mpirun`) fits without changes to its callers:
-//! - every process runs the same program on the same mesh and assembles the same pattern and
-//!   values (assembly is cheap next to the factorisation); the backend keeps the rows it owns
-//!   (a contiguous block per process) and hands them to the distributed matrix at
-//!   [`LinearSolver::factorize`];
+//! - every process runs the same program on the same mesh; the backend hands the rows it owns
+//!   to the distributed matrix at [`LinearSolver::factorize`];
 //! - vectors cross the seam whole on every process: `solve_in_place` reads the whole
 //!   right-hand side, scatters the owned rows into the distributed vector, solves, and gathers
 //!   the solution back to every process, so that the contact algorithms (O(|Γ3|) work) run
 //!   redundantly and identically everywhere;
 //! - [`SchurComplement::schur_complement`] returns the dense Schur complement on every process
 //!   (MUMPS builds it on the host, which broadcasts it);
+//! - a backend that has [`LinearSolver::distributed`] says which mesh nodes' rows its process
+//!   owns; the assembly then builds the pattern of those rows and sums only the cells that
+//!   touch them, so that no process holds the whole matrix ([`Distributed`]);
 //! - the pivot signs passed to [`LinearSolver::analyze`] are a hint on the matrix's inertia,
 //!   which a backend may check (LDLᵀ does) or ignore (an LU or an iterative method).
 //!
@@ -120,6 +121,22 @@ pub trait LinearSolver: std::fmt::Debug + Send {
     fn schur(&mut self) -> Option<&mut dyn SchurComplement> {
         None
     }
+    /// The capability of a backend whose rows live on several processes.
+    fn distributed(&self) -> Option<&dyn Distributed> {
+        None
+    }
+}
+
+/// What a backend whose rows live on several processes tells the assembly, so that each
+/// process assembles and holds only its rows.
+pub trait Distributed {
+    /// The mesh nodes whose rows this process owns, given the free unknowns of each node
+    /// (`weights[a]`); `None` when it owns them all. The matrix handed to
+    /// [`LinearSolver::factorize`] must then hold every entry of the owned nodes' rows, and
+    /// may lack the others.
+    fn owned_nodes(&self, weights: &[usize]) -> Option<Vec<bool>>;
+    /// The sum of `value` over the processes.
+    fn sum(&self, value: f64) -> Result<f64>;
 }
 
 /// What a backend that can condense does: eliminate every unknown but a given list, and give

@@ -28,7 +28,8 @@ fn matrix_is_symmetric_and_its_blocks_are_definite() {
         clamped_problem(perturbed_square(5, 0.3), "left", "bottom"),
         clamped_problem(read_mesh("cube.msh"), "bottom", "top"),
     ] {
-        let assembler = Assembler::new(&problem, DofMap::new(&problem).unwrap(), &[]).unwrap();
+        let assembler =
+            Assembler::new(&problem, DofMap::new(&problem).unwrap(), &[], None).unwrap();
         let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
         let (matrix, _) = assembler.matrix(&problem, &g, &[]).unwrap();
         // The matrix stores its lower triangle only, so it is symmetric by construction if it
@@ -65,7 +66,7 @@ fn parallel_assembly_equals_serial_assembly_to_the_last_bit() {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
             pool.install(|| {
                 let dofs = DofMap::new(&problem).unwrap();
-                let assembler = Assembler::new(&problem, dofs, &block_nodes).unwrap();
+                let assembler = Assembler::new(&problem, dofs, &block_nodes, None).unwrap();
                 let g: Vec<f64> = (0..problem.mesh.n_cells())
                     .map(|c| problem.material.elasticity.mu1 * (1.0 + 0.1 * (c as f64).sin()))
                     .collect();

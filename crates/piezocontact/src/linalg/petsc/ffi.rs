@@ -44,6 +44,7 @@ type ErrorHandler = unsafe extern "C" fn(
 unsafe extern "C" {
     static ompi_mpi_double: Opaque;
     static ompi_mpi_op_max: Opaque;
+    static ompi_mpi_op_sum: Opaque;
     fn MPI_Comm_rank(comm: MpiHandle, rank: *mut c_int) -> c_int;
     fn MPI_Comm_size(comm: MpiHandle, size: *mut c_int) -> c_int;
     fn MPI_Bcast(buf: *mut c_void, n: c_int, ty: MpiHandle, root: c_int, comm: MpiHandle) -> c_int;
@@ -264,6 +265,15 @@ pub fn broadcast(values: &mut [f64]) -> Result<()> {
 
 /// The largest of `value` over the processes.
 pub fn max_over_processes(value: f64) -> Result<f64> {
+    reduce(value, (&raw const ompi_mpi_op_max) as MpiHandle)
+}
+
+/// The sum of `value` over the processes.
+pub fn sum_over_processes(value: f64) -> Result<f64> {
+    reduce(value, (&raw const ompi_mpi_op_sum) as MpiHandle)
+}
+
+fn reduce(value: f64, op: MpiHandle) -> Result<f64> {
     let mut out = value;
     // SAFETY: one double in and out on every process.
     let code = unsafe {
@@ -272,7 +282,7 @@ pub fn max_over_processes(value: f64) -> Result<f64> {
             (&raw mut out).cast(),
             1,
             (&raw const ompi_mpi_double) as _,
-            (&raw const ompi_mpi_op_max) as _,
+            op,
             world(),
         )
     };

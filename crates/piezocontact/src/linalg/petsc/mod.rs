@@ -21,67 +21,111 @@
 
 mod ffi;
 
-pub use ffi::{abort, gather, initialize, is_initialized, max_over_processes, rank_and_size};
+pub use ffi::{abort, gather, initialize, is_initialized, rank_and_size, sum_over_processes};
 
-use super::{DenseMatrix, LinearSolver, SchurComplement, SolverStats, SymmetricMatrix};
+use super::SymmetricMatrix;
+use super::{DenseMatrix, Distributed, LinearSolver, SchurComplement, SolverStats};
 use super::{SymmetricPattern, check_length};
 use crate::error::{Error, Result};
 use ffi::{Factor, Gather, Matrix, PetscInt, Vector};
 use std::time::Instant;
 
-/// The rows of the matrix this process owns and where their entries come from.
+/// The process of each mesh node: contiguous runs of nodes holding about n/N unknowns each
+/// (`weights[a]`: the free unknowns of node a). Node a goes to process
+/// ⌊N · (unknowns of the nodes before a) / n⌋, which depends on the weights up to a only.
+fn process_of(weights: &[usize], size: usize) -> Vec<usize> {
+    let total = weights.iter().sum::<usize>().max(1);
+    let mut before = 0;
+    weights
+        .iter()
+        .map(|w| {
+            let process = (before * size / total).min(size - 1);
+            before += w;
+            process
+        })
+        .collect()
+}
+
+/// The rows of the matrix this process owns and where their entries come from. PETSc numbers
+/// the unknowns node by node (a node's u and ϕ together), so that each process's block of
+/// PETSc rows is the unknowns of its nodes ([`process_of`]).
 #[derive(Debug)]
 struct Rows {
     /// Order of the matrix.
     n: usize,
-    /// The owned rows: `start..end`.
+    /// This process's PETSc rows: `start..end`.
     start: usize,
     end: usize,
-    /// Per owned row: its columns (increasing) and, for each, the index of the entry in the
-    /// lower-triangle values of the seam's matrix.
+    /// The unknown at each PETSc row.
+    order: Vec<usize>,
+    /// The PETSc row of each unknown.
+    petsc: Vec<usize>,
+    /// Per owned PETSc row: its PETSc columns (increasing) and, for each, the index of the
+    /// entry in the lower-triangle values of the seam's matrix.
     columns: Vec<Vec<(PetscInt, usize)>>,
 }
 
 impl Rows {
-    /// PETSc's split of n rows over the processes (the first n mod size get one more), and
-    /// the full symmetric rows of the owned block from the lower-triangle `pattern`.
+    /// The node-by-node numbering of the unknowns of `pattern` (whose groups are the mesh
+    /// nodes), this process's block of it, and the full symmetric rows of that block.
     fn new(pattern: &SymmetricPattern) -> Result<Self> {
         let n = pattern.n();
         ffi::index(n)?;
         let (rank, size) = rank_and_size();
-        let start = rank * (n / size) + rank.min(n % size);
-        let end = start + n / size + usize::from(rank < n % size);
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by_key(|&k| (pattern.group(k), k));
+        let mut petsc = vec![0; n];
+        order.iter().enumerate().for_each(|(p, &k)| petsc[k] = p);
+        let nodes = order.last().map_or(0, |&k| pattern.group(k) + 1);
+        let mut weights = vec![0; nodes];
+        (0..n).for_each(|k| weights[pattern.group(k)] += 1);
+        let process = process_of(&weights, size);
+        let of = |p: usize| process[pattern.group(order[p])];
+        let start = (0..n).find(|&p| of(p) >= rank).unwrap_or(n);
+        let end = (start..n).find(|&p| of(p) > rank).unwrap_or(n);
         let mut columns = vec![Vec::new(); end - start];
         let symbolic = pattern.symbolic();
         for j in 0..n {
             let range = symbolic.col_range(j);
-            for (k, &i) in range.clone().zip(&symbolic.row_idx()[range]) {
-                if (start..end).contains(&i) {
-                    columns[i - start].push((j as PetscInt, k));
+            for (at, &i) in range.clone().zip(&symbolic.row_idx()[range]) {
+                let (pi, pj) = (petsc[i], petsc[j]);
+                if (start..end).contains(&pi) {
+                    columns[pi - start].push((pj as PetscInt, at));
                 }
-                if i != j && (start..end).contains(&j) {
-                    columns[j - start].push((i as PetscInt, k));
+                if i != j && (start..end).contains(&pj) {
+                    columns[pj - start].push((pi as PetscInt, at));
                 }
             }
         }
         columns.iter_mut().for_each(|c| c.sort_unstable());
-        Ok(Self { n, start, end, columns })
+        Ok(Self { n, start, end, order, petsc, columns })
     }
 
     /// PETSc's preallocation: per owned row, entries in the owned columns and outside.
     fn preallocation(&self) -> (Vec<PetscInt>, Vec<PetscInt>) {
         let owned = |c: &&(PetscInt, usize)| (self.start..self.end).contains(&(c.0 as usize));
-        let diagonal = self.columns.iter().map(|c| c.iter().filter(owned).count() as PetscInt);
-        let total = self.columns.iter().map(|c| c.len() as PetscInt);
-        let diagonal: Vec<PetscInt> = diagonal.collect();
-        let off = total.zip(&diagonal).map(|(t, d)| t - d).collect();
+        let diagonal: Vec<PetscInt> =
+            self.columns.iter().map(|c| c.iter().filter(owned).count() as PetscInt).collect();
+        let off =
+            self.columns.iter().zip(&diagonal).map(|(c, d)| c.len() as PetscInt - d).collect();
         (diagonal, off)
+    }
+
+    /// Copies the owned rows of `whole` (the seam's numbering) into `local` (PETSc's).
+    fn scatter(&self, whole: &[f64], local: &mut [f64]) {
+        let owned = &self.order[self.start..self.end];
+        local.iter_mut().zip(owned).for_each(|(l, &k)| *l = whole[k]);
+    }
+
+    /// Puts `gathered` (PETSc's numbering) into `whole` (the seam's).
+    fn unpermute(&self, gathered: &[f64], whole: &mut [f64]) {
+        whole.iter_mut().zip(&self.petsc).for_each(|(w, &p)| *w = gathered[p]);
     }
 }
 
 /// The PETSc objects of one analysis.
 #[derive(Debug)]
-struct Distributed {
+struct Objects {
     matrix: Matrix,
     factor: Option<Factor>,
     b: Vector,
@@ -93,7 +137,7 @@ struct Distributed {
 #[derive(Debug, Default)]
 pub struct PetscSolver {
     rows: Option<Rows>,
-    distributed: Option<Distributed>,
+    distributed: Option<Objects>,
     /// +1 for u rows, −1 for ϕ rows.
     signs: Vec<i8>,
     /// The unknowns kept for the Schur complement (empty: none).
@@ -112,9 +156,9 @@ impl PetscSolver {
         Ok(Self::default())
     }
 
-    /// The owned rows `start..end` of the last analysis.
-    pub fn owned_rows(&self) -> Option<std::ops::Range<usize>> {
-        self.rows.as_ref().map(|r| r.start..r.end)
+    /// The unknowns whose rows this process owns, after an analysis.
+    pub fn owned_unknowns(&self) -> Vec<usize> {
+        self.rows.as_ref().map_or(Vec::new(), |r| r.order[r.start..r.end].to_vec())
     }
 
     /// The distributed matrix's owned rows as PETSc stores them: (row, column, value), for
@@ -124,10 +168,12 @@ impl PetscSolver {
             return Ok(Vec::new());
         };
         let mut out = Vec::new();
-        for i in rows.start..rows.end {
-            let scaled = d.matrix.row(i as PetscInt)?;
-            let unscale = |(j, v): (usize, f64)| (i, j, v / (self.scaling[i] * self.scaling[j]));
-            out.extend(scaled.into_iter().map(unscale));
+        for p in rows.start..rows.end {
+            let i = rows.order[p];
+            for (q, v) in d.matrix.row(p as PetscInt)? {
+                let j = rows.order[q];
+                out.push((i, j, v / (self.scaling[i] * self.scaling[j])));
+            }
         }
         Ok(out)
     }
@@ -160,30 +206,36 @@ impl PetscSolver {
             Error::LinearAlgebra("PETSc backend: factorize before analyze".into())
         })?;
         check_length("matrix order", rows.n, matrix.n())?;
-        let diagonal = matrix.diagonal();
-        self.scaling = diagonal.iter().map(|d| 1.0 / d.abs().sqrt()).collect();
-        if let Some(i) = diagonal.iter().position(|d| *d == 0.0 || !d.is_finite()) {
-            return Err(Error::SingularSystem { detail: format!("zero diagonal entry {i}") });
-        }
         if self.distributed.is_none() {
             let (diagonal, off) = rows.preallocation();
             let matrix = Matrix::new(rows.end - rows.start, rows.n, &diagonal, &off)?;
             let (b, x) = (matrix.vector()?, matrix.vector()?);
             let gather = Gather::new(&x)?;
-            self.distributed = Some(Distributed { matrix, factor: None, b, x, gather });
+            self.distributed = Some(Objects { matrix, factor: None, b, x, gather });
         }
         let d = self.distributed.as_mut().expect("made above");
+        // The diagonal of the owned rows, gathered whole: each process's matrix holds only
+        // its rows, and D must be the same on every process.
+        let (owned, mut gathered) = (matrix.diagonal(), vec![0.0; rows.n]);
+        d.b.with_local(|b| rows.scatter(&owned, b))?;
+        d.gather.run(&d.b, &mut gathered)?;
+        let mut diagonal = vec![0.0; rows.n];
+        rows.unpermute(&gathered, &mut diagonal);
+        if let Some(i) = diagonal.iter().position(|d| *d == 0.0 || !d.is_finite()) {
+            return Err(Error::SingularSystem { detail: format!("zero diagonal entry {i}") });
+        }
+        self.scaling = diagonal.iter().map(|d| 1.0 / d.abs().sqrt()).collect();
         let values = matrix.lower().val();
         let (mut cols, mut vals) = (Vec::new(), Vec::new());
         for (k, row) in rows.columns.iter().enumerate() {
-            let i = rows.start + k;
+            let i = rows.order[rows.start + k];
             cols.clear();
             vals.clear();
-            for &(j, at) in row {
-                cols.push(j);
-                vals.push(values[at] * self.scaling[i] * self.scaling[j as usize]);
+            for &(q, at) in row {
+                cols.push(q);
+                vals.push(values[at] * self.scaling[i] * self.scaling[rows.order[q as usize]]);
             }
-            d.matrix.set_row(i as PetscInt, &cols, &vals)?;
+            d.matrix.set_row((rows.start + k) as PetscInt, &cols, &vals)?;
         }
         d.matrix.assemble()
     }
@@ -196,7 +248,10 @@ impl PetscSolver {
         if d.factor.is_none() {
             let t = Instant::now();
             let schur: Vec<PetscInt> = match rank_and_size().0 {
-                0 => self.last.iter().map(|&i| i as PetscInt).collect(),
+                0 => {
+                    let rows = self.rows.as_ref().expect("analysed");
+                    self.last.iter().map(|&i| rows.petsc[i] as PetscInt).collect()
+                }
                 _ => Vec::new(),
             };
             let factor = Factor::analyse(&d.matrix, &schur)?;
@@ -262,9 +317,11 @@ impl PetscSolver {
     fn mumps_solve(&mut self, rhs: &mut [f64]) -> Result<()> {
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("factorised");
-        d.b.with_local(|b| b.copy_from_slice(&rhs[rows.start..rows.end]))?;
+        d.b.with_local(|b| rows.scatter(rhs, b))?;
         d.factor.as_ref().expect("factorised").solve(&d.b, &mut d.x)?;
-        d.gather.run(&d.x, rhs)?;
+        let mut gathered = vec![0.0; rows.n];
+        d.gather.run(&d.x, &mut gathered)?;
+        rows.unpermute(&gathered, rhs);
         self.last.iter().for_each(|&c| rhs[c] = 0.0);
         Ok(())
     }
@@ -273,10 +330,11 @@ impl PetscSolver {
     fn multiply(&mut self, x: &[f64]) -> Result<Vec<f64>> {
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("filled");
-        d.b.with_local(|b| b.copy_from_slice(&x[rows.start..rows.end]))?;
+        d.b.with_local(|b| rows.scatter(x, b))?;
         d.matrix.mult(&d.b, &mut d.x)?;
-        let mut y = vec![0.0; rows.n];
-        d.gather.run(&d.x, &mut y)?;
+        let (mut gathered, mut y) = (vec![0.0; rows.n], vec![0.0; rows.n]);
+        d.gather.run(&d.x, &mut gathered)?;
+        rows.unpermute(&gathered, &mut y);
         Ok(y)
     }
 
@@ -345,6 +403,21 @@ impl LinearSolver for PetscSolver {
 
     fn schur(&mut self) -> Option<&mut dyn SchurComplement> {
         Some(self)
+    }
+
+    fn distributed(&self) -> Option<&dyn Distributed> {
+        Some(self)
+    }
+}
+
+impl Distributed for PetscSolver {
+    fn owned_nodes(&self, weights: &[usize]) -> Option<Vec<bool>> {
+        let (rank, size) = rank_and_size();
+        (size > 1).then(|| process_of(weights, size).into_iter().map(|p| p == rank).collect())
+    }
+
+    fn sum(&self, value: f64) -> Result<f64> {
+        ffi::sum_over_processes(value)
     }
 }
 
