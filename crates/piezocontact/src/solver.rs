@@ -3,7 +3,8 @@
 //! current factorisation so that the contact algorithms reuse them (model §7). The
 //! factorisation is the caller's backend, behind the [`LinearSolver`] seam.
 
-use crate::assembly::{Assembler, Linearisation, NodalBlock, load_vector, secant_moduli};
+use crate::assembly::secant_moduli;
+use crate::assembly::{Assembler, Linearisation, NodalBlock, load_vector, node_neighbours};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::{DenseMatrix, LinearSolver, SchurComplement, SolverStats, SymmetricMatrix};
@@ -98,10 +99,16 @@ impl CoupledSystem {
         problem: &Problem,
         dofs: DofMap,
         block_nodes: &[usize],
-        solver: Box<dyn LinearSolver>,
+        mut solver: Box<dyn LinearSolver>,
     ) -> Result<Self> {
         let t = Instant::now();
-        let owned = solver.distributed().and_then(|d| d.owned_nodes(&dofs.free_per_node()));
+        let owned = match solver.distributed() {
+            Some(d) => {
+                let (ptr, neighbours) = node_neighbours(&problem.mesh);
+                d.owned_nodes(&dofs.free_per_node(), (&ptr, &neighbours))?
+            }
+            None => None,
+        };
         let assembler = Assembler::new(problem, dofs, block_nodes, owned.as_deref())?;
         let pattern_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
@@ -216,7 +223,7 @@ impl CoupledSystem {
 
     /// ‖B̌x − f̌‖ / ‖f̌‖ on the free DOFs for the global `x`, over the complete rows of every
     /// process.
-    pub fn relative_residual(&self, x: &[f64]) -> Result<f64> {
+    pub fn relative_residual(&mut self, x: &[f64]) -> Result<f64> {
         let matrix =
             self.matrix.as_ref().ok_or_else(|| Error::LinearAlgebra("no matrix".into()))?;
         let ax = matrix.mul(&self.assembler.restrict(x));

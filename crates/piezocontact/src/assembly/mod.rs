@@ -278,7 +278,7 @@ fn missing(r: usize, c: usize) -> impl FnOnce() -> Error {
 
 /// For every node, its neighbours (the nodes that share a cell with it, itself included),
 /// sorted: `(ptr, list)` with the neighbours of node a in `list[ptr[a]..ptr[a + 1]]`.
-fn node_neighbours(mesh: &Mesh) -> (Vec<usize>, Vec<usize>) {
+pub fn node_neighbours(mesh: &Mesh) -> (Vec<usize>, Vec<usize>) {
     let n = mesh.n_nodes();
     let mut counts = vec![0usize; n];
     for c in 0..mesh.n_cells() {

@@ -122,7 +122,7 @@ pub trait LinearSolver: std::fmt::Debug + Send {
         None
     }
     /// The capability of a backend whose rows live on several processes.
-    fn distributed(&self) -> Option<&dyn Distributed> {
+    fn distributed(&mut self) -> Option<&mut dyn Distributed> {
         None
     }
 }
@@ -130,11 +130,16 @@ pub trait LinearSolver: std::fmt::Debug + Send {
 /// What a backend whose rows live on several processes tells the assembly, so that each
 /// process assembles and holds only its rows.
 pub trait Distributed {
-    /// The mesh nodes whose rows this process owns, given the free unknowns of each node
-    /// (`weights[a]`); `None` when it owns them all. The matrix handed to
-    /// [`LinearSolver::factorize`] must then hold every entry of the owned nodes' rows, and
-    /// may lack the others.
-    fn owned_nodes(&self, weights: &[usize]) -> Option<Vec<bool>>;
+    /// Splits the mesh nodes between the processes — given the free unknowns of each node
+    /// (`weights[a]`) and each node's neighbours (`adjacency.1[adjacency.0[a]..adjacency.0[a +
+    /// 1]]`) — and returns those this process owns; `None` when it owns them all. The matrix
+    /// handed to [`LinearSolver::factorize`] must then hold every entry of the owned nodes'
+    /// rows, and may lack the others.
+    fn owned_nodes(
+        &mut self,
+        weights: &[usize],
+        adjacency: (&[usize], &[usize]),
+    ) -> Result<Option<Vec<bool>>>;
     /// The sum of `value` over the processes.
     fn sum(&self, value: f64) -> Result<f64>;
 }

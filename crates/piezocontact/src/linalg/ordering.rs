@@ -161,6 +161,60 @@ impl Graph {
     }
 }
 
+/// METIS's k-way partition of a graph into `parts` parts of about equal total weight, the
+/// graph given by each vertex's neighbours (`adjacency.1[adjacency.0[v]..adjacency.0[v + 1]]`,
+/// the vertex itself allowed), `weights[v]` the weight of vertex v: the part of each vertex.
+/// Deterministic (METIS's fixed seed), so every process of a run computes the same.
+pub fn partition(
+    adjacency: (&[usize], &[usize]),
+    weights: &[usize],
+    parts: usize,
+) -> Result<Vec<usize>> {
+    let count = weights.len();
+    if parts <= 1 || count <= parts {
+        return Ok((0..count).map(|v| v * parts.max(1) / count.max(1)).collect());
+    }
+    let too_large =
+        || Error::LinearAlgebra("the graph is too large for METIS's 32-bit indices".into());
+    let (ptr, list) = adjacency;
+    let mut xadj = vec![0i32];
+    let mut adjncy = Vec::new();
+    for v in 0..count {
+        adjncy.extend(list[ptr[v]..ptr[v + 1]].iter().filter(|&&w| w != v).map(|&w| w as i32));
+        xadj.push(i32::try_from(adjncy.len()).map_err(|_| too_large())?);
+    }
+    let mut vwgt: Vec<i32> = weights.iter().map(|&w| w.max(1) as i32).collect();
+    let (mut nvtxs, mut ncon, mut nparts) = (count as i32, 1i32, parts as i32);
+    let (mut objval, mut part) = (0i32, vec![0i32; count]);
+    let status = {
+        let _one_at_a_time = METIS.lock().unwrap_or_else(|e| e.into_inner());
+        // SAFETY: the arrays have the lengths METIS_PartGraphKway requires (xadj n + 1, adjncy
+        // xadj[n], vwgt and part n) and outlive the call; the null pointers take METIS's
+        // defaults (no sizes or edge weights, equal parts, default options and seed).
+        unsafe {
+            metis_sys::METIS_PartGraphKway(
+                &mut nvtxs,
+                &mut ncon,
+                xadj.as_mut_ptr(),
+                adjncy.as_mut_ptr(),
+                vwgt.as_mut_ptr(),
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+                &mut nparts,
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+                std::ptr::null_mut(),
+                &mut objval,
+                part.as_mut_ptr(),
+            )
+        }
+    };
+    if status != metis_sys::rstatus_et_METIS_OK {
+        return Err(Error::LinearAlgebra(format!("METIS_PartGraphKway failed (status {status})")));
+    }
+    Ok(part.into_iter().map(|p| p as usize).collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -202,6 +256,35 @@ mod tests {
     fn is_permutation(order: &[usize], n: usize) -> bool {
         let mut seen = vec![false; n];
         order.len() == n && order.iter().all(|&i| i < n && !std::mem::replace(&mut seen[i], true))
+    }
+
+    #[test]
+    fn a_partition_balances_the_weights_and_cuts_few_edges() {
+        // A 20 × 20 grid of nodes, each with its right and upper neighbours.
+        let side = 20;
+        let (mut ptr, mut list) = (vec![0], Vec::new());
+        for v in 0..side * side {
+            let (x, y) = (v % side, v / side);
+            let near = [(x > 0).then(|| v - 1), (x + 1 < side).then(|| v + 1)];
+            let far = [(y > 0).then(|| v - side), (y + 1 < side).then(|| v + side)];
+            list.extend(near.into_iter().chain(far).flatten());
+            ptr.push(list.len());
+        }
+        let weights = vec![3; side * side];
+        for parts in [2, 3] {
+            let part = partition((&ptr, &list), &weights, parts).unwrap();
+            let sizes: Vec<usize> =
+                (0..parts).map(|p| part.iter().filter(|&&q| q == p).count()).collect();
+            assert!(sizes.iter().all(|&s| s.abs_diff(side * side / parts) <= side * side / 30));
+            let cut = (0..side * side)
+                .flat_map(|v| list[ptr[v]..ptr[v + 1]].iter().map(move |&w| (v, w)))
+                .filter(|&(v, w)| part[v] != part[w])
+                .count()
+                / 2;
+            // A straight cut of the grid is 20 edges per boundary; a scattered one hundreds.
+            assert!(cut <= 2 * side * (parts - 1), "{parts} parts: {cut} edges cut");
+            assert_eq!(part, partition((&ptr, &list), &weights, parts).unwrap());
+        }
     }
 
     #[test]

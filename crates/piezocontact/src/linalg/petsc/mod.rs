@@ -1,12 +1,13 @@
 //! [`PetscSolver`]: PETSc's distributed AIJ matrix and MUMPS's LDLᵀ (symmetric indefinite,
 //! `sym = 2`) behind the [`LinearSolver`] seam, with the [`SchurComplement`] capability from
-//! MUMPS's Schur complement; built with the cargo feature `petsc` (model §15).
+//! MUMPS's Schur complement; built with the cargo feature `petsc` (docs/distributed.md).
 //!
-//! Every process runs the same program on the same mesh and holds the same pattern and
-//! values (the seam's contract, [`super`]); this backend hands each process's contiguous
-//! block of rows to PETSc, which distributes the factor over the processes. Vectors cross the
-//! seam whole: a solve scatters the owned rows of the right-hand side and gathers the solution
-//! back to every process.
+//! Every process runs the same program on the same mesh. Through the [`Distributed`]
+//! capability the backend splits the mesh nodes between the processes (METIS's k-way
+//! partition), each process assembles the rows of its nodes, and the backend hands them to
+//! PETSc — numbered process by process, node by node — which distributes the factor over the
+//! processes. Vectors cross the seam whole: a solve scatters the owned rows of the right-hand
+//! side and gathers the solution back to every process.
 //!
 //! As [`super::LdltSolver`], the matrix is scaled symmetrically by its diagonal,
 //! `D A D` with `D = diag(|a_ii|^{-1/2})`, so that the u and ϕ blocks meet on equal terms in
@@ -30,7 +31,8 @@ use crate::error::{Error, Result};
 use ffi::{Factor, Gather, Matrix, PetscInt, Vector};
 use std::time::Instant;
 
-/// The process of each mesh node: contiguous runs of nodes holding about n/N unknowns each
+/// The process of each mesh node without a partition from [`Distributed::owned_nodes`] (a
+/// backend analysed directly): contiguous runs of nodes holding about n/N unknowns each
 /// (`weights[a]`: the free unknowns of node a). Node a goes to process
 /// ⌊N · (unknowns of the nodes before a) / n⌋, which depends on the weights up to a only.
 fn process_of(weights: &[usize], size: usize) -> Vec<usize> {
@@ -47,8 +49,8 @@ fn process_of(weights: &[usize], size: usize) -> Vec<usize> {
 }
 
 /// The rows of the matrix this process owns and where their entries come from. PETSc numbers
-/// the unknowns node by node (a node's u and ϕ together), so that each process's block of
-/// PETSc rows is the unknowns of its nodes ([`process_of`]).
+/// the unknowns process by process and node by node (a node's u and ϕ together), so that each
+/// process's block of PETSc rows is the unknowns of its nodes.
 #[derive(Debug)]
 struct Rows {
     /// Order of the matrix.
@@ -66,20 +68,24 @@ struct Rows {
 }
 
 impl Rows {
-    /// The node-by-node numbering of the unknowns of `pattern` (whose groups are the mesh
-    /// nodes), this process's block of it, and the full symmetric rows of that block.
-    fn new(pattern: &SymmetricPattern) -> Result<Self> {
+    /// PETSc's numbering of the unknowns of `pattern` (whose groups are the mesh nodes) with
+    /// `partition` (the process of each node; `None`: contiguous runs of nodes,
+    /// [`process_of`]), this process's block of it, and the full symmetric rows of that block.
+    fn new(pattern: &SymmetricPattern, partition: Option<&[usize]>) -> Result<Self> {
         let n = pattern.n();
         ffi::index(n)?;
         let (rank, size) = rank_and_size();
-        let mut order: Vec<usize> = (0..n).collect();
-        order.sort_by_key(|&k| (pattern.group(k), k));
-        let mut petsc = vec![0; n];
-        order.iter().enumerate().for_each(|(p, &k)| petsc[k] = p);
-        let nodes = order.last().map_or(0, |&k| pattern.group(k) + 1);
+        let nodes = (0..n).map(|k| pattern.group(k) + 1).max().unwrap_or(0);
         let mut weights = vec![0; nodes];
         (0..n).for_each(|k| weights[pattern.group(k)] += 1);
-        let process = process_of(&weights, size);
+        let process = match partition {
+            Some(p) if p.len() >= nodes => p.to_vec(),
+            _ => process_of(&weights, size),
+        };
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by_key(|&k| (process[pattern.group(k)], pattern.group(k), k));
+        let mut petsc = vec![0; n];
+        order.iter().enumerate().for_each(|(p, &k)| petsc[k] = p);
         let of = |p: usize| process[pattern.group(order[p])];
         let start = (0..n).find(|&p| of(p) >= rank).unwrap_or(n);
         let end = (start..n).find(|&p| of(p) > rank).unwrap_or(n);
@@ -147,6 +153,8 @@ pub struct PetscSolver {
     /// S of the scaled matrix (on every process) and its inverse, with a Schur set.
     schur: Option<(DenseMatrix, DenseMatrix)>,
     stats: SolverStats,
+    /// The process of each mesh node, from [`Distributed::owned_nodes`].
+    partition: Option<Vec<usize>>,
 }
 
 impl PetscSolver {
@@ -191,7 +199,7 @@ impl PetscSolver {
         let t = Instant::now();
         self.distributed = None;
         self.schur = None;
-        self.rows = Some(Rows::new(pattern)?);
+        self.rows = Some(Rows::new(pattern, self.partition.as_deref())?);
         self.signs = signs.to_vec();
         self.last = last.to_vec();
         self.stats.symbolic_seconds += t.elapsed().as_secs_f64();
@@ -405,15 +413,26 @@ impl LinearSolver for PetscSolver {
         Some(self)
     }
 
-    fn distributed(&self) -> Option<&dyn Distributed> {
+    fn distributed(&mut self) -> Option<&mut dyn Distributed> {
         Some(self)
     }
 }
 
 impl Distributed for PetscSolver {
-    fn owned_nodes(&self, weights: &[usize]) -> Option<Vec<bool>> {
+    /// METIS's k-way partition of the node graph into one part per process.
+    fn owned_nodes(
+        &mut self,
+        weights: &[usize],
+        adjacency: (&[usize], &[usize]),
+    ) -> Result<Option<Vec<bool>>> {
         let (rank, size) = rank_and_size();
-        (size > 1).then(|| process_of(weights, size).into_iter().map(|p| p == rank).collect())
+        if size == 1 {
+            return Ok(None);
+        }
+        let partition = super::ordering::partition(adjacency, weights, size)?;
+        let owned = partition.iter().map(|&p| p == rank).collect();
+        self.partition = Some(partition);
+        Ok(Some(owned))
     }
 
     fn sum(&self, value: f64) -> Result<f64> {
