@@ -111,21 +111,58 @@ fn guarded<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult
     })
 }
 
+/// Looks at Python's signals (Ctrl-C) at most every 100 ms while a solve runs without the
+/// GIL: a pending KeyboardInterrupt asks the run to stop at its next safe point
+/// ([`piezocontact::interrupt`]) and is kept, to be raised when the solve returns.
+struct SignalWatch {
+    last: std::cell::Cell<std::time::Instant>,
+    raised: std::cell::RefCell<Option<PyErr>>,
+}
+
+impl SignalWatch {
+    fn new() -> Self {
+        piezocontact::interrupt::clear();
+        Self { last: std::time::Instant::now().into(), raised: None.into() }
+    }
+
+    fn look(&self) {
+        if self.last.get().elapsed() < std::time::Duration::from_millis(100) {
+            return;
+        }
+        self.last.set(std::time::Instant::now());
+        if let Err(e) = Python::attach(|py| py.check_signals()) {
+            piezocontact::interrupt::request(2);
+            *self.raised.borrow_mut() = Some(e);
+        }
+    }
+}
+
 /// Solves `case` without the GIL; a panic becomes a `RuntimeError`, an unconverged run a
-/// `RuntimeWarning` (its results are there, marked `converged = False`).
+/// `RuntimeWarning` (its results are there, marked `converged = False`), Ctrl-C during the
+/// solve a `KeyboardInterrupt` once the run has stopped.
 fn solve_case(py: Python<'_>, case: CaseFile) -> PyResult<Solution> {
-    let run = guarded(py, || {
-        if case.file.loading.is_some() {
-            let built = case.build()?;
-            PathRun::solve_built(&case, built, case.linear_solver()?, &|_| {})
+    let (run, raised) = guarded(py, || {
+        let watch = SignalWatch::new();
+        let progress = |_| watch.look();
+        let run = if case.file.loading.is_some() {
+            case.build()
+                .and_then(|built| {
+                    PathRun::solve_built(&case, built, case.linear_solver()?, &progress)
+                })
                 .map(|r| Run::Path(Box::new(r)))
         } else if case.file.contact.is_some() {
-            ContactRun::solve(&case).map(|r| Run::Contact(Box::new(r)))
+            case.linear_solver()
+                .and_then(|solver| ContactRun::solve_with(&case, solver, &progress))
+                .map(|r| Run::Contact(Box::new(r)))
         } else {
             StaticRun::solve(&case).map(|r| Run::Static(Box::new(r)))
-        }
-    })?
-    .map_err(case_error)?;
+        };
+        (run, watch.raised.take())
+    })?;
+    if let Some(interrupt) = raised {
+        return Err(interrupt);
+    }
+    let run = run.map_err(case_error)?;
     let solution = Solution { run, case };
     let failure = match &solution.run {
         Run::Contact(run) => run.solution.failure.as_ref().map(|e| e.to_string()),

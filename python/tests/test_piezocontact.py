@@ -244,3 +244,17 @@ def test_a_loading_path_gives_its_curve_and_its_steps(tmp_path):
         rows = list(csv.DictReader(f))
     assert [float(r["force_z"]) for r in rows] == list(curve["force_z"])
     assert (tmp_path / "path" / "solution-0002.vtu").exists()
+
+
+def test_ctrl_c_during_a_solve_raises_keyboard_interrupt():
+    # Uzawa with a tolerance it cannot reach runs until stopped; Ctrl-C comes from a
+    # helper thread after a second (_thread.interrupt_main simulates SIGINT).
+    import _thread
+
+    timer = threading.Timer(1.0, _thread.interrupt_main)
+    timer.start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        piezocontact.solve(PAPER_72, {"solver.eps": 1e-25, "solver.max_inner": 100000000})
+    timer.join()
+    assert time.monotonic() - start < 30

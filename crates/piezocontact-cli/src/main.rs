@@ -180,13 +180,18 @@ fn main() -> ExitCode {
     if cli.quiet {
         piezocontact_cli::say::set_quiet();
     }
-    if let Err(e) = processes::start(cli.petsc_options.as_deref()) {
+    let started = processes::start(cli.petsc_options.as_deref()).and_then(|_| {
+        // Under mpirun, mpirun forwards signals to every process, which stop alike.
+        processes::catch_signals()
+    });
+    if let Err(e) = started {
         return processes::fail(&format!("error: {e:#}"), 1);
     }
     match run(cli.command) {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
         Ok(Outcome::NotConverged) => ExitCode::from(3),
         Ok(Outcome::Failed) => ExitCode::from(4),
+        Ok(Outcome::Interrupted(signal)) => ExitCode::from((128 + signal) as u8),
         Err(e) => processes::fail(&format!("error: {e:#}"), 1),
     }
 }
@@ -208,7 +213,12 @@ fn run(command: Command) -> Result<Outcome> {
                 jobs,
                 out: &out,
             };
-            Ok(if sweep::sweep(&request)? { Outcome::Done } else { Outcome::NotConverged })
+            let converged = sweep::sweep(&request)?;
+            Ok(interrupted().unwrap_or(if converged {
+                Outcome::Done
+            } else {
+                Outcome::NotConverged
+            }))
         }
         Command::Reproduce { out, mesh, jobs, force } => {
             one_process("reproduce")?;
@@ -216,7 +226,11 @@ fn run(command: Command) -> Result<Outcome> {
             let converged =
                 reproduce::reproduce(&reproduce::Request { out: out.clone(), mesh, jobs })?;
             say!("wrote {} with its figures and tables", out.join("REPORT.md").display());
-            Ok(if converged { Outcome::Done } else { Outcome::NotConverged })
+            Ok(interrupted().unwrap_or(if converged {
+                Outcome::Done
+            } else {
+                Outcome::NotConverged
+            }))
         }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
@@ -300,6 +314,22 @@ enum Outcome {
     NotConverged,
     /// A loop diverged or failed numerically: the last finite iterate was written.
     Failed,
+    /// A signal asked the run to stop: what it had was written; exit 128 + the signal.
+    Interrupted(i32),
+}
+
+/// A signal's outcome when one asked the runs to stop (their results written, unconverged).
+fn interrupted() -> Option<Outcome> {
+    piezocontact::interrupt::requested().map(Outcome::Interrupted)
+}
+
+/// The outcome of a run that stopped with `failure`.
+fn failed(failure: &piezocontact::Error) -> Outcome {
+    match failure {
+        piezocontact::Error::NotConverged { .. } => Outcome::NotConverged,
+        piezocontact::Error::Interrupted { signal } => Outcome::Interrupted(*signal),
+        _ => Outcome::Failed,
+    }
 }
 
 fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Result<Outcome> {
@@ -361,10 +391,7 @@ fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
             case.path.display(),
             out.display()
         );
-        return Ok(match failure {
-            piezocontact::Error::NotConverged { .. } => Outcome::NotConverged,
-            _ => Outcome::Failed,
-        });
+        return Ok(failed(failure));
     }
     Ok(Outcome::Done)
 }
@@ -381,10 +408,7 @@ fn write_path(path: &PathRun, case: &Case, out: &Path) -> Result<Outcome> {
         case.path.display(),
         out.display()
     );
-    Ok(match &path.last.solution.failure {
-        Some(piezocontact::Error::NotConverged { .. }) => Outcome::NotConverged,
-        _ => Outcome::Failed,
-    })
+    Ok(path.last.solution.failure.as_ref().map_or(Outcome::Failed, failed))
 }
 
 fn check(path: &Path, set: &[String]) -> Result<()> {

@@ -52,6 +52,23 @@ fn initialize(_options: &str) -> anyhow::Result<(usize, usize)> {
     )
 }
 
+/// Catches SIGINT and SIGTERM: the first asks the runs to stop at their next safe point
+/// ([`piezocontact::interrupt`]), which write what they have and exit 128 + the signal
+/// (130, 143); a second signal ends the process at once with that code.
+pub fn catch_signals() -> anyhow::Result<()> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    for signal in [SIGINT, SIGTERM] {
+        let action = move || {
+            if !piezocontact::interrupt::request(signal) {
+                signal_hook::low_level::exit(128 + signal);
+            }
+        };
+        // SAFETY: the action is async-signal-safe: one atomic operation, then `_exit`.
+        unsafe { signal_hook::low_level::register(signal, action) }?;
+    }
+    Ok(())
+}
+
 /// Whether this process prints and writes (process 0, or the only one).
 pub fn is_root() -> bool {
     RANK.load(Ordering::Relaxed) == 0

@@ -121,6 +121,13 @@ pub enum Error {
         hint: String,
     },
 
+    /// The run was asked to stop ([`crate::interrupt`]) and stopped at a safe point.
+    #[error("interrupted")]
+    Interrupted {
+        /// The signal that asked (2: SIGINT, 15: SIGTERM).
+        signal: i32,
+    },
+
     /// A loop's criterion grew instead of falling.
     #[error(
         "{what} diverged at iteration {iteration} (criterion history, last values: {history}); {hint}"

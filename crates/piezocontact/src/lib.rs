@@ -108,6 +108,7 @@ pub mod contact;
 pub mod dofs;
 pub mod element;
 pub mod error;
+pub mod interrupt;
 pub mod limits;
 pub mod linalg;
 pub mod material;

@@ -4,7 +4,7 @@
 
 use super::common::{command, null_paths, piezocontact, root, run_coarse, text};
 use std::path::{Path, PathBuf};
-use std::process::Stdio;
+use std::process::{Command, Stdio};
 use std::time::Duration;
 
 /// A temporary directory that does not exist yet.
@@ -251,4 +251,70 @@ fn a_path_that_fails_at_a_step_keeps_the_steps_before_it() {
         (summary["path"]["steps"].clone(), summary["path"]["steps_solved"].clone()),
         (2.into(), 1.into())
     );
+}
+
+/// The staging directories beside `out` (a run's temporary files).
+fn staging_dirs(out: &Path) -> Vec<String> {
+    let name = out.file_name().unwrap().to_string_lossy().into_owned();
+    std::fs::read_dir(out.parent().unwrap())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|f| f.starts_with(&format!(".{name}.piezocontact-staging-")))
+        .collect()
+}
+
+/// SIGINT and SIGTERM in the middle of a long run (Uzawa with a tolerance it cannot reach):
+/// the run stops at its next iteration, writes what it has with "failure": "interrupted",
+/// removes its staging directory and exits 128 + the signal.
+#[test]
+fn a_signal_stops_a_run_at_a_safe_point_with_what_it_has() {
+    for (signal, code) in [("INT", 130), ("TERM", 143)] {
+        let out = temp_dir(&format!("signal-{signal}"));
+        let out = out.join("run");
+        let mut child = command()
+            .args(["run", "cases/paper-7.2.toml", "--out", out.to_str().unwrap()])
+            .args(["--set", "solver.eps=1e-25", "--set", "solver.max_inner=100000000"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(2500));
+        assert!(child.try_wait().unwrap().is_none(), "the run ended before the signal");
+        let sent =
+            Command::new("kill").arg(format!("-{signal}")).arg(child.id().to_string()).status();
+        assert!(sent.unwrap().success());
+        let output = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(code), "SIG{signal}: {stderr}");
+        assert!(stderr.contains("interrupted"), "{stderr}");
+        let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
+        let summary: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(summary["converged"], false);
+        assert_eq!(summary["failure"], "interrupted");
+        assert!(out.join("contact.csv").exists() && out.join("solution.vtu").exists());
+        assert_all_complete(&out);
+        assert!(staging_dirs(&out).is_empty(), "left: {:?}", staging_dirs(&out));
+    }
+}
+
+/// A staging directory left by a process that no longer runs is removed by the next run into
+/// the same place; one of a process that still runs is left alone.
+#[test]
+fn a_stale_staging_directory_is_removed_by_the_next_run() {
+    let out = temp_dir("stale").join("run");
+    let parent = out.parent().unwrap();
+    // A pid above Linux's largest (2²²) belongs to no process.
+    let dead = parent.join(".run.piezocontact-staging-4194305");
+    let alive = parent.join(format!(".run.piezocontact-staging-{}", std::process::id()));
+    for dir in [&dead, &alive] {
+        std::fs::create_dir_all(dir).unwrap();
+        std::fs::write(dir.join("half.csv"), "x,").unwrap();
+    }
+    let output =
+        piezocontact(&["run", "cases/paper-7.1.toml", "-q", "--out", out.to_str().unwrap()]);
+    assert!(output.status.success(), "{}", text(&output));
+    assert!(!dead.exists(), "the dead process's staging directory is still there");
+    assert!(alive.exists(), "a running process's staging directory was removed");
+    std::fs::remove_dir_all(&alive).unwrap();
 }

@@ -114,6 +114,8 @@ pub enum Stop {
     Diverged,
     /// A solve produced NaN or infinity, or a criterion was not finite.
     NotFinite(String),
+    /// The run was asked to stop ([`crate::interrupt`]), by this signal.
+    Interrupted(i32),
 }
 
 /// How an inner method's stops read in errors.
@@ -343,6 +345,10 @@ impl ContactSolver {
         }
         let (lags, fixed) = (self.method.lags_contact(), &self.fixed);
         for n in 1..=self.max_outer {
+            if let Some(signal) = crate::interrupt::requested() {
+                solution.failure = Some(Error::Interrupted { signal });
+                break;
+            }
             progress(Progress::Outer { step: n, max: self.max_outer });
             let (linearisation, blocks) = (&self.linearisation, self.method.blocks());
             if self.changed
@@ -557,6 +563,7 @@ fn inner_failure(context: &StopContext, inner: &InnerResult) -> Option<Error> {
         Stop::NotFinite(cause) => {
             Some(Error::NumericalFailure { what, iteration, cause: cause.clone(), hint })
         }
+        Stop::Interrupted(signal) => Some(Error::Interrupted { signal: *signal }),
     }
 }
 

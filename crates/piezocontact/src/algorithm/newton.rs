@@ -397,6 +397,10 @@ impl<'a> Local<'a> {
         let mut previous_sets: Option<Vec<u8>> = None;
         let (mut stop, mut iterations) = (Stop::Cap, cap);
         for k in 0..cap {
+            if let Some(signal) = crate::interrupt::requested() {
+                (stop, iterations) = (Stop::Interrupted(signal), k);
+                break;
+            }
             let eval = self.evaluate(&y);
             let delta = match self.newton_step(&y, &eval) {
                 Ok(delta) => delta,

@@ -150,6 +150,9 @@ impl Loop<'_> {
             stop,
         };
         for k in 0..self.max_inner {
+            if let Some(signal) = crate::interrupt::requested() {
+                return Ok(done(x, state, k, history, Stop::Interrupted(signal)));
+            }
             let rhs = self.right_hand_side(system.dofs(), &state);
             let x_new = match system.solve(Some(&rhs)) {
                 Ok(x_new) => x_new,

@@ -76,7 +76,9 @@ fn claim(dir: &Path, force: bool) -> Result<()> {
     let prefix = format!(".{name}.piezocontact-staging-");
     if let Ok(entries) = std::fs::read_dir(&parent) {
         for e in entries.filter_map(|e| e.ok()) {
-            if e.file_name().to_string_lossy().starts_with(&prefix) {
+            let name = e.file_name().to_string_lossy().into_owned();
+            let pid = name.strip_prefix(&prefix).and_then(|p| p.parse::<u32>().ok());
+            if pid.is_some_and(|p| !running(p)) {
                 let _ = std::fs::remove_dir_all(e.path()); // left by a killed run
             }
         }
@@ -86,6 +88,11 @@ fn claim(dir: &Path, force: bool) -> Result<()> {
         .map_err(io(format!("cannot create the staging directory {}", staging.display())))?;
     *CLAIM.lock().unwrap_or_else(|e| e.into_inner()) = Some(Claim { root, staging });
     Ok(())
+}
+
+/// Whether process `pid` still runs (Linux's /proc; elsewhere, taken as ended).
+fn running(pid: u32) -> bool {
+    pid != std::process::id() && Path::new(&format!("/proc/{pid}")).exists()
 }
 
 /// Ends the claim: removes the staging directory.
