@@ -99,69 +99,93 @@ enum Run {
 /// Runs `work` without the GIL; a panic in it becomes a `RuntimeError` instead of unwinding
 /// into the interpreter.
 fn guarded<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
-    py.detach(|| catch_unwind(AssertUnwindSafe(work))).map_err(|payload| {
-        let message = payload
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "no message".into());
-        PyRuntimeError::new_err(format!(
-            "internal error in piezocontact (please report it with the case): {message}"
-        ))
-    })
+    py.detach(|| catch_unwind(AssertUnwindSafe(work))).map_err(internal_error)
 }
 
-/// Looks at Python's signals (Ctrl-C) at most every 100 ms while a solve runs without the
-/// GIL: a pending KeyboardInterrupt asks the run to stop at its next safe point
-/// ([`piezocontact::interrupt`]) and is kept, to be raised when the solve returns.
-struct SignalWatch {
-    last: std::cell::Cell<std::time::Instant>,
-    raised: std::cell::RefCell<Option<PyErr>>,
+/// The `RuntimeError` of a panic's payload.
+fn internal_error(payload: Box<dyn std::any::Any + Send>) -> PyErr {
+    let message = payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "no message".into());
+    PyRuntimeError::new_err(format!(
+        "internal error in piezocontact (please report it with the case): {message}"
+    ))
 }
 
-impl SignalWatch {
-    fn new() -> Self {
-        piezocontact::interrupt::clear();
-        Self { last: std::time::Instant::now().into(), raised: None.into() }
+/// The threads a solve may use (assembly, factorisation, solves): at most `threads`, else
+/// every core. Each solve has a pool of its own, so that solves in several Python threads
+/// keep to their own bounds.
+fn thread_pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
+    if threads == Some(0) {
+        return Err(PyValueError::new_err("threads must be at least 1 (or None: every core)"));
     }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the solve's threads: {e}")))
+}
 
-    fn look(&self) {
-        if self.last.get().elapsed() < std::time::Duration::from_millis(100) {
-            return;
+/// Runs `work` on a pool of `threads` without the GIL while the calling thread looks at
+/// Python's signals every 100 ms (Python runs its signal handlers on the main thread only): a
+/// pending KeyboardInterrupt asks the run to stop at its next safe point
+/// ([`piezocontact::interrupt`]) and is raised once `work` has returned. A panic becomes a
+/// `RuntimeError`.
+fn watched<T: Send + 'static>(
+    py: Python<'_>,
+    threads: Option<usize>,
+    work: impl FnOnce() -> T + Send + 'static,
+) -> PyResult<T> {
+    let pool = thread_pool(threads)?;
+    piezocontact::interrupt::clear();
+    let (sender, receiver) = std::sync::mpsc::channel();
+    pool.spawn(move || {
+        let _ = sender.send(catch_unwind(AssertUnwindSafe(work)));
+    });
+    let (result, raised) = py.detach(move || {
+        let mut raised = None;
+        loop {
+            match receiver.recv_timeout(std::time::Duration::from_millis(100)) {
+                Ok(result) => return (result, raised),
+                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                    if let Err(e) = Python::attach(|py| py.check_signals()) {
+                        piezocontact::interrupt::request(2);
+                        raised.get_or_insert(e);
+                    }
+                }
+                Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => {
+                    let lost = "the solve's thread ended without a result";
+                    return (Err(Box::new(lost) as Box<dyn std::any::Any + Send>), raised);
+                }
+            }
         }
-        self.last.set(std::time::Instant::now());
-        if let Err(e) = Python::attach(|py| py.check_signals()) {
-            piezocontact::interrupt::request(2);
-            *self.raised.borrow_mut() = Some(e);
-        }
+    });
+    match (raised, result) {
+        (Some(interrupt), _) => Err(interrupt),
+        (None, result) => result.map_err(internal_error),
     }
 }
 
-/// Solves `case` without the GIL; a panic becomes a `RuntimeError`, an unconverged run a
-/// `RuntimeWarning` (its results are there, marked `converged = False`), Ctrl-C during the
-/// solve a `KeyboardInterrupt` once the run has stopped.
-fn solve_case(py: Python<'_>, case: CaseFile) -> PyResult<Solution> {
-    let (run, raised) = guarded(py, || {
-        let watch = SignalWatch::new();
-        let progress = |_| watch.look();
+/// Solves `case` on at most `threads` threads without the GIL; a panic becomes a
+/// `RuntimeError`, an unconverged run a `RuntimeWarning` (its results are there, marked
+/// `converged = False`), Ctrl-C during the solve a `KeyboardInterrupt` once the run has
+/// stopped.
+fn solve_case(py: Python<'_>, case: CaseFile, threads: Option<usize>) -> PyResult<Solution> {
+    let (run, case) = watched(py, threads, move || {
         let run = if case.file.loading.is_some() {
             case.build()
                 .and_then(|built| {
-                    PathRun::solve_built(&case, built, case.linear_solver()?, &progress)
+                    PathRun::solve_built(&case, built, case.linear_solver()?, &|_| {})
                 })
                 .map(|r| Run::Path(Box::new(r)))
         } else if case.file.contact.is_some() {
-            case.linear_solver()
-                .and_then(|solver| ContactRun::solve_with(&case, solver, &progress))
-                .map(|r| Run::Contact(Box::new(r)))
+            ContactRun::solve(&case).map(|r| Run::Contact(Box::new(r)))
         } else {
             StaticRun::solve(&case).map(|r| Run::Static(Box::new(r)))
         };
-        (run, watch.raised.take())
+        (run, case)
     })?;
-    if let Some(interrupt) = raised {
-        return Err(interrupt);
-    }
     let run = run.map_err(case_error)?;
     let solution = Solution { run, case };
     let failure = match &solution.run {
@@ -182,14 +206,15 @@ fn solve_case(py: Python<'_>, case: CaseFile) -> PyResult<Solution> {
 
 /// Runs what `piezocontact run CASE_PATH --set key=value ...` runs and returns the solution.
 #[pyfunction]
-#[pyo3(signature = (case_path, overrides = None))]
+#[pyo3(signature = (case_path, overrides = None, threads = None))]
 fn solve(
     py: Python<'_>,
     case_path: PathBuf,
     overrides: Option<&Bound<'_, PyDict>>,
+    threads: Option<usize>,
 ) -> PyResult<Solution> {
     let case = CaseFile::load(&case_path, &override_strings(overrides)?).map_err(case_error)?;
-    solve_case(py, case)
+    solve_case(py, case, threads)
 }
 
 /// Panics inside the guard that every solve runs in: the interpreter must get a
@@ -233,8 +258,9 @@ impl Case {
     }
 
     /// Solves the case.
-    fn solve(&self, py: Python<'_>) -> PyResult<Solution> {
-        solve_case(py, self.case.clone())
+    #[pyo3(signature = (threads = None))]
+    fn solve(&self, py: Python<'_>, threads: Option<usize>) -> PyResult<Solution> {
+        solve_case(py, self.case.clone(), threads)
     }
 }
 

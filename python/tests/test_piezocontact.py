@@ -258,3 +258,31 @@ def test_ctrl_c_during_a_solve_raises_keyboard_interrupt():
         piezocontact.solve(PAPER_72, {"solver.eps": 1e-25, "solver.max_inner": 100000000})
     timer.join()
     assert time.monotonic() - start < 30
+
+
+def test_threads_bound_a_solve_and_solves_in_two_threads_keep_their_own_answers():
+    # Each case alone, on one thread and on two: the 2D paper cases assemble to the last bit
+    # whatever the thread count and factorise on one thread, so the answers are identical.
+    cases = [(PAPER_71, COARSE), (PAPER_72, COARSE)]
+    alone = [piezocontact.solve(path, overrides, threads=1) for path, overrides in cases]
+    for (path, overrides), reference in zip(cases, alone):
+        again = piezocontact.solve(path, overrides, threads=2)
+        assert np.array_equal(again.u, reference.u) and np.array_equal(again.phi, reference.phi)
+    # Both at once, from two Python threads (the solves release the GIL).
+    results = [None, None]
+
+    def work(k):
+        path, overrides = cases[k]
+        results[k] = piezocontact.solve(path, overrides, threads=1)
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for result, reference in zip(results, alone):
+        assert np.array_equal(result.u, reference.u)
+        assert np.array_equal(result.phi, reference.phi)
+    assert not np.array_equal(alone[0].u, alone[1].u)
+    with pytest.raises(ValueError, match="threads"):
+        piezocontact.solve(PAPER_71, COARSE, threads=0)

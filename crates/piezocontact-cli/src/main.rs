@@ -26,6 +26,10 @@ struct Cli {
     /// No progress and no report on stdout; errors and warnings still go to stderr.
     #[arg(short, long, global = true)]
     quiet: bool,
+    /// The most threads the command uses (assembly, factorisation, solves, parallel runs);
+    /// default: the environment's PIEZOCONTACT_THREADS, else every core.
+    #[arg(long, global = true, value_name = "N")]
+    threads: Option<std::num::NonZeroUsize>,
     /// Options for PETSc's options database (solver.backend = "petsc"), in PETSc's syntax,
     /// e.g. "-mat_mumps_icntl_14 60 -mat_mumps_icntl_4 2".
     #[arg(long, global = true, value_name = "OPTIONS", allow_hyphen_values = true)]
@@ -180,10 +184,12 @@ fn main() -> ExitCode {
     if cli.quiet {
         piezocontact_cli::say::set_quiet();
     }
-    let started = processes::start(cli.petsc_options.as_deref()).and_then(|_| {
-        // Under mpirun, mpirun forwards signals to every process, which stop alike.
-        processes::catch_signals()
-    });
+    let started = set_threads(cli.threads)
+        .and_then(|_| processes::start(cli.petsc_options.as_deref()))
+        .and_then(|_| {
+            // Under mpirun, mpirun forwards signals to every process, which stop alike.
+            processes::catch_signals()
+        });
     if let Err(e) = started {
         return processes::fail(&format!("error: {e:#}"), 1);
     }
@@ -316,6 +322,25 @@ enum Outcome {
     Failed,
     /// A signal asked the run to stop: what it had was written; exit 128 + the signal.
     Interrupted(i32),
+}
+
+/// The environment variable that bounds the threads when --threads is not given.
+const THREADS_VAR: &str = "PIEZOCONTACT_THREADS";
+
+/// Bounds rayon's global pool, which faer's parallel factorisation and solves also run on,
+/// to `--threads` or PIEZOCONTACT_THREADS.
+fn set_threads(threads: Option<std::num::NonZeroUsize>) -> Result<()> {
+    let threads = match (threads, std::env::var(THREADS_VAR)) {
+        (Some(n), _) => n.get(),
+        (None, Ok(value)) => value.trim().parse::<std::num::NonZeroUsize>().map_err(|_| {
+            anyhow::anyhow!("{THREADS_VAR}={value:?} is not a number of threads ≥ 1: set it to e.g. 2, or unset it")
+        })?.get(),
+        (None, Err(_)) => return Ok(()),
+    };
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build_global()
+        .map_err(|e| anyhow::anyhow!("cannot start {threads} threads: {e}"))
 }
 
 /// A signal's outcome when one asked the runs to stop (their results written, unconverged).

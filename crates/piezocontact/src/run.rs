@@ -294,6 +294,7 @@ pub fn common_summary(case: &Case, problem: &Problem, dofs: &DofMap) -> Value {
         "elements": problem.mesh.n_cells(),
         "dofs": { "total": dofs.n_total(), "free": dofs.n_free(), "free_u": dofs.n_free_u(), "free_phi": dofs.n_free() - dofs.n_free_u() },
         "backend": { "name": case.backend_name(), "processes": crate::linalg::processes() },
+        "threads": rayon::current_num_threads(),
     })
 }
 

@@ -493,3 +493,41 @@ fn table2_trend() {
     let distance: Vec<f64> = rows.iter().map(|r| r[10].parse().unwrap()).collect();
     assert!(distance[0] > distance[3] && distance[3] > distance[7], "{distance:?}");
 }
+
+/// The numeric cells of a CSV file, row by row.
+fn csv_numbers(path: &Path) -> Vec<f64> {
+    let text = std::fs::read_to_string(path).unwrap();
+    text.lines().skip(1).flat_map(|l| l.split(',')).filter_map(|c| c.parse().ok()).collect()
+}
+
+/// --threads bounds a run (summary.json says so): the 3D indentation on one thread and on two
+/// gives the same contact table to round-off (faer's parallel factorisation sums in another
+/// order), and the same thread count twice gives it to the last bit. PIEZOCONTACT_THREADS
+/// does the same; a bad value is refused with the variable's name.
+#[test]
+fn threads_bound_a_run_and_change_its_answer_by_round_off_only() {
+    let dir = temp_dir("threads");
+    let mut tables = Vec::new();
+    for (k, threads) in ["1", "2", "2"].iter().enumerate() {
+        let out = dir.join(format!("run{k}"));
+        let args = ["run", "cases/indentation-3d.toml", "-q", "--threads", threads];
+        let output = piezocontact(&[&args[..], &["--out", out.to_str().unwrap()]].concat());
+        assert!(output.status.success(), "{}", text(&output));
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(summary["threads"].to_string(), *threads);
+        tables.push(csv_numbers(&out.join("contact.csv")));
+    }
+    assert_eq!(tables[1], tables[2], "two runs on 2 threads differ");
+    let scale = tables[0].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = tables[0].iter().zip(&tables[1]).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    assert!(worst <= 1e-12 * scale, "1 and 2 threads differ by {worst:e} (scale {scale:e})");
+    let bad = super::common::command()
+        .args(["check", "cases/paper-7.1.toml"])
+        .env("PIEZOCONTACT_THREADS", "0")
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(text(&bad).contains("PIEZOCONTACT_THREADS"), "{}", text(&bad));
+}
