@@ -1,5 +1,8 @@
 //! Progress of a run while it solves: a spinner line when stdout is a terminal, plain lines
-//! on stderr every few seconds when it is not (logs, pipes), nothing with `--quiet`.
+//! on stderr every few seconds when it is not (logs, pipes), nothing with `--quiet`. A
+//! factorisation, which sends no event while it runs, is shown with its elapsed time: the
+//! spinner's line says how long it has run, and a ticker writes a plain line every interval
+//! until the next event.
 
 use crate::say::quiet;
 use crate::say_err;
@@ -7,7 +10,62 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use piezocontact::algorithm::Progress;
 use std::cell::Cell;
 use std::io::IsTerminal;
+use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
+
+/// What a factorisation in progress shows: its message and when it started; `done` ends the
+/// ticker.
+#[derive(Default)]
+struct Factorising {
+    current: Option<(String, Instant)>,
+    done: bool,
+}
+
+/// The thread that shows a factorisation's elapsed time while no event comes.
+struct Ticker {
+    state: Arc<(Mutex<Factorising>, Condvar)>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Ticker {
+    /// Every `interval`, shows the factorisation in progress on `bar` or as a plain line.
+    fn new(bar: Option<ProgressBar>, interval: Duration) -> Self {
+        let state = Arc::new((Mutex::new(Factorising::default()), Condvar::new()));
+        let shared = Arc::clone(&state);
+        let thread = std::thread::spawn(move || {
+            let (lock, wake) = &*shared;
+            let mut guard = lock.lock().unwrap_or_else(|e| e.into_inner());
+            while !guard.done {
+                guard = wake.wait_timeout(guard, interval).unwrap_or_else(|e| e.into_inner()).0;
+                let Some((message, since)) = guard.current.as_ref().filter(|_| !guard.done) else {
+                    continue;
+                };
+                let line = format!("{message}: {:.1} s so far", since.elapsed().as_secs_f64());
+                match &bar {
+                    Some(bar) => bar.set_message(line),
+                    None => say_err!("progress: {line}"),
+                }
+            }
+        });
+        Self { state, thread: Some(thread) }
+    }
+
+    /// A factorisation starts (`Some`) or the one in progress ended (`None`).
+    fn set(&self, current: Option<String>) {
+        let mut guard = self.state.0.lock().unwrap_or_else(|e| e.into_inner());
+        guard.current = current.map(|m| (m, Instant::now()));
+    }
+}
+
+impl Drop for Ticker {
+    fn drop(&mut self) {
+        self.state.0.lock().unwrap_or_else(|e| e.into_inner()).done = true;
+        self.state.1.notify_all();
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
 
 /// Shows the progress events of one run.
 pub struct Reporter {
@@ -23,6 +81,8 @@ pub struct Reporter {
     last: Cell<Instant>,
     /// Time between two plain lines.
     interval: Duration,
+    /// Shows a factorisation in progress (on a terminal every second, else every interval).
+    ticker: Option<Ticker>,
 }
 
 impl Reporter {
@@ -41,6 +101,11 @@ impl Reporter {
             bar.enable_steady_tick(Duration::from_millis(200));
             bar
         });
+        let ticker = match (&bar, !terminal && shown) {
+            (Some(bar), _) => Some(Ticker::new(Some(bar.clone()), Duration::from_secs(1))),
+            (None, true) => Some(Ticker::new(None, interval.max(Duration::from_millis(50)))),
+            (None, false) => None,
+        };
         Self {
             bar,
             plain: !terminal && shown,
@@ -48,6 +113,7 @@ impl Reporter {
             outer: Cell::new((0, 0)),
             last: Cell::new(Instant::now()),
             interval,
+            ticker,
         }
     }
 
@@ -56,7 +122,18 @@ impl Reporter {
         if self.bar.is_none() && !self.plain {
             return;
         }
+        let factorising = match event {
+            Progress::Factorising { unknowns } => {
+                let (step, _) = self.outer.get();
+                Some(format!("outer step {step}: factorising B̌ ({unknowns} unknowns)"))
+            }
+            _ => None,
+        };
+        if let Some(ticker) = &self.ticker {
+            ticker.set(factorising.clone());
+        }
         let message = match event {
+            Progress::Factorising { .. } => factorising.unwrap_or_default(),
             Progress::Outer { step, max } => {
                 self.outer.set((step, max));
                 format!("outer step {step} (of at most {max})")

@@ -137,6 +137,7 @@ fn progress_shows_on_long_runs_and_quiet_silences_it() {
     assert!(o.status.success(), "{}", text(&o));
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(stderr.contains("progress: outer step 1 (of at most"), "{stderr}");
+    assert!(stderr.contains("progress: outer step 1: factorising B̌ ("), "{stderr}");
     assert!(stderr.contains("Uzawa iteration 1: criterion"), "{stderr}");
     assert!(stderr.contains("(stops below 1.0e-4)"), "{stderr}");
     let mut quiet: Vec<&str> = base.iter().chain(&coarse).copied().collect();
@@ -151,6 +152,14 @@ fn progress_shows_on_long_runs_and_quiet_silences_it() {
     let o = piezocontact(&newton);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success() && stderr.contains("Newton step 1: criterion"), "{stderr}");
+    // A 3D factorisation sends no event while it runs: a line every interval says how long.
+    let out3 = dir.join("out3");
+    let long = ["run", "cases/indentation-3d.toml", "--progress-interval", "0.05", "--out"];
+    let o = piezocontact(&[&long[..], &[out3.to_str().unwrap()]].concat());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    let ticks = stderr.lines().filter(|l| l.contains("factorising B̌") && l.ends_with(" s so far"));
+    assert!(ticks.count() >= 1, "no line while the factorisation ran: {stderr}");
 }
 
 /// The newer keys — [foundation], solver.method, solver.tol, solver.max_condensed,

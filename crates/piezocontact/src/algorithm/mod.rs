@@ -193,6 +193,12 @@ pub enum Progress {
         /// solver.max_outer.
         max: usize,
     },
+    /// A numeric factorisation of B̌ starts (it may take minutes in 3D; the next event says
+    /// it ended).
+    Factorising {
+        /// The order of the matrix (the free unknowns).
+        unknowns: usize,
+    },
     /// An iteration of the inner method ended.
     Inner {
         /// The iteration (from 1) within the outer step.
@@ -351,6 +357,9 @@ impl ContactSolver {
             }
             progress(Progress::Outer { step: n, max: self.max_outer });
             let (linearisation, blocks) = (&self.linearisation, self.method.blocks());
+            if self.changed {
+                progress(Progress::Factorising { unknowns: self.system.dofs().n_free() });
+            }
             if self.changed
                 && let Err(e) = self.system.factorize_linearised(problem, linearisation, blocks)
             {
