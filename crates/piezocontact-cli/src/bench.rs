@@ -421,15 +421,9 @@ pub fn measure_one(spec: &str) -> Result<()> {
     Ok(())
 }
 
-/// Peak resident memory of this process [MB] (VmHWM of /proc/self/status; 0 elsewhere).
+/// Peak resident memory of this process [MiB] (0 where the system does not say).
 pub(crate) fn peak_mb() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|t| {
-            let line = t.lines().find(|l| l.starts_with("VmHWM:"))?.to_string();
-            line.split_whitespace().nth(1)?.parse::<f64>().ok()
-        })
-        .map_or(0.0, |kib| kib / 1024.0)
+    piezocontact::limits::peak_resident_bytes().map_or(0.0, |b| b / 1024.0 / 1024.0)
 }
 
 /// `bench --path`: the loading path of `case_file` (`--mesh` replacing its mesh) solved as

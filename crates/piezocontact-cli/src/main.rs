@@ -494,6 +494,7 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
         dofs.n_free_u(),
         dofs.n_free() - dofs.n_free_u()
     );
+    print_factor_prediction(case.linear_solver()?, &problem, &dofs)?;
     if let Some(model) = &model {
         say!("problem: {:?}, foundation: {:?}", case.problem_kind(), model.foundation);
     }
@@ -510,6 +511,31 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
     say!("contact and solver settings (in the case's units):");
     for (key, value) in case.contact_settings()? {
         say!("  {key:<22} = {value}");
+    }
+    Ok(())
+}
+
+/// The symbolic analysis of the case's matrix and what it predicts: the factor's entries and
+/// the bytes of a numeric factorisation against the memory available (a factor that does not
+/// fit is refused here, as by `run`, with both numbers).
+fn print_factor_prediction(
+    solver: Box<dyn piezocontact::linalg::LinearSolver>,
+    problem: &piezocontact::problem::Problem,
+    dofs: &DofMap,
+) -> Result<()> {
+    use piezocontact::limits::{available_memory, bytes_text};
+    let system = piezocontact::solver::CoupledSystem::new(problem, dofs.clone(), &[], solver)?;
+    let stats = system.solver_stats();
+    if stats.factor_bytes > 0.0 {
+        say!(
+            "factor: {} entries ({} ordering), about {} for the factorisation; {} available",
+            stats.factor_len,
+            stats.ordering,
+            bytes_text(stats.factor_bytes),
+            bytes_text(available_memory())
+        );
+    } else {
+        say!("factor: predicted by the backend's analysis at the first factorisation");
     }
     Ok(())
 }

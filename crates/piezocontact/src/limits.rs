@@ -18,6 +18,15 @@ pub fn available_memory() -> f64 {
     cap.filter(|c| *c > 0.0).map_or(machine, |c| c.min(machine))
 }
 
+/// This process's peak resident memory so far [bytes]: VmHWM of /proc/self/status (Linux);
+/// `None` elsewhere.
+pub fn peak_resident_bytes() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024.0)
+}
+
 /// Bytes in the unit that reads best: "12.3 GiB", "456.7 MiB".
 pub fn bytes_text(bytes: f64) -> String {
     let gib = 2f64.powi(30);

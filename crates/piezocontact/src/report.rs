@@ -224,7 +224,18 @@ pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &
             "slip_measure": slip,
         },
         "timings_seconds": timings(&t),
+        "memory": memory(&t),
         "non_finite": non_finite(solution, rows),
+    })
+}
+
+/// The `memory` object of summary.json [bytes]: the factorisation's size as its symbolic
+/// analysis predicted it, and this process's measured peak resident memory (null where the
+/// system does not say).
+pub fn memory(t: &Timings) -> Value {
+    json!({
+        "factor_predicted_bytes": t.factor_bytes,
+        "peak_resident_bytes": crate::limits::peak_resident_bytes(),
     })
 }
 

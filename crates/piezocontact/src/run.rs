@@ -257,6 +257,7 @@ impl StaticRun {
                     "relative_residual": solution.relative_residual,
                 },
                 "timings_seconds": report::timings(&t),
+                "memory": report::memory(&t),
             }),
         );
         summary["timings_seconds"]["total"] = json!(self.seconds);

@@ -28,6 +28,9 @@ pub struct Timings {
     pub solve: f64,
     /// Number of solves.
     pub solve_count: usize,
+    /// The bytes the last symbolic analysis predicted for a numeric factorisation (0 before
+    /// one, or from a backend that predicts none).
+    pub factor_bytes: f64,
 }
 
 impl Timings {
@@ -42,6 +45,7 @@ impl Timings {
             numeric_count: s.numeric_count,
             solve: s.solve_seconds,
             solve_count: s.solve_count,
+            factor_bytes: s.factor_bytes,
         }
     }
 }

@@ -177,6 +177,12 @@ fn the_3d_indentation_example_writes_3d_outputs() {
     for file in ["contact_map.png", "contact_map.svg"] {
         assert!(std::fs::metadata(out.join(file)).unwrap().len() > 1000, "{file}");
     }
+    // The factor the symbolic analysis predicted was held at the measured peak.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let predicted = summary["memory"]["factor_predicted_bytes"].as_f64().unwrap();
+    let peak = summary["memory"]["peak_resident_bytes"].as_f64().unwrap();
+    assert!(predicted > 1e6 && peak >= predicted, "predicted {predicted}, peak {peak}");
 }
 
 #[test]
@@ -259,6 +265,8 @@ fn check_prints_the_mesh_and_dof_summary() {
         "{t}"
     );
     assert!(t.contains("dofs: 117 in all"), "{t}");
+    assert!(t.contains("factor: ") && t.contains("for the factorisation;"), "{t}");
+    assert!(t.contains(" available"), "{t}");
     assert!(t.contains("warning: (h1)(b) holds only for ‖ε^D‖² < e·t0 = 4.8929e0"), "{t}");
     assert!(t.contains("note: p_ν is bounded by M_p = 1"), "{t}");
 }
