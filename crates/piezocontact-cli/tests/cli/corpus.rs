@@ -29,7 +29,15 @@ fn case_reader_corpus() {
     }
     // The valid seeds build their problems, 3D meshes from files among them; the invalid
     // ones do not.
-    for (name, dim) in [("indentation-3d.toml", 3), ("cube-pv1.toml", 3), ("paper-7.1.toml", 2)] {
+    for (name, dim) in [
+        ("indentation-3d.toml", 3),
+        ("cube-pv1.toml", 3),
+        ("paper-7.1.toml", 2),
+        ("foundation-cone.toml", 3),
+        ("foundation-punch.toml", 3),
+        ("foundation-surface-stl.toml", 3),
+        ("loading-path.toml", 3),
+    ] {
         assert!(built.contains(&(name.to_string(), dim)), "{name} was not built: {built:?}");
     }
     for name in [
@@ -37,6 +45,10 @@ fn case_reader_corpus() {
         "mesh-path-traversal.toml",
         "phi0-1e308.toml",
         "max-condensed-zero.toml",
+        "foundation-surface-path.toml",
+        "foundation-cone-half-angle-90.toml",
+        "loading-zero-steps.toml",
+        "friction-incremental-uzawa.toml",
     ] {
         assert!(!built.iter().any(|(n, _)| n == name), "{name} was built");
     }

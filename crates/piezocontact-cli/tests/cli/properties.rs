@@ -108,6 +108,47 @@ fn overrides_3d() -> impl Strategy<Value = Vec<String>> {
         )
 }
 
+/// The three indenters of the 3D foundations — ball, cone, flat punch — pressed into the
+/// block of cases/indentation-3d.toml (coarse mesh) by a random depth, with random size,
+/// friction, problem and method. The base case's foundation keeps only its kind, so that each
+/// kind's keys come from here.
+fn indenters_3d() -> impl Strategy<Value = Vec<String>> {
+    (0usize..3, 0.0f64..0.04, 0.1f64..1.0, 0.0f64..1.0, prop::bool::ANY, prop::bool::ANY).prop_map(
+        |(kind, depth, size, mu, pv1, uzawa)| {
+            let mut o = vec![
+                "mesh.file=\"../meshes/indent-3d-h0.05.msh\"".to_string(),
+                format!("friction.mu={mu}"),
+            ];
+            o.extend(match kind {
+                0 => vec![
+                    "foundation.kind=\"sphere\"".to_string(),
+                    format!("foundation.center=[0.0, 0.0, {}]", size - depth),
+                    format!("foundation.radius={size}"),
+                ],
+                1 => vec![
+                    "foundation.kind=\"cone\"".to_string(),
+                    format!("foundation.apex=[0.0, 0.0, {}]", -depth),
+                    "foundation.axis=[0.0, 0.0, 1.0]".to_string(),
+                    format!("foundation.half_angle={}", 45.0 + 40.0 * size),
+                ],
+                _ => vec![
+                    "foundation.kind=\"punch\"".to_string(),
+                    format!("foundation.center=[0.0, 0.0, {}]", -depth / 4.0),
+                    "foundation.axis=[0.0, 0.0, 1.0]".to_string(),
+                    format!("foundation.radius={}", 0.25 * size),
+                ],
+            });
+            if pv1 {
+                o.push("contact.problem=\"PV1\"".into());
+            }
+            if uzawa {
+                o.extend(["solver.method=\"uzawa\"".into(), "solver.max_inner=2000".into()]);
+            }
+            o
+        },
+    )
+}
+
 /// How a random case ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Outcome {
@@ -217,6 +258,19 @@ fn valid_cases_solve_or_fail_cleanly() {
     let tally = run_random("cases/paper-7.2.toml", PAPER_72, 32, overrides());
     let converged = count(&tally, Outcome::Converged);
     assert!(converged >= MIN_2D, "only {converged} of 32 random cases converged: {tally:?}");
+}
+
+/// 12 random indentations by a ball, a cone or a punch, Uzawa and Newton.
+#[test]
+fn valid_3d_indenters_solve_or_fail_cleanly() {
+    let dropped =
+        |l: &&str| l.starts_with("center = [0.0, 0.0, 0.98]") || l.starts_with("radius = ");
+    let base: String =
+        INDENTATION.lines().filter(|l| !dropped(l)).map(|l| format!("{l}\n")).collect();
+    assert_eq!(base.lines().count() + 2, INDENTATION.lines().count(), "the base case changed");
+    let tally = run_random("cases/indentation-3d.toml", &base, 12, indenters_3d());
+    let converged = count(&tally, Outcome::Converged);
+    assert!(converged >= MIN_3D, "only {converged} of 12 random indenters converged: {tally:?}");
 }
 
 /// 12 random 3D indentations (sphere foundation), Uzawa and Newton.

@@ -475,10 +475,100 @@ pub struct MapLabels<'a> {
     pub stress: &'a str,
 }
 
-/// The contact face of a 3D run seen along its mean normal: the contact pressure −σ_ν (left)
-/// and the status of each Γ3 node (right: separated, stick or contact, slip).
+/// The contact face of a 3D run seen along its mean normal: the contact pressure −σ_ν as a
+/// field over the Γ3 triangles (left, with its colour bar in the case's units) and the
+/// status of each Γ3 node (right: separated, stick or contact, slip).
 pub fn contact_map(run: &ContactRun, labels: &MapLabels, stem: &Path) -> Result<()> {
-    both_backends!(stem, (1300, 620), |root: &DrawingArea<_, Shift>| draw_map(root, run, labels))
+    both_backends!(stem, (1300, 640), |root: &DrawingArea<_, Shift>| draw_map(root, run, labels))
+}
+
+/// A number as people read it: three significant digits, plain decimals between 1e−3 and
+/// 1e5 ("11.3", "0.0452"), else a power of ten ("1.13e-5").
+pub fn readable(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let exponent = v.abs().log10().floor() as i32;
+    if (-3..5).contains(&exponent) {
+        let decimals = (2 - exponent).max(0) as usize;
+        format!("{v:.decimals$}")
+    } else {
+        format!("{v:.2e}")
+    }
+}
+
+/// `text` cut to at most `width` pixels of a font of `size` pixels (about half the size per
+/// character), with an ellipsis where it was cut.
+fn fitted(text: &str, width: u32, size: u32) -> String {
+    let room = (2 * width / size.max(1)) as usize;
+    if text.chars().count() <= room {
+        return text.to_string();
+    }
+    let kept: String = text.chars().take(room.saturating_sub(1)).collect();
+    format!("{kept}…")
+}
+
+/// The Γ3 nodes projected on the plane of the mean normal's tangents.
+fn map_points(run: &ContactRun) -> Vec<(f64, f64)> {
+    let surface = &run.solution.surface;
+    let mut mean = [0.0; 3];
+    surface.normal.iter().for_each(|n| (0..3).for_each(|k| mean[k] += n[k]));
+    let norm = mean.iter().map(|v| v * v).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
+    let frame = crate::contact::frame(mean.map(|v| v / norm), 3);
+    let along = |x: [f64; 3], t: [f64; 3]| (0..3).map(|k| x[k] * t[k]).sum::<f64>();
+    run.rows.iter().map(|r| (along(r.x, frame[1]), along(r.x, frame[2]))).collect()
+}
+
+/// The Γ3 triangles as triples of Γ3 node indices (the facets of the contact parts).
+fn map_triangles(run: &ContactRun) -> Vec<[usize; 3]> {
+    let nodes = &run.solution.surface.nodes;
+    let index: std::collections::HashMap<usize, usize> =
+        nodes.iter().enumerate().map(|(i, &n)| (n, i)).collect();
+    let mesh = &run.problem.mesh;
+    run.problem
+        .boundary
+        .contact
+        .iter()
+        .flat_map(|&p| mesh.part_facets(p))
+        .filter_map(|f| Some([*index.get(&f[0])?, *index.get(&f[1])?, *index.get(f.get(2)?)?]))
+        .collect()
+}
+
+/// Fills each triangle with `value` interpolated linearly: the triangle cut into
+/// `SUBDIVISIONS`² small ones, each filled with the colour at its centre.
+fn fill_triangles<DB: DrawingBackend>(
+    chart: &mut ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    (points, values): (&[(f64, f64)], &[f64]),
+    triangles: &[[usize; 3]],
+) -> Result<()> {
+    const SUBDIVISIONS: usize = 4;
+    let k = SUBDIVISIONS as f64;
+    let mut polygons = Vec::new();
+    for t in triangles {
+        let at = |i: f64, j: f64| {
+            let (a, b, c) = (points[t[0]], points[t[1]], points[t[2]]);
+            let (wb, wc) = (i / k, j / k);
+            let wa = 1.0 - wb - wc;
+            let p = (wa * a.0 + wb * b.0 + wc * c.0, wa * a.1 + wb * b.1 + wc * c.1);
+            (p, wa * values[t[0]] + wb * values[t[1]] + wc * values[t[2]])
+        };
+        for i in 0..SUBDIVISIONS {
+            for j in 0..SUBDIVISIONS - i {
+                let (i, j) = (i as f64, j as f64);
+                let mut small = vec![[at(i, j), at(i + 1.0, j), at(i, j + 1.0)]];
+                if i + j + 1.0 < k {
+                    small.push([at(i + 1.0, j), at(i + 1.0, j + 1.0), at(i, j + 1.0)]);
+                }
+                for corners in small {
+                    let value = corners.iter().map(|c| c.1).sum::<f64>() / 3.0;
+                    let color = colormap(value).filled();
+                    polygons.push(Polygon::new(corners.map(|c| c.0).to_vec(), color));
+                }
+            }
+        }
+    }
+    chart.draw_series(polygons).map_err(err)?;
+    Ok(())
 }
 
 fn draw_map<DB: DrawingBackend>(
@@ -487,59 +577,88 @@ fn draw_map<DB: DrawingBackend>(
     labels: &MapLabels,
 ) -> Result<()> {
     root.fill(&WHITE).map_err(err)?;
-    let surface = &run.solution.surface;
-    // In-plane axes: the tangents of the mean normal's frame.
-    let mut mean = [0.0; 3];
-    surface.normal.iter().for_each(|n| (0..3).for_each(|k| mean[k] += n[k]));
-    let norm = mean.iter().map(|v| v * v).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
-    let frame = crate::contact::frame(mean.map(|v| v / norm), 3);
-    let axes = [frame[1], frame[2]];
-    let points: Vec<(f64, f64)> = run
-        .rows
-        .iter()
-        .map(|r| {
-            let along = |t: [f64; 3]| (0..3).map(|k| r.x[k] * t[k]).sum::<f64>();
-            (along(axes[0]), along(axes[1]))
-        })
-        .collect();
+    let width = root.dim_in_pixel().0;
+    let title = root.titled(&fitted(labels.title, width - 40, 20), (FONT, 20)).map_err(err)?;
+    let points = map_points(run);
     let (x0, x1) = range(points.iter().map(|p| p.0), 0.05);
     let (y0, y1) = range(points.iter().map(|p| p.1), 0.05);
     let peak = run.rows.iter().map(|r| -r.sigma_nu).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
-    let (left, right) = root.split_horizontally(650);
-    let panels = [
-        (
-            left,
-            format!("{}: contact pressure −σ_ν (0 to {peak:.3e} {})", labels.title, labels.stress),
-        ),
-        (right, "status: separated (grey), stick or contact (blue), slip (red)".to_string()),
-    ];
-    for (k, (area, caption)) in panels.into_iter().enumerate() {
-        let mut chart = ChartBuilder::on(&area)
+    let (field, right) = title.split_horizontally(560);
+    let (bar, status) = right.split_horizontally(130);
+    let chart = |area: &DrawingArea<DB, Shift>, caption: &str| {
+        ChartBuilder::on(area)
             .caption(caption, (FONT, 16))
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(60)
             .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(err)?;
+            .map_err(err)
+    };
+    let axes = |chart: &mut ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>| {
         chart
             .configure_mesh()
             .x_desc(format!("τ1 [{}]", labels.length))
             .y_desc(format!("τ2 [{}]", labels.length))
+            .x_label_formatter(&|v| tick(*v, x0, x1))
+            .y_label_formatter(&|v| tick(*v, y0, y1))
             .label_style((FONT, 13))
             .draw()
-            .map_err(err)?;
-        let color = |r: &crate::report::Row| match (k, r.status) {
-            (0, _) => colormap(-r.sigma_nu / peak),
-            (_, NodeStatus::Separated) => RGBColor(190, 190, 190),
-            (_, NodeStatus::Slip) => PALETTE[2],
-            _ => PALETTE[1],
-        };
-        chart
-            .draw_series(
-                points.iter().zip(&run.rows).map(|(&p, r)| Circle::new(p, 3, color(r).filled())),
-            )
-            .map_err(err)?;
-    }
+            .map_err(err)
+    };
+    let mut left = chart(
+        &field,
+        &format!("contact pressure −σ_ν, up to {} {}", readable(peak), labels.stress),
+    )?;
+    axes(&mut left)?;
+    let values: Vec<f64> = run.rows.iter().map(|r| (-r.sigma_nu / peak).clamp(0.0, 1.0)).collect();
+    fill_triangles(&mut left, (&points, &values), &map_triangles(run))?;
+    colour_bar(&bar, peak, labels.stress)?;
+    let mut right =
+        chart(&status, "status: separated (grey), stick or contact (blue), slip (red)")?;
+    axes(&mut right)?;
+    let color = |r: &crate::report::Row| match r.status {
+        NodeStatus::Separated => RGBColor(190, 190, 190),
+        NodeStatus::Slip => PALETTE[2],
+        _ => PALETTE[1],
+    };
+    right
+        .draw_series(
+            points.iter().zip(&run.rows).map(|(&p, r)| Circle::new(p, 3, color(r).filled())),
+        )
+        .map_err(err)?;
+    Ok(())
+}
+
+/// The colour bar of the pressure: 0 to `peak` in the case's `unit`.
+fn colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    peak: f64,
+    unit: &str,
+) -> Result<()> {
+    let mut chart = ChartBuilder::on(area)
+        .margin_top(40)
+        .margin_bottom(52)
+        .margin_right(60)
+        .y_label_area_size(0)
+        .right_y_label_area_size(60)
+        .build_cartesian_2d(0.0..1.0, 0.0..peak)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .disable_y_mesh()
+        .disable_x_axis()
+        .y_desc(format!("−σ_ν [{unit}]"))
+        .y_label_formatter(&|v| tick(*v, 0.0, peak))
+        .label_style((FONT, 13))
+        .draw()
+        .map_err(err)?;
+    const STEPS: usize = 64;
+    let band = |k: usize| {
+        let (lo, hi) = (k as f64 / STEPS as f64, (k + 1) as f64 / STEPS as f64);
+        Rectangle::new([(0.0, lo * peak), (1.0, hi * peak)], colormap((lo + hi) / 2.0).filled())
+    };
+    chart.draw_series((0..STEPS).map(band)).map_err(err)?;
     Ok(())
 }
 
@@ -566,6 +685,23 @@ mod tests {
         }
         let dark = pixels.chunks(3).filter(|p| p.iter().all(|&c| c < 100)).count();
         assert!(dark > 300, "only {dark} dark pixels: the text did not render");
+    }
+
+    #[test]
+    fn numbers_and_titles_read_at_a_glance() {
+        assert_eq!(readable(11.3), "11.3");
+        assert_eq!(readable(11.2999), "11.3");
+        assert_eq!(readable(0.045213), "0.0452");
+        assert_eq!(readable(2.0), "2.00");
+        assert_eq!(readable(-350.0), "-350");
+        assert_eq!(readable(1.13e-5), "1.13e-5");
+        assert_eq!(readable(123456.0), "1.23e5");
+        assert_eq!(readable(0.0), "0");
+        let long = "Indentation of a PZT-5A block by a rigid ball, with a very long title indeed";
+        assert_eq!(fitted(long, 2000, 20), long);
+        let cut = fitted(long, 400, 20);
+        assert_eq!(cut.chars().count(), 40);
+        assert!(cut.ends_with('…') && long.starts_with(cut.trim_end_matches('…')));
     }
 
     #[test]
