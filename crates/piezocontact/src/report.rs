@@ -230,12 +230,12 @@ pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &
 }
 
 /// The `memory` object of summary.json [bytes]: the factorisation's size as its symbolic
-/// analysis predicted it, and this process's measured peak resident memory (null where the
-/// system does not say).
+/// analysis predicted it, and the process's peak resident memory measured when the solve
+/// ended (null where the system does not say).
 pub fn memory(t: &Timings) -> Value {
     json!({
         "factor_predicted_bytes": t.factor_bytes,
-        "peak_resident_bytes": crate::limits::peak_resident_bytes(),
+        "peak_resident_bytes": t.peak_resident_bytes,
     })
 }
 

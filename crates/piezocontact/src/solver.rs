@@ -31,6 +31,9 @@ pub struct Timings {
     /// The bytes the last symbolic analysis predicted for a numeric factorisation (0 before
     /// one, or from a backend that predicts none).
     pub factor_bytes: f64,
+    /// The process's peak resident memory when these timings were taken [bytes] (`None`
+    /// where the system does not say).
+    pub peak_resident_bytes: Option<f64>,
 }
 
 impl Timings {
@@ -46,6 +49,7 @@ impl Timings {
             solve: s.solve_seconds,
             solve_count: s.solve_count,
             factor_bytes: s.factor_bytes,
+            peak_resident_bytes: crate::limits::peak_resident_bytes(),
         }
     }
 }
