@@ -237,8 +237,8 @@ impl CoupledSystem {
         let ax = matrix.mul(&self.assembler.restrict(x));
         let complete = |k: usize| self.assembler.complete_rows().is_none_or(|c| c[k]);
         let (mut r2, mut b2) = (0.0, 0.0);
-        for (_, (a, b)) in ax.iter().zip(&self.rhs).enumerate().filter(|(k, _)| complete(*k)) {
-            (r2, b2) = (r2 + (a - b) * (a - b), b2 + b * b);
+        for k in (0..ax.len()).filter(|&k| complete(k)) {
+            (r2, b2) = (r2 + (ax[k] - self.rhs[k]).powi(2), b2 + self.rhs[k].powi(2));
         }
         if let Some(d) = self.solver.distributed() {
             (r2, b2) = (d.sum(r2)?, d.sum(b2)?);

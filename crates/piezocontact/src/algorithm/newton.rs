@@ -253,6 +253,7 @@ impl Newton {
             let solves = schur.solves_for(system, &condensed.free);
             if !condensed::cheaper_by_solves(solves, &system.solver_stats()) {
                 system.put_last(&condensed.free)?;
+                (step.progress)(Progress::Factorising { unknowns: system.dofs().n_free() });
                 system.factorize_linearised(step.problem, step.linearisation, &[])?;
                 *schur = SchurSource::new(&condensed.free);
             }

@@ -6,8 +6,9 @@
 //! handles are pointers (`MPI_DOUBLE` is the address of `ompi_mpi_double`). The build script
 //! checks the first three in `petscconf.h` and refuses another configuration.
 //!
-//! Errors: PETSc's error handler is set to return the error without printing it; each
-//! non-zero code becomes [`Error::LinearAlgebra`] with PETSc's own text and message.
+//! Errors: PETSc's error handler is ours, [`return_error`], which returns the error without
+//! printing it; each non-zero code becomes [`Error::LinearAlgebra`] with PETSc's own text and
+//! message.
 
 #![allow(unsafe_code)]
 
@@ -43,7 +44,6 @@ type ErrorHandler = unsafe extern "C" fn(
 #[link(name = "mpi")]
 unsafe extern "C" {
     static ompi_mpi_double: Opaque;
-    static ompi_mpi_op_max: Opaque;
     static ompi_mpi_op_sum: Opaque;
     fn MPI_Comm_rank(comm: MpiHandle, rank: *mut c_int) -> c_int;
     fn MPI_Comm_size(comm: MpiHandle, size: *mut c_int) -> c_int;
@@ -75,16 +75,6 @@ unsafe extern "C" {
     fn PetscFinalize() -> Code;
     fn PetscOptionsInsertString(options: Handle, text: *const c_char) -> Code;
     fn PetscPushErrorHandler(handler: ErrorHandler, ctx: *mut c_void) -> Code;
-    fn PetscReturnErrorHandler(
-        comm: MpiHandle,
-        line: c_int,
-        func: *const c_char,
-        file: *const c_char,
-        n: Code,
-        p: c_int,
-        mess: *const c_char,
-        ctx: *mut c_void,
-    ) -> Code;
     fn PetscErrorMessage(code: c_int, text: *mut *const c_char, specific: *mut *mut c_char)
     -> Code;
     fn MatCreateAIJ(
@@ -215,11 +205,26 @@ fn start(options: &str) -> Result<()> {
     check(unsafe { PetscInitializeNoArguments() }, "PetscInitialize")?;
     // SAFETY: PETSc is initialised; the handler is PETSc's own; `finalize` has C linkage.
     unsafe {
-        check(PetscPushErrorHandler(PetscReturnErrorHandler, null_mut()), "error handler")?;
+        check(PetscPushErrorHandler(return_error, null_mut()), "error handler")?;
         check(PetscOptionsInsertString(null_mut(), options.as_ptr()), "options")?;
         atexit(finalize);
     }
     Ok(())
+}
+
+/// PETSc's error handler: returns the error code to the caller, which reads PETSc's message
+/// with `PetscErrorMessage` ([`check`]), instead of printing a traceback.
+unsafe extern "C" fn return_error(
+    _comm: MpiHandle,
+    _line: c_int,
+    _func: *const c_char,
+    _file: *const c_char,
+    code: Code,
+    _kind: c_int,
+    _message: *const c_char,
+    _ctx: *mut c_void,
+) -> Code {
+    code
 }
 
 extern "C" fn finalize() {
@@ -234,7 +239,7 @@ fn world() -> MpiHandle {
 }
 
 /// Whether PETSc has been started in this process.
-pub fn is_initialized() -> bool {
+fn is_initialized() -> bool {
     matches!(SESSION.get(), Some(Ok(())))
 }
 
@@ -263,18 +268,9 @@ pub fn broadcast(values: &mut [f64]) -> Result<()> {
     check_mpi(code, "broadcast")
 }
 
-/// The largest of `value` over the processes.
-pub fn max_over_processes(value: f64) -> Result<f64> {
-    reduce(value, (&raw const ompi_mpi_op_max) as MpiHandle)
-}
-
 /// The sum of `value` over the processes.
 pub fn sum_over_processes(value: f64) -> Result<f64> {
-    reduce(value, (&raw const ompi_mpi_op_sum) as MpiHandle)
-}
-
-fn reduce(value: f64, op: MpiHandle) -> Result<f64> {
-    let mut out = value;
+    let (op, mut out) = ((&raw const ompi_mpi_op_sum) as MpiHandle, value);
     // SAFETY: one double in and out on every process.
     let code = unsafe {
         MPI_Allreduce(
@@ -407,9 +403,10 @@ pub struct Factor(Handle);
 unsafe impl Send for Factor {}
 
 impl Factor {
-    /// MUMPS's symbolic analysis of `matrix` with the unknowns `schur` (given on rank 0
-    /// only; empty elsewhere and for none) kept for the Schur complement.
-    pub fn analyse(matrix: &Matrix, schur: &[PetscInt]) -> Result<Self> {
+    /// MUMPS's symbolic analysis of `matrix`, with a Schur set when `schur` is given (on
+    /// every process: PETSc's calls are collective): its unknowns on rank 0, an empty slice
+    /// on the others.
+    pub fn analyse(matrix: &Matrix, schur: Option<&[PetscInt]>) -> Result<Self> {
         let mut factor = null_mut();
         // SAFETY: a valid assembled matrix; the IS copies the indices.
         unsafe {
@@ -419,7 +416,7 @@ impl Factor {
                 "MatGetFactor (is PETSc built with MUMPS?)",
             )?;
             let this = Self(factor);
-            if schur_total(schur)? > 0 {
+            if let Some(schur) = schur {
                 let mut is = null_mut();
                 let n = schur.len() as PetscInt;
                 let code = ISCreateGeneral(world(), n, schur.as_ptr(), PETSC_COPY_VALUES, &mut is);
@@ -522,11 +519,6 @@ impl Drop for Factor {
         // SAFETY: made by MatGetFactor, destroyed once.
         unsafe { MatDestroy(&mut self.0) };
     }
-}
-
-/// The number of Schur unknowns over all processes.
-fn schur_total(schur: &[PetscInt]) -> Result<usize> {
-    Ok(max_over_processes(schur.len() as f64)? as usize)
 }
 
 /// A distributed vector.

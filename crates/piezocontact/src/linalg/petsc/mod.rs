@@ -22,7 +22,7 @@
 
 mod ffi;
 
-pub use ffi::{abort, gather, initialize, is_initialized, rank_and_size, sum_over_processes};
+pub use ffi::{abort, gather, initialize, rank_and_size, sum_over_processes};
 
 use super::SymmetricMatrix;
 use super::{DenseMatrix, Distributed, LinearSolver, SchurComplement, SolverStats};
@@ -30,23 +30,6 @@ use super::{SymmetricPattern, check_length};
 use crate::error::{Error, Result};
 use ffi::{Factor, Gather, Matrix, PetscInt, Vector};
 use std::time::Instant;
-
-/// The process of each mesh node without a partition from [`Distributed::owned_nodes`] (a
-/// backend analysed directly): contiguous runs of nodes holding about n/N unknowns each
-/// (`weights[a]`: the free unknowns of node a). Node a goes to process
-/// ⌊N · (unknowns of the nodes before a) / n⌋, which depends on the weights up to a only.
-fn process_of(weights: &[usize], size: usize) -> Vec<usize> {
-    let total = weights.iter().sum::<usize>().max(1);
-    let mut before = 0;
-    weights
-        .iter()
-        .map(|w| {
-            let process = (before * size / total).min(size - 1);
-            before += w;
-            process
-        })
-        .collect()
-}
 
 /// The rows of the matrix this process owns and where their entries come from. PETSc numbers
 /// the unknowns process by process and node by node (a node's u and ϕ together), so that each
@@ -69,24 +52,25 @@ struct Rows {
 
 impl Rows {
     /// PETSc's numbering of the unknowns of `pattern` (whose groups are the mesh nodes) with
-    /// `partition` (the process of each node; `None`: contiguous runs of nodes,
-    /// [`process_of`]), this process's block of it, and the full symmetric rows of that block.
+    /// `partition` (the process of each node, from [`Distributed::owned_nodes`]; needed on
+    /// more than one process), this process's block of it, and the full symmetric rows of
+    /// that block.
     fn new(pattern: &SymmetricPattern, partition: Option<&[usize]>) -> Result<Self> {
         let n = pattern.n();
         ffi::index(n)?;
         let (rank, size) = rank_and_size();
-        let nodes = (0..n).map(|k| pattern.group(k) + 1).max().unwrap_or(0);
-        let mut weights = vec![0; nodes];
-        (0..n).for_each(|k| weights[pattern.group(k)] += 1);
-        let process = match partition {
-            Some(p) if p.len() >= nodes => p.to_vec(),
-            _ => process_of(&weights, size),
-        };
+        let process = |k: usize| partition.map_or(Some(0), |p| p.get(pattern.group(k)).copied());
+        if size > 1 && (0..n).any(|k| process(k).is_none()) {
+            return Err(Error::LinearAlgebra(
+                "PETSc backend: on several processes, owned_nodes must partition the mesh before the analysis".into(),
+            ));
+        }
+        let process = |k: usize| process(k).unwrap_or(0);
         let mut order: Vec<usize> = (0..n).collect();
-        order.sort_by_key(|&k| (process[pattern.group(k)], pattern.group(k), k));
+        order.sort_by_key(|&k| (process(k), pattern.group(k), k));
         let mut petsc = vec![0; n];
         order.iter().enumerate().for_each(|(p, &k)| petsc[k] = p);
-        let of = |p: usize| process[pattern.group(order[p])];
+        let of = |p: usize| process(order[p]);
         let start = (0..n).find(|&p| of(p) >= rank).unwrap_or(n);
         let end = (start..n).find(|&p| of(p) > rank).unwrap_or(n);
         let mut columns = vec![Vec::new(); end - start];
@@ -262,7 +246,7 @@ impl PetscSolver {
                 }
                 _ => Vec::new(),
             };
-            let factor = Factor::analyse(&d.matrix, &schur)?;
+            let factor = Factor::analyse(&d.matrix, (!self.last.is_empty()).then_some(&schur[..]))?;
             // INFOG(17): the memory MUMPS's analysis estimates for the factorisation, summed
             // over the processes [MB].
             self.stats.factor_bytes = f64::from(factor.infog(17)?) * 1e6;
