@@ -3,6 +3,7 @@
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
+use piezocontact::algorithm::ContactSolver;
 use piezocontact::case::{Built, Case};
 use piezocontact::dofs::DofMap;
 use piezocontact::mesh::gmsh;
@@ -438,7 +439,7 @@ fn write_path(path: &PathRun, case: &Case, out: &Path) -> Result<Outcome> {
 
 fn check(path: &Path, set: &[String]) -> Result<()> {
     let case = Case::load(path, set)?;
-    let Built { problem, model, loading, .. } = case.build()?;
+    let Built { problem, model, loading, settings, .. } = case.build()?;
     let dofs = piezocontact::dofs::DofMap::new(&problem)?;
     let (mesh, units) = (&problem.mesh, &case.file.units);
     let (lo, hi) = mesh.bounding_box();
@@ -494,7 +495,11 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
         dofs.n_free_u(),
         dofs.n_free() - dofs.n_free_u()
     );
-    print_factor_prediction(case.linear_solver()?, &problem, &dofs)?;
+    print_memory_prediction(
+        case.linear_solver()?,
+        &problem,
+        model.as_ref().map(|m| (m, &settings)),
+    )?;
     if let Some(model) = &model {
         say!("problem: {:?}, foundation: {:?}", case.problem_kind(), model.foundation);
     }
@@ -515,17 +520,26 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
     Ok(())
 }
 
-/// The symbolic analysis of the case's matrix and what it predicts: the factor's entries and
-/// the bytes of a numeric factorisation against the memory available (a factor that does not
-/// fit is refused here, as by `run`, with both numbers).
-fn print_factor_prediction(
+/// The symbolic analysis a run makes first (with a contact model, the exact solver's
+/// condensed Γ3 unknowns ordered last) and what it predicts: the factor's entries and the
+/// bytes of a numeric factorisation, the exact solver's dense matrices, against the memory
+/// available (a run that does not fit is refused here, as by `run`, with both numbers).
+fn print_memory_prediction(
     solver: Box<dyn piezocontact::linalg::LinearSolver>,
     problem: &piezocontact::problem::Problem,
-    dofs: &DofMap,
+    contact: Option<(&piezocontact::contact::ContactModel, &piezocontact::algorithm::Settings)>,
 ) -> Result<()> {
     use piezocontact::limits::{available_memory, bytes_text};
-    let system = piezocontact::solver::CoupledSystem::new(problem, dofs.clone(), &[], solver)?;
-    let stats = system.solver_stats();
+    let (stats, dense_bytes, nodes) = match contact {
+        Some((model, settings)) => {
+            ContactSolver::new(problem, model, settings, solver)?.predicted_memory()
+        }
+        None => {
+            let dofs = DofMap::new(problem)?;
+            let system = piezocontact::solver::CoupledSystem::new(problem, dofs, &[], solver)?;
+            (system.solver_stats(), 0.0, 0)
+        }
+    };
     if stats.factor_bytes > 0.0 {
         say!(
             "factor: {} entries ({} ordering), about {} for the factorisation; {} available",
@@ -536,6 +550,12 @@ fn print_factor_prediction(
         );
     } else {
         say!("factor: predicted by the backend's analysis at the first factorisation");
+    }
+    if nodes > 0 {
+        say!(
+            "dense: {} for the exact solver's condensed problem ({nodes} Γ3 nodes at first; more if the contact zone grows)",
+            bytes_text(dense_bytes)
+        );
     }
     Ok(())
 }

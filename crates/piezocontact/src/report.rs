@@ -230,11 +230,13 @@ pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &
 }
 
 /// The `memory` object of summary.json [bytes]: the factorisation's size as its symbolic
-/// analysis predicted it, and the process's peak resident memory measured when the solve
-/// ended (null where the system does not say).
+/// analysis predicted it, the exact solver's dense condensed matrices (0 without), and the
+/// process's peak resident memory measured when the solve ended (null where the system does
+/// not say).
 pub fn memory(t: &Timings) -> Value {
     json!({
         "factor_predicted_bytes": t.factor_bytes,
+        "dense_predicted_bytes": t.dense_bytes,
         "peak_resident_bytes": t.peak_resident_bytes,
     })
 }

@@ -31,6 +31,8 @@ pub struct Timings {
     /// The bytes the last symbolic analysis predicted for a numeric factorisation (0 before
     /// one, or from a backend that predicts none).
     pub factor_bytes: f64,
+    /// The bytes of the exact solver's dense condensed matrices at the end (0 without).
+    pub dense_bytes: f64,
     /// The process's peak resident memory when these timings were taken [bytes] (`None`
     /// where the system does not say).
     pub peak_resident_bytes: Option<f64>,
@@ -49,6 +51,7 @@ impl Timings {
             solve: s.solve_seconds,
             solve_count: s.solve_count,
             factor_bytes: s.factor_bytes,
+            dense_bytes: 0.0,
             peak_resident_bytes: crate::limits::peak_resident_bytes(),
         }
     }

@@ -212,6 +212,31 @@ fn a_factor_too_large_for_the_memory_is_refused_before_it_is_computed() {
     assert!(!out.join("solution.vtu").exists() && !out.join("contact.csv").exists());
 }
 
+/// `check` predicts the exact solver's dense matrices beside the factor, from the condensed
+/// set a run starts with: Example 7.2 (PV2) on a 768 × 4 bar condenses both displacement
+/// components of its 513 Γ3 nodes (the flat foundation reaches all), m = 1026, so 7 m × m
+/// matrices of 8 bytes = 56.2 MiB. A memory limit above the factor but below those matrices
+/// is refused by `check` as by `run`, with both numbers.
+#[test]
+fn check_predicts_the_exact_solver_s_dense_matrices_and_refuses_them_when_too_large() {
+    let args = ["check", "cases/paper-7.2.toml", "--set", "solver.method=\"newton\""];
+    let mesh = ["--set", "mesh.nx=768", "--set", "mesh.ny=4"];
+    let fits = piezocontact(&[&args[..], &mesh[..]].concat());
+    let t = text(&fits);
+    assert!(fits.status.success(), "{t}");
+    let dense = 7.0 * 8.0 * (2.0f64 * 513.0).powi(2) / (1024.0 * 1024.0);
+    assert!(t.contains(&format!("dense: {dense:.1} MiB")) && t.contains("(513 Γ3 nodes"), "{t}");
+    let refused =
+        command().env("PIEZOCONTACT_MEMORY_LIMIT", "50000000").args(args).args(mesh).output();
+    let t = text(refused.as_ref().unwrap());
+    assert_eq!(refused.unwrap().status.code(), Some(1), "{t}");
+    assert!(
+        t.contains("the exact solver's dense matrices of 1026 condensed Γ3 unknowns")
+            && t.contains(&format!("would need about {dense:.1} MiB, more than the 47.7 MiB")),
+        "{t}"
+    );
+}
+
 /// A loading path whose second step fails (its contact zone outgrows solver.max_condensed)
 /// keeps the first step written — its row of curve.csv, solution-0001.vtu in solution.pvd,
 /// contact.csv and summary.json — says which step failed and why, and exits 4.

@@ -217,14 +217,18 @@ impl Condensed {
         self.kept.iter().filter(|k| **k).count()
     }
 
-    /// Checks that the dense work of the condensation — the Schur complement, its factor
+    /// The bytes of the dense work of the condensation: the Schur complement, its factor
     /// block, the one kept for the next set, the block inverted to reach a new set and the
-    /// Newton systems, about 7 dense m × m matrices — fits in `available`
-    /// bytes.
-    pub fn check_memory(&self, available: f64) -> Result<()> {
+    /// Newton systems, about 7 dense m × m matrices.
+    pub fn dense_bytes(&self) -> f64 {
         let m = self.len() as f64;
+        7.0 * 8.0 * m * m
+    }
+
+    /// Checks that [`Self::dense_bytes`] fit in `available` bytes.
+    pub fn check_memory(&self, available: f64) -> Result<()> {
         crate::limits::check_memory(
-            7.0 * 8.0 * m * m,
+            self.dense_bytes(),
             available,
             &format!("the exact solver's dense matrices of {} condensed Γ3 unknowns", self.len()),
             "use solver.method = \"uzawa\", lower solver.max_condensed, or name a smaller contact part (boundary.contact)",

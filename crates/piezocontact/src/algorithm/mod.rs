@@ -28,7 +28,7 @@ use crate::contact::model::{friction_bound, nodal_mu, normal_stress};
 use crate::contact::{ContactModel, ContactState, ContactSurface, Mollifier, NodeStatus};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
-use crate::linalg::{LinearSolver, default_solver};
+use crate::linalg::{LinearSolver, SolverStats, default_solver};
 use crate::problem::Problem;
 use crate::solver::{CoupledSystem, Timings};
 use residual::{Balance, KktResidual};
@@ -66,6 +66,10 @@ pub trait InnerMethod: std::fmt::Debug + Send + Sync {
     /// The Γ3 nodes in the method's condensed problem at the end (0 without one).
     fn condensed_nodes(&self) -> usize {
         0
+    }
+    /// The bytes of the method's dense matrices for its condensed problem (0 without one).
+    fn dense_bytes(&self) -> f64 {
+        0.0
     }
 }
 
@@ -328,6 +332,15 @@ impl ContactSolver {
         })
     }
 
+    /// What the first factorisation and the method's dense matrices will take, as predicted
+    /// by the symbolic analysis [`ContactSolver::new`] made: the solver's statistics (factor
+    /// entries, ordering, bytes), the bytes of the dense condensed matrices and their Γ3
+    /// nodes (0 and 0 without a condensed problem).
+    pub fn predicted_memory(&self) -> (SolverStats, f64, usize) {
+        let method = self.method.as_ref();
+        (self.system.solver_stats(), method.dense_bytes(), method.condensed_nodes())
+    }
+
     /// Solves `problem` (that of [`ContactSolver::new`], its loads scaled by its `load_factor`) in
     /// contact with `model`'s foundation, from the last solution (from 0 the first time).
     pub fn solve(
@@ -416,6 +429,7 @@ impl ContactSolver {
             solution.failure = Some(outer_cap(model, &solution, self.max_outer, method));
         }
         solution.timings = self.system.timings();
+        solution.timings.dense_bytes = method.dense_bytes();
         solution.condensed_nodes = method.condensed_nodes();
         solution.dofs = self.system.dofs().clone();
         let constant = method.complementarity_constant();

@@ -216,6 +216,10 @@ impl InnerMethod for Newton {
     fn condensed_nodes(&self) -> usize {
         self.condensed.as_ref().map_or(0, Condensed::node_count)
     }
+
+    fn dense_bytes(&self) -> f64 {
+        self.condensed.as_ref().map_or(0.0, Condensed::dense_bytes)
+    }
 }
 
 impl Newton {

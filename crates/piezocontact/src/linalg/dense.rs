@@ -67,6 +67,7 @@ impl DenseMatrix {
     /// singular).
     pub fn inverse(&self) -> Result<DenseMatrix> {
         use faer::linalg::solvers::DenseSolveCore;
+        super::parallelism(); // faer's LU reads its global parallelism: the run's split.
         let inverse = self.mat.partial_piv_lu().inverse();
         for j in 0..self.n() {
             if let Some(i) = (0..self.n()).find(|&i| !inverse[(i, j)].is_finite()) {
@@ -86,6 +87,7 @@ impl DenseMatrix {
         use faer::linalg::solvers::Solve;
         let n = self.n();
         check_length("right-hand side", n, b.len())?;
+        super::parallelism(); // As in `inverse`.
         let lu = self.mat.transpose().partial_piv_lu();
         let mut x = b.to_vec();
         lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, n, 1));

@@ -55,9 +55,10 @@ pub struct LdltSolver {
     stats: SolverStats,
     /// The ordering of the next analysis.
     ordering: Ordering,
-    /// The threads of the numeric factorisation and the solves; `None`: every thread of the
-    /// run on a 3D pattern, one on others (where the supernodes are thin, two threads were
-    /// slower than one: 0.65–0.75 s against 0.37–0.39 s on the paper's bar at 768 × 128).
+    /// The threads of the numeric factorisation and the solves; `None`: the run's
+    /// [`super::parallelism`] on a 3D pattern, one thread on others (where the supernodes are
+    /// thin, two threads were slower than one: 0.65–0.75 s against 0.37–0.39 s on the paper's
+    /// bar at 768 × 128).
     threads: Option<usize>,
     /// Whether the analysed pattern is a 3D mesh's ([`ordering::three_dimensional`]).
     three_dimensional: bool,
@@ -66,8 +67,8 @@ pub struct LdltSolver {
 }
 
 impl LdltSolver {
-    /// A solver with the [`Ordering::Auto`] choice, on every thread of the run for a 3D mesh
-    /// (on one for a 2D mesh's thin supernodes), with nothing analysed yet.
+    /// A solver with the [`Ordering::Auto`] choice, on the run's [`super::parallelism`] for a
+    /// 3D mesh (on one thread for a 2D mesh's thin supernodes), with nothing analysed yet.
     pub fn new() -> Self {
         Self::with_ordering(Ordering::Auto)
     }
@@ -85,12 +86,11 @@ impl LdltSolver {
 
     /// faer's parallelism with the solver's threads.
     fn par(&self) -> Par {
-        let threads = match self.threads {
-            Some(threads) => threads,
-            None if self.three_dimensional => rayon::current_num_threads(),
-            None => 1,
-        };
-        if threads <= 1 { Par::Seq } else { Par::rayon(threads) }
+        match self.threads {
+            Some(threads) if threads > 1 => Par::rayon(threads),
+            None if self.three_dimensional => super::parallelism(),
+            _ => Par::Seq,
+        }
     }
 
     /// The entries of D (supernodal: the diagonals of the supernodes' blocks), or every
@@ -399,7 +399,7 @@ impl SchurComplement for LdltSolver {
             l22.transpose(),
             BlockStructure::UnitTriangularUpper,
             1.0,
-            faer::get_global_parallelism(),
+            super::parallelism(),
         );
         for j in 0..m {
             for i in 0..j {
