@@ -531,13 +531,19 @@ fn linearise(problem: &Problem, dofs: &DofMap, x: &[f64], lags: bool) -> Result<
 
 /// The error of a failed factorisation of B̌(x_n) in outer step n.
 fn factorisation_failure(n: usize, e: Error) -> Error {
-    Error::NumericalFailure {
-        what: format!("the factorisation of B̌(x_n) in outer step {n}"),
-        iteration: n,
-        cause: e.to_string(),
-        hint: "a singular matrix means the body is not held (Γ1, Γa) or a material constant is \
-               not physical"
-            .into(),
+    let what = format!("the factorisation of B̌(x_n) in outer step {n}");
+    match e {
+        Error::SingularSystem { .. } => Error::NumericalFailure {
+            what,
+            iteration: n,
+            cause: e.to_string(),
+            hint: "a singular matrix means the body is not held (Γ1, Γa) or a material constant \
+                   is not physical"
+                .into(),
+        },
+        // A backend's own failure (memory, MUMPS's diagnostics) says what to change itself.
+        Error::LinearAlgebra(cause) => Error::LinearAlgebra(format!("{what}: {cause}")),
+        other => other,
     }
 }
 
@@ -817,6 +823,22 @@ mod tests {
             let hint = if variant == "NotConverged" { "the cap hint" } else { "the hint" };
             assert!(text.contains(hint), "{text}");
         }
+    }
+
+    /// A singular B̌ is blamed on the supports; a backend's own failure (here MUMPS out of
+    /// its memory cap) keeps its own advice, without that blame; an interruption stays one.
+    #[test]
+    fn a_failed_factorisation_says_why_in_the_words_of_its_cause() {
+        let singular = factorisation_failure(2, Error::SingularSystem { detail: "pivot 7".into() });
+        let text = singular.to_string();
+        assert!(matches!(singular, Error::NumericalFailure { iteration: 2, .. }), "{text}");
+        assert!(text.contains("outer step 2") && text.contains("not held (Γ1, Γa)"), "{text}");
+        let mumps = "MUMPS factorisation failed with INFOG(1) = -19, INFOG(2) = 3: the memory cap";
+        let memory = factorisation_failure(1, Error::LinearAlgebra(mumps.into())).to_string();
+        assert!(memory.contains("outer step 1") && memory.contains(mumps), "{memory}");
+        assert!(!memory.contains("not held"), "{memory}");
+        let stopped = factorisation_failure(1, Error::Interrupted { signal: 2 });
+        assert!(matches!(stopped, Error::Interrupted { signal: 2 }));
     }
 
     #[test]
