@@ -185,22 +185,29 @@ fn main() -> ExitCode {
     if cli.quiet {
         piezocontact_cli::say::set_quiet();
     }
-    let started = set_threads(cli.threads)
-        .and_then(|_| processes::start(cli.petsc_options.as_deref()))
-        .and_then(|_| {
+    if let Err(e) = set_threads(cli.threads) {
+        return processes::fail(&format!("error: {e:#}"), 1);
+    }
+    // The command runs on a thread of the pool: faer's and the assembly's parallel calls then
+    // run in place instead of each being handed to the pool from outside and waited for (a
+    // wake-up and a sleep per call, a quarter of a 3D factorisation's time on one thread).
+    // PETSc and MPI start on that thread, which makes every call to them.
+    rayon::scope(|_| {
+        let started = processes::start(cli.petsc_options.as_deref()).and_then(|_| {
             // Under mpirun, mpirun forwards signals to every process, which stop alike.
             processes::catch_signals()
         });
-    if let Err(e) = started {
-        return processes::fail(&format!("error: {e:#}"), 1);
-    }
-    match run(cli.command) {
-        Ok(Outcome::Done) => ExitCode::SUCCESS,
-        Ok(Outcome::NotConverged) => ExitCode::from(3),
-        Ok(Outcome::Failed) => ExitCode::from(4),
-        Ok(Outcome::Interrupted(signal)) => ExitCode::from((128 + signal) as u8),
-        Err(e) => processes::fail(&format!("error: {e:#}"), 1),
-    }
+        if let Err(e) = started {
+            return processes::fail(&format!("error: {e:#}"), 1);
+        }
+        match run(cli.command) {
+            Ok(Outcome::Done) => ExitCode::SUCCESS,
+            Ok(Outcome::NotConverged) => ExitCode::from(3),
+            Ok(Outcome::Failed) => ExitCode::from(4),
+            Ok(Outcome::Interrupted(signal)) => ExitCode::from((128 + signal) as u8),
+            Err(e) => processes::fail(&format!("error: {e:#}"), 1),
+        }
+    })
 }
 
 fn run(command: Command) -> Result<Outcome> {
@@ -328,18 +335,22 @@ enum Outcome {
 /// The environment variable that bounds the threads when --threads is not given.
 const THREADS_VAR: &str = "PIEZOCONTACT_THREADS";
 
-/// Bounds rayon's global pool, which faer's parallel factorisation and solves also run on,
-/// to `--threads` or PIEZOCONTACT_THREADS.
+/// The stack of each thread of the pool the command runs on: that of a main thread.
+const STACK_BYTES: usize = 8 << 20;
+
+/// Starts rayon's global pool, which the command and faer's parallel factorisation and solves
+/// run on, with `--threads` or PIEZOCONTACT_THREADS threads (every core without either).
 fn set_threads(threads: Option<std::num::NonZeroUsize>) -> Result<()> {
     let threads = match (threads, std::env::var(THREADS_VAR)) {
         (Some(n), _) => n.get(),
         (None, Ok(value)) => value.trim().parse::<std::num::NonZeroUsize>().map_err(|_| {
             anyhow::anyhow!("{THREADS_VAR}={value:?} is not a number of threads ≥ 1: set it to e.g. 2, or unset it")
         })?.get(),
-        (None, Err(_)) => return Ok(()),
+        (None, Err(_)) => 0,
     };
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
+        .stack_size(STACK_BYTES)
         .build_global()
         .map_err(|e| anyhow::anyhow!("cannot start {threads} threads: {e}"))
 }
