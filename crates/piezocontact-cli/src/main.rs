@@ -553,10 +553,11 @@ fn print_memory_prediction(
     };
     if stats.factor_bytes > 0.0 {
         say!(
-            "factor: {} entries ({} ordering), about {} for the factorisation; {} available",
+            "factor: {} entries ({} ordering), about {} and {:.1} Gflop for the factorisation; {} available",
             stats.factor_len,
             stats.ordering,
             bytes_text(stats.factor_bytes),
+            stats.factor_flops * 1e-9,
             bytes_text(available_memory())
         );
     } else {

@@ -271,7 +271,7 @@ fn check_prints_the_mesh_and_dof_summary() {
         "{t}"
     );
     assert!(t.contains("dofs: 117 in all"), "{t}");
-    assert!(t.contains("factor: ") && t.contains("for the factorisation;"), "{t}");
+    assert!(t.contains("factor: ") && t.contains(" Gflop for the factorisation;"), "{t}");
     assert!(t.contains(" available"), "{t}");
     assert!(t.contains("warning: (h1)(b) holds only for ‖ε^D‖² < e·t0 = 4.8929e0"), "{t}");
     assert!(t.contains("note: p_ν is bounded by M_p = 1"), "{t}");

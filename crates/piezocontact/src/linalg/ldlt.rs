@@ -166,6 +166,7 @@ impl LdltSolver {
         self.scaling = vec![1.0; n];
         self.stats.factor_len = self.l_values.len();
         self.stats.factor_bytes = bytes;
+        self.stats.factor_flops = factor_flops(self.symbolic()?);
         self.stats.ordering = name;
         Ok(())
     }
@@ -223,6 +224,25 @@ impl LdltSolver {
             .factorize_numeric_ldlt_scratch::<f64>(self.par(), Default::default())
             .size_bytes();
         8.0 * symbolic.len_val() as f64 + scratch as f64 + 16.0 * pattern.nnz() as f64
+    }
+}
+
+/// The floating-point operations of a numeric factorisation with `symbolic`, counted per
+/// supernode (per column of a simplicial factor) with c columns and r rows below them: the
+/// LDLᵀ of its diagonal block (c³/3), the triangular solve of the rows below (c² r) and its
+/// update of the later columns (c r²).
+fn factor_flops(symbolic: &SymbolicCholesky<usize>) -> f64 {
+    let flops = |c: f64, r: f64| c * c * c / 3.0 + c * c * r + c * r * r;
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let (begin, end) = (s.supernode_begin(), s.supernode_end());
+            (0..s.n_supernodes())
+                .map(|k| flops((end[k] - begin[k]) as f64, s.supernode(k).pattern().len() as f64))
+                .sum()
+        }
+        SymbolicCholeskyRaw::Simplicial(s) => {
+            s.col_ptr().windows(2).map(|w| flops(1.0, (w[1] - w[0]) as f64 - 1.0)).sum()
+        }
     }
 }
 
@@ -516,6 +536,25 @@ mod tests {
         let signs = (0..n_u + n_phi).map(|i| if i < n_u { 1 } else { -1 }).collect();
         let (pattern, matrix) = build(n_u + n_phi, &positions, &values).unwrap();
         (pattern, matrix, signs)
+    }
+
+    /// The flop count of two factors whose work is known in closed form: a dense matrix of
+    /// order n (one supernode, n³/3) and a tridiagonal one (each column: one row below, so
+    /// 1/3 + 1 + 1; the last: 1/3).
+    #[test]
+    fn the_analysis_counts_the_flops_of_dense_and_tridiagonal_factors() {
+        let n = 40;
+        let dense: Vec<(usize, usize)> = (0..n).flat_map(|j| (j..n).map(move |i| (i, j))).collect();
+        let tridiagonal: Vec<(usize, usize)> =
+            (0..n).flat_map(|j| [(j, j), (j + 1, j)]).filter(|&(i, _)| i < n).collect();
+        let nf = n as f64;
+        let expected = [nf.powi(3) / 3.0, (nf - 1.0) * (1.0 / 3.0 + 2.0) + 1.0 / 3.0];
+        for (positions, expected) in [dense, tridiagonal].iter().zip(expected) {
+            let pattern = SymmetricPattern::from_positions(n, positions).unwrap();
+            let solver = analyzed(&pattern, &vec![1; n], &Ordering::Amd);
+            let flops = solver.stats.factor_flops;
+            assert!((flops - expected).abs() <= 1e-9 * expected, "{flops} against {expected}");
+        }
     }
 
     #[test]

@@ -100,6 +100,9 @@ pub struct SolverStats {
     pub factor_bytes: f64,
     /// The ordering of the last analysis ("amd", "nd", "custom"; empty before one).
     pub ordering: &'static str,
+    /// The floating-point operations of a numeric factorisation, as the last analysis counted
+    /// them (0 from a backend that does not count them).
+    pub factor_flops: f64,
 }
 
 /// What every backend does: analyse the pattern once, factorise whenever the values change,
