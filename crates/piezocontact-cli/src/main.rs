@@ -506,10 +506,15 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
         dofs.n_free_u(),
         dofs.n_free() - dofs.n_free_u()
     );
+    // The model a run sets up with: its first step's on a loading path.
+    let first = (model.clone())
+        .map(|m| run::contact_model(&case, &problem, Some(m)))
+        .transpose()?
+        .map(|m| loading.as_ref().map_or_else(|| m.clone(), |l| l.at_first(&m)));
     print_memory_prediction(
         case.linear_solver()?,
         &problem,
-        model.as_ref().map(|m| (m, &settings)),
+        first.as_ref().map(|m| (m, &settings)),
     )?;
     if let Some(model) = &model {
         say!("problem: {:?}, foundation: {:?}", case.problem_kind(), model.foundation);

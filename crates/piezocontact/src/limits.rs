@@ -27,13 +27,15 @@ pub fn peak_resident_bytes() -> Option<f64> {
     Some(kib * 1024.0)
 }
 
-/// Bytes in the unit that reads best: "12.3 GiB", "456.7 MiB".
+/// Bytes in the unit that reads best: "12.3 GiB", "456.7 MiB", "12.6 KiB".
 pub fn bytes_text(bytes: f64) -> String {
-    let gib = 2f64.powi(30);
+    let (gib, mib) = (2f64.powi(30), 2f64.powi(20));
     if bytes >= gib {
         format!("{:.1} GiB", bytes / gib)
+    } else if bytes >= 0.1 * mib {
+        format!("{:.1} MiB", bytes / mib)
     } else {
-        format!("{:.1} MiB", bytes / 2f64.powi(20))
+        format!("{:.1} KiB", bytes / 1024.0)
     }
 }
 
@@ -48,4 +50,17 @@ pub fn check_memory(bytes: f64, available: f64, what: &str, fix: &str) -> crate:
         bytes_text(bytes),
         bytes_text(available)
     )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::bytes_text;
+
+    #[test]
+    fn bytes_read_in_the_unit_that_fits_them() {
+        assert_eq!(bytes_text(12_600.0), "12.3 KiB");
+        assert_eq!(bytes_text(0.5 * 2f64.powi(20)), "0.5 MiB");
+        assert_eq!(bytes_text(456.7 * 2f64.powi(20)), "456.7 MiB");
+        assert_eq!(bytes_text(12.3 * 2f64.powi(30)), "12.3 GiB");
+    }
 }

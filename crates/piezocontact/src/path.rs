@@ -43,6 +43,12 @@ impl Loading {
         let shift = self.direction.map(|v| v * step.depth);
         ContactModel { foundation: model.foundation.translated(shift), ..model.clone() }
     }
+
+    /// `model` at the first step (as given without steps): where the solver is set up, the
+    /// exact solver's first guess of the contact zone being that step's.
+    pub fn at_first(&self, model: &ContactModel) -> ContactModel {
+        self.steps.first().map_or_else(|| model.clone(), |s| self.model_at(model, s))
+    }
 }
 
 /// One row of curve.csv: what the experimentalist reads at a step.
@@ -211,10 +217,7 @@ impl PathRun {
         let loading = loading.ok_or_else(|| {
             Error::Input(format!("{}: the case has no [loading] table", case.path.display()))
         })?;
-        // Set up where the first step puts the foundation: the exact solver's first guess of
-        // the contact zone is that step's.
-        let at_first =
-            loading.steps.first().map_or_else(|| model.clone(), |s| loading.model_at(&model, s));
+        let at_first = loading.at_first(&model);
         let mut solver = ContactSolver::new(&problem, &at_first, &settings, solver)
             .map_err(|e| case.context(e))?;
         let (mut curve, mut states, mut failure) = (Vec::new(), Vec::new(), None);
