@@ -468,6 +468,12 @@ impl Factor {
                 "an allocation failed: the factor does not fit in memory; use more processes or a coarser mesh"
             }
             -19 => "the memory cap -mat_mumps_icntl_23 is too small for the factor",
+            -38 => {
+                "its parallel analysis (-mat_mumps_icntl_28 2) needs PT-Scotch or ParMETIS, which this MUMPS lacks: leave -mat_mumps_icntl_28 out"
+            }
+            -39 => {
+                "its options do not go together (MUMPS does not combine the parallel analysis, -mat_mumps_icntl_28 2, with the Schur set of the exact solver): leave -mat_mumps_icntl_28 out"
+            }
             _ => "see MUMPS's manual, section \"Error diagnostics\"",
         };
         let message =
