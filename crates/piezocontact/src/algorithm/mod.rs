@@ -372,12 +372,10 @@ impl ContactSolver {
             let (linearisation, blocks) = (&self.linearisation, self.method.blocks());
             if self.changed {
                 progress(Progress::Factorising { unknowns: self.system.dofs().n_free() });
-            }
-            if self.changed
-                && let Err(e) = self.system.factorize_linearised(problem, linearisation, blocks)
-            {
-                solution.failure = Some(factorisation_failure(n, e));
-                break;
+                if let Err(e) = self.system.factorize_linearised(problem, linearisation, blocks) {
+                    solution.failure = Some(factorisation_failure(n, e));
+                    break;
+                }
             }
             self.changed = false;
             let s_n = solution.s.clone();

@@ -75,8 +75,7 @@ unsafe extern "C" {
     fn PetscFinalize() -> Code;
     fn PetscOptionsInsertString(options: Handle, text: *const c_char) -> Code;
     fn PetscPushErrorHandler(handler: ErrorHandler, ctx: *mut c_void) -> Code;
-    fn PetscErrorMessage(code: c_int, text: *mut *const c_char, specific: *mut *mut c_char)
-    -> Code;
+    fn PetscErrorMessage(code: c_int, text: *mut *const c_char, more: *mut *mut c_char) -> Code;
     fn MatCreateAIJ(
         comm: MpiHandle,
         m: PetscInt,
