@@ -206,8 +206,9 @@ impl LdltSolver {
             }
             Ordering::Auto if ordering::three_dimensional(pattern) => (nd()?, "nd"),
             Ordering::Auto => {
-                let by_nd = nd()?;
-                let by_amd = amd()?;
+                // Both analyses at once: they share nothing but the pattern.
+                let (by_nd, by_amd) = rayon::join(nd, amd);
+                let (by_nd, by_amd) = (by_nd?, by_amd?);
                 if by_nd.len_val() < by_amd.len_val() { (by_nd, "nd") } else { (by_amd, "amd") }
             }
         })
