@@ -129,9 +129,9 @@ pub fn run(target: &Target, variants: &Variants, lu: bool) -> Result<()> {
     say!(
         "pattern_s: DOF map, sparsity pattern and gather plan (once per run); assembly_s: f̌ and \
          one refill of B̌ (every factorisation); both parallel over {} threads. symbolic_s: the \
-         ordering and the elimination tree; numeric_s, solve_s: piezocontact's LDLᵀ (with \
-         diagonal scaling and pivot checks) on `threads` threads; faer_*: faer's bare LDLᵀ of \
-         the same matrix with the same ordering and threads; factor_MB: the factor, its \
+         ordering, the elimination tree and the factor's storage; numeric_s, solve_s: \
+         piezocontact's LDLᵀ (with diagonal scaling and pivot checks) on `threads` threads; \
+         faer_*: faer's bare LDLᵀ of the same matrix with the same ordering and threads; factor_MB: the factor, its \
          workspace and the scaled matrix, as predicted after the symbolic analysis",
         rayon::current_num_threads()
     );

@@ -18,7 +18,7 @@ pub struct Timings {
     pub pattern: f64,
     /// Element matrices summed into the pattern (every refill), and f̌ [s].
     pub assembly: f64,
-    /// Symbolic analysis (ordering, elimination tree) [s].
+    /// Symbolic analysis (ordering, elimination tree, the factor's storage) [s].
     pub symbolic: f64,
     /// All numeric factorisations [s].
     pub numeric: f64,

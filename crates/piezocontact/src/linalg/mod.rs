@@ -83,7 +83,7 @@ pub enum Ordering {
 /// Counts and wall-clock times of a linear solver.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SolverStats {
-    /// Symbolic analysis [s].
+    /// Symbolic analysis: the ordering, the elimination tree and the factor's storage [s].
     pub symbolic_seconds: f64,
     /// All numeric factorisations [s].
     pub numeric_seconds: f64,
