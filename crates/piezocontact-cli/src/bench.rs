@@ -85,7 +85,7 @@ type Row = (f64, f64);
 /// nested dissection on the most threads to AMD on one thread.
 pub fn run(target: &Target, variants: &Variants, lu: bool) -> Result<()> {
     say!(
-        "{:>16} {:>5} {:>7} {:>9} {:>10} {:>11} {:>11} {:>11} {:>9} {:>15} {:>13} {:>16} {:>20} {:>10} {:>11} {:>10}",
+        "{:>16} {:>5} {:>7} {:>9} {:>10} {:>11} {:>11} {:>11} {:>9} {:>10} {:>15} {:>13} {:>16} {:>20} {:>10} {:>11} {:>10}",
         "mesh",
         "order",
         "threads",
@@ -95,6 +95,7 @@ pub fn run(target: &Target, variants: &Variants, lu: bool) -> Result<()> {
         "symbolic_s",
         "numeric_s",
         "solve_s",
+        "solve32_s",
         "faer_numeric_s",
         "faer_solve_s",
         "assembly/numeric",
@@ -131,6 +132,7 @@ pub fn run(target: &Target, variants: &Variants, lu: bool) -> Result<()> {
          one refill of B̌ (every factorisation); both parallel over {} threads. symbolic_s: the \
          ordering, the elimination tree and the factor's storage; numeric_s, solve_s: \
          piezocontact's LDLᵀ (with diagonal scaling and pivot checks) on `threads` threads; \
+         solve32_s: 32 right-hand sides solved at once (one blocked sweep each way); \
          faer_*: faer's bare LDLᵀ of the same matrix with the same ordering and threads; factor_MB: the factor, its \
          workspace and the scaled matrix, as predicted after the symbolic analysis",
         rayon::current_num_threads()
@@ -183,6 +185,9 @@ pub(crate) fn mesh_case(path: &Path) -> Result<Case> {
 
 /// Assembles, analyses, factorises and solves once with `ordering` on `threads` threads,
 /// then times faer's bare factorisation with the same analysis; prints the row.
+/// Right-hand sides of the blocked solve that `measure` times (`solve32_s`).
+const BLOCK: usize = 32;
+
 fn measure(
     name: &str,
     problem: &Problem,
@@ -201,13 +206,16 @@ fn measure(
     system.solve(None)?;
     let timings = system.timings();
     let stats = system.solver_stats();
+    let mut block: Vec<f64> = system.rhs().repeat(BLOCK);
+    system.solve_free(&mut block)?;
+    let solve_block = system.solver_stats().solve_seconds - stats.solve_seconds;
     let (pattern, assembly) = (dof_map + timings.pattern, timings.assembly);
     let matrix = system.matrix().ok_or_else(|| anyhow!("no matrix"))?;
     let mut bare = solver();
     bare.analyze(system.assembler().pattern(), &system.dofs().signs())?;
     let [faer_numeric, faer_solve] = bare.bare_seconds(matrix, system.rhs())?;
     say!(
-        "{:>16} {:>5} {:>7} {:>9} {:>10.4} {:>11.4} {:>11.4} {:>11.4} {:>9.4} {:>15.4} {:>13.4} {:>16.3} {:>20.3} {:>10} {:>11} {:>10.1}",
+        "{:>16} {:>5} {:>7} {:>9} {:>10.4} {:>11.4} {:>11.4} {:>11.4} {:>9.4} {:>10.4} {:>15.4} {:>13.4} {:>16.3} {:>20.3} {:>10} {:>11} {:>10.1}",
         name,
         stats.ordering,
         threads,
@@ -217,6 +225,7 @@ fn measure(
         timings.symbolic,
         timings.numeric,
         timings.solve,
+        solve_block,
         faer_numeric,
         faer_solve,
         assembly / timings.numeric,

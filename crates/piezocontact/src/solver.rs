@@ -200,10 +200,11 @@ impl CoupledSystem {
         Ok(self.assembler.dofs().expand(&x))
     }
 
-    /// Solves B̌ y = b in place with the current factorisation (`b`: on the free DOFs,
-    /// without f̌ or lifting).
-    pub fn solve_free(&mut self, b: &mut [f64]) -> Result<()> {
-        self.solver.solve_in_place(b)
+    /// Solves B̌ Y = B in place with the current factorisation for the columns of B stored
+    /// one after another in `columns` (each on the free DOFs, without f̌ or lifting).
+    pub fn solve_free(&mut self, columns: &mut [f64]) -> Result<()> {
+        let n = self.dofs().n_free();
+        self.solver.solve_columns_in_place(columns, n)
     }
 
     /// The assembler (DOF map, pattern).

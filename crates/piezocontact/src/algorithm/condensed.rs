@@ -297,11 +297,14 @@ impl SchurSource {
     }
 }
 
+/// Right-hand sides solved at once by [`schur_from`]: the factor is read once per block.
+const SOLVE_BLOCK: usize = 32;
+
 /// The Schur complement S_W of the free unknowns `wanted` from `base`, the Schur complement
 /// S_B of the free unknowns `base_set` of the current factorisation of `system`. The (W, W)
 /// block of B̌⁻¹ is S_W⁻¹: its entries between unknowns of B are those of S_B⁻¹, the others
-/// come from one solve per wanted unknown outside B (B̌⁻¹ is symmetric); S_W is the inverse
-/// of that block, made symmetric.
+/// come from one solve per wanted unknown outside B (B̌⁻¹ is symmetric), made
+/// [`SOLVE_BLOCK`] at a time; S_W is the inverse of that block, made symmetric.
 pub fn schur_from(
     system: &mut CoupledSystem,
     base_set: &[usize],
@@ -313,12 +316,15 @@ pub fn schur_from(
     let inverse = base.inverse()?;
     drop(base);
     let n = system.dofs().n_free();
+    let new: Vec<usize> = wanted.iter().copied().filter(|k| !position.contains_key(k)).collect();
     let mut solved: HashMap<usize, Vec<f64>> = HashMap::new();
-    for &k in wanted.iter().filter(|k| !position.contains_key(k)) {
-        let mut e = vec![0.0; n];
-        e[k] = 1.0;
-        system.solve_free(&mut e)?;
-        solved.insert(k, wanted.iter().map(|&row| e[row]).collect());
+    for block in new.chunks(SOLVE_BLOCK) {
+        let mut columns = vec![0.0; n * block.len()];
+        block.iter().enumerate().for_each(|(c, &k)| columns[c * n + k] = 1.0);
+        system.solve_free(&mut columns)?;
+        for (column, &k) in columns.chunks(n).zip(block) {
+            solved.insert(k, wanted.iter().map(|&row| column[row]).collect());
+        }
     }
     let m = wanted.len();
     let mut block = DenseMatrix::zeros(m);
@@ -343,15 +349,29 @@ pub fn schur_from(
 /// 0.055 s each (124 against 6.9 Gflop/s).
 const FACTORISATION_RATE_OVER_SOLVES: f64 = 16.0;
 
-/// Whether growing the condensation by [`schur_from`] (one solve per new unknown) is cheaper
-/// than analysing and factorising again with them last, judged by the flops the analysis
-/// counted — the same verdict on any number of threads and in every run, so that the answer
-/// does not depend on them — or, from a backend that counts none, by the mean times of the
-/// solves and factorisations so far.
+/// What each column of a block of [`SOLVE_BLOCK`] right-hand sides adds to the time of one
+/// right-hand side alone: the block reads the factor once each way, its flops run in dense
+/// kernels. Measured with `bench --mesh` on 2 cores (solve32_s over solve_s, 1 and 2
+/// threads): 3.2–4.4 on the whole-face block (41.5M factor entries) and 3.2–3.3 on the
+/// 183k-unknown indentation (316M), that is 0.07–0.11 per further column; 8–9 on a factor of
+/// 1.9M entries that stays in cache.
+const BLOCK_COLUMN_SHARE: f64 = 0.1;
+
+/// Whether growing the condensation by [`schur_from`] (one solve per new unknown, in blocks
+/// of [`SOLVE_BLOCK`]) is cheaper than analysing and factorising again with them last,
+/// judged by the flops the analysis counted — the same verdict on any number of threads and
+/// in every run, so that the answer does not depend on them — or, from a backend that counts
+/// none (and solves one right-hand side at a time), by the mean times of the solves and
+/// factorisations so far.
 pub fn cheaper_by_solves(new_unknowns: usize, stats: &SolverStats) -> bool {
     if stats.factor_flops > 0.0 {
         let solve = 4.0 * stats.factor_len as f64 * FACTORISATION_RATE_OVER_SOLVES;
-        return new_unknowns as f64 * solve < stats.factor_flops;
+        let block = |b: usize| match b {
+            0 => 0.0,
+            b => solve * (1.0 + (b - 1) as f64 * BLOCK_COLUMN_SHARE),
+        };
+        let blocks = (new_unknowns / SOLVE_BLOCK) as f64 * block(SOLVE_BLOCK);
+        return blocks + block(new_unknowns % SOLVE_BLOCK) < stats.factor_flops;
     }
     let mean = |seconds: f64, count: usize| seconds / count.max(1) as f64;
     let solve = mean(stats.solve_seconds, stats.solve_count);
@@ -451,9 +471,10 @@ mod transfer_tests {
         }
     }
 
-    /// Solves win when their count times a solve's cost is below a factorisation's: by the
-    /// flops the analysis counted (a solve: 4 per factor entry, at a sixteenth of the rate),
-    /// whatever the times measured; by the mean times when the backend counts no flops.
+    /// Solves win when their cost is below a factorisation's: by the flops the analysis
+    /// counted (a solve: 4 per factor entry, at a sixteenth of the rate; in a block, each
+    /// column after the first a share of that), whatever the times measured; by the mean
+    /// times when the backend counts no flops.
     #[test]
     fn growth_by_solves_when_they_cost_less_than_a_factorisation() {
         let timed = SolverStats {
@@ -465,9 +486,18 @@ mod transfer_tests {
         };
         assert!(cheaper_by_solves(99, &timed));
         assert!(!cheaper_by_solves(100, &timed));
-        // 1000 entries: a solve counts as 64,000 flops against 6.4M for the factorisation.
-        let counted = SolverStats { factor_len: 1000, factor_flops: 6.4e6 + 1.0, ..timed };
-        assert!(cheaper_by_solves(100, &counted));
-        assert!(!cheaper_by_solves(101, &counted));
+        // 1000 entries: a solve alone counts as 64,000 flops, a block of 32 as that times
+        // 1 + 31 × BLOCK_COLUMN_SHARE, a block of 2 as that times 1 + BLOCK_COLUMN_SHARE.
+        let solve = 64_000.0;
+        let block = solve * (1.0 + 31.0 * BLOCK_COLUMN_SHARE);
+        let counted = |factor_flops| SolverStats { factor_len: 1000, factor_flops, ..timed };
+        assert!(cheaper_by_solves(1, &counted(solve + 1.0)));
+        assert!(!cheaper_by_solves(2, &counted(solve + 1.0)));
+        assert!(cheaper_by_solves(96, &counted(3.0 * block + 1.0)));
+        assert!(!cheaper_by_solves(97, &counted(3.0 * block + 1.0)));
+        let two = solve * (1.0 + BLOCK_COLUMN_SHARE);
+        assert!(cheaper_by_solves(98, &counted(3.0 * block + two + 1.0)));
+        // A block is cheaper than its columns one by one.
+        assert!(block < 32.0 * solve);
     }
 }

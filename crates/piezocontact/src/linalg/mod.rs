@@ -60,7 +60,7 @@ pub use ldlt::LdltSolver;
 pub use petsc::PetscSolver;
 pub use sparse::{SymmetricMatrix, SymmetricPattern};
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 /// The fill-reducing ordering of [`LdltSolver`]'s symbolic analysis ([`ordering`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -118,6 +118,15 @@ pub trait LinearSolver: std::fmt::Debug + Send {
     /// Solves A x = b in place (b on entry, x on exit, whole vectors) with the current
     /// factorisation.
     fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()>;
+    /// Solves A X = B in place for the right-hand sides stored one after another in `rhs`
+    /// (the columns of B, `n` entries each): by default one [`Self::solve_in_place`] each; a
+    /// backend with blocked sweeps reads its factor once for all of them.
+    fn solve_columns_in_place(&mut self, rhs: &mut [f64], n: usize) -> Result<()> {
+        match column_count(rhs.len(), n)? {
+            0 => Ok(()),
+            _ => rhs.chunks_mut(n).try_for_each(|column| self.solve_in_place(column)),
+        }
+    }
     /// Counts and timings so far.
     fn stats(&self) -> SolverStats;
     /// The Schur-complement capability, for backends that have it.
@@ -165,6 +174,20 @@ pub trait SchurComplement {
 }
 
 /// An [`crate::Error::Length`] unless a vector of `what` has the `expected` length.
+/// The number of columns of `n` entries in `len` entries; an error when they do not divide.
+fn column_count(len: usize, n: usize) -> Result<usize> {
+    match (len, n) {
+        (0, _) => Ok(0),
+        (_, 0) => {
+            Err(Error::LinearAlgebra(format!("{len} right-hand side entries for 0 unknowns")))
+        }
+        _ if len.is_multiple_of(n) => Ok(len / n),
+        _ => Err(Error::LinearAlgebra(format!(
+            "{len} right-hand side entries are no whole number of columns of {n}"
+        ))),
+    }
+}
+
 fn check_length(what: &str, expected: usize, got: usize) -> Result<()> {
     if got == expected {
         return Ok(());
