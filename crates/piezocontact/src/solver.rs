@@ -70,6 +70,10 @@ pub struct CoupledSystem {
     lifting: Vec<f64>,
     /// f̌ plus the lifting, on the free DOFs.
     rhs: Vec<f64>,
+    /// The solution for `rhs` alone (global), kept until the factorisation or `rhs` changes:
+    /// the exact solver starts each round of a growing condensation and each step of a
+    /// loading path that keeps the loads from it.
+    unloaded: Option<Vec<f64>>,
     /// Time of the pattern [s].
     pattern_seconds: f64,
     /// Assembly time so far [s].
@@ -132,6 +136,7 @@ impl CoupledSystem {
             load,
             lifting: Vec::new(),
             rhs: Vec::new(),
+            unloaded: None,
             pattern_seconds,
             assembly_seconds,
         })
@@ -141,7 +146,7 @@ impl CoupledSystem {
     /// symbolic analysis again; the next [`CoupledSystem::factorize`] uses it.
     pub fn put_last(&mut self, last: &[usize]) -> Result<()> {
         let signs = self.assembler.dofs().signs();
-        self.matrix = None;
+        (self.matrix, self.unloaded) = (None, None);
         let pattern = self.assembler.pattern();
         schur_capability(self.solver.as_mut())?.analyze_with_last(pattern, &signs, last)
     }
@@ -170,6 +175,7 @@ impl CoupledSystem {
         self.lifting = lifting;
         self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
         self.assembly_seconds += t.elapsed().as_secs_f64();
+        self.unloaded = None;
         self.solver.factorize(&matrix)?;
         self.matrix = Some(matrix);
         Ok(())
@@ -180,6 +186,7 @@ impl CoupledSystem {
     pub fn reload(&mut self, problem: &Problem) {
         let t = Instant::now();
         self.load = self.assembler.restrict(&load_vector(problem, self.assembler.dofs()));
+        self.unloaded = None;
         if !self.lifting.is_empty() {
             self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
         }
@@ -188,7 +195,12 @@ impl CoupledSystem {
 
     /// Solves with the current factorisation for the current right-hand side plus `extra`
     /// (free DOFs), returning the global vector x = (u, ϕ) with prescribed values in place.
+    /// Without `extra`, the solution is kept and given again until the factorisation or the
+    /// right-hand side changes.
     pub fn solve(&mut self, extra: Option<&[f64]>) -> Result<Vec<f64>> {
+        if let (None, Some(x)) = (extra, &self.unloaded) {
+            return Ok(x.clone());
+        }
         let mut x = self.rhs.clone();
         if let Some(extra) = extra {
             x.iter_mut().zip(extra).for_each(|(b, e)| *b += e);
@@ -197,7 +209,11 @@ impl CoupledSystem {
         if let Some(k) = x.iter().position(|v| !v.is_finite()) {
             return Err(Error::NonFinite { what: format!("solution component {k}") });
         }
-        Ok(self.assembler.dofs().expand(&x))
+        let x = self.assembler.dofs().expand(&x);
+        if extra.is_none() {
+            self.unloaded = Some(x.clone());
+        }
+        Ok(x)
     }
 
     /// Solves B̌ Y = B in place with the current factorisation for the columns of B stored

@@ -103,6 +103,22 @@ fn one_numeric_factorisation_serves_many_solves() {
     }
     let t = system.timings();
     assert_eq!((t.numeric_count, t.solve_count), (1, 5));
+    // The solution without extra is kept: given again without a solve, until the loads or
+    // the factorisation change.
+    assert_eq!(system.solve(None).unwrap(), first);
+    assert_eq!(system.timings().solve_count, 5);
+    let mut heavier = problem.clone();
+    let dim = problem.mesh.dim();
+    heavier.loads.f0 = Some(constant_vector(vec![0.0, -2.0, 0.0][..dim].to_vec()));
+    system.reload(&heavier);
+    let doubled = system.solve(None).unwrap();
+    assert_eq!(system.timings().solve_count, 6);
+    let size = first.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let apart = doubled.iter().zip(&first).fold(0.0_f64, |m, (d, f)| m.max((d - 2.0 * f).abs()));
+    assert!(size > 0.0 && apart <= 1e-12 * size, "{apart:e} of {size:e}");
+    system.factorize(&problem, &g, &[]).unwrap();
+    system.solve(None).unwrap();
+    assert_eq!(system.timings().solve_count, 7);
 }
 
 #[test]
