@@ -256,13 +256,14 @@ pub struct ContactSolution {
 }
 
 /// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it) with the
-/// default linear solver.
+/// default linear solver, on a thread of rayon's global pool: called from outside it, each of
+/// faer's parallel calls would be handed to the pool and waited for (model §13).
 pub fn solve_contact(
     problem: &Problem,
     model: &ContactModel,
     settings: &Settings,
 ) -> Result<ContactSolution> {
-    solve_contact_with(problem, model, settings, default_solver(), &|_| {})
+    rayon::scope(|_| solve_contact_with(problem, model, settings, default_solver(), &|_| {}))
 }
 
 /// [`solve_contact`] with the caller's linear `solver`, telling `progress` of each outer step
