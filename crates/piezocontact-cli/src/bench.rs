@@ -132,9 +132,10 @@ pub fn run(target: &Target, variants: &Variants, lu: bool) -> Result<()> {
          one refill of B̌ (every factorisation); both parallel over {} threads. symbolic_s: the \
          ordering, the elimination tree and the factor's storage; numeric_s, solve_s: \
          piezocontact's LDLᵀ (with diagonal scaling and pivot checks) on `threads` threads; \
-         solve32_s: 32 right-hand sides solved at once (one blocked sweep each way); \
-         faer_*: faer's bare LDLᵀ of the same matrix with the same ordering and threads; factor_MB: the factor, its \
-         workspace and the scaled matrix, as predicted after the symbolic analysis",
+         solve32_s: 32 right-hand sides solved at once (one blocked sweep each way); faer_*: \
+         faer's bare LDLᵀ of the same matrix with the same ordering and threads; factor_MB: \
+         the factor, its workspace and the scaled matrix, as predicted after the symbolic \
+         analysis",
         rayon::current_num_threads()
     );
     Ok(())
@@ -183,11 +184,12 @@ pub(crate) fn mesh_case(path: &Path) -> Result<Case> {
     Ok(Case::from_text(Path::new("bench.toml"), &text, &[])?)
 }
 
-/// Assembles, analyses, factorises and solves once with `ordering` on `threads` threads,
-/// then times faer's bare factorisation with the same analysis; prints the row.
 /// Right-hand sides of the blocked solve that `measure` times (`solve32_s`).
 const BLOCK: usize = 32;
 
+/// Assembles, analyses, factorises and solves once with `ordering` on `threads` threads, and
+/// [`BLOCK`] right-hand sides at once, then times faer's bare factorisation with the same
+/// analysis; prints the row.
 fn measure(
     name: &str,
     problem: &Problem,

@@ -173,7 +173,6 @@ pub trait SchurComplement {
     fn schur_complement(&self) -> Result<DenseMatrix>;
 }
 
-/// An [`crate::Error::Length`] unless a vector of `what` has the `expected` length.
 /// The number of columns of `n` entries in `len` entries; an error when they do not divide.
 fn column_count(len: usize, n: usize) -> Result<usize> {
     match (len, n) {
@@ -188,6 +187,7 @@ fn column_count(len: usize, n: usize) -> Result<usize> {
     }
 }
 
+/// An [`crate::Error::Length`] unless a vector of `what` has the `expected` length.
 fn check_length(what: &str, expected: usize, got: usize) -> Result<()> {
     if got == expected {
         return Ok(());
