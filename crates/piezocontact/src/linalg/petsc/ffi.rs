@@ -76,6 +76,11 @@ unsafe extern "C" {
     fn PetscOptionsInsertString(options: Handle, text: *const c_char) -> Code;
     fn PetscPushErrorHandler(handler: ErrorHandler, ctx: *mut c_void) -> Code;
     fn PetscErrorMessage(code: c_int, text: *mut *const c_char, more: *mut *mut c_char) -> Code;
+    fn atexit(f: extern "C" fn()) -> c_int;
+}
+
+// Matrices and their factors.
+unsafe extern "C" {
     fn MatCreateAIJ(
         comm: MpiHandle,
         m: PetscInt,
@@ -133,6 +138,10 @@ unsafe extern "C" {
     fn MatMumpsSetIcntl(factor: Handle, icntl: PetscInt, value: PetscInt) -> Code;
     fn MatMumpsGetInfog(factor: Handle, icntl: PetscInt, value: *mut PetscInt) -> Code;
     fn MatSolve(factor: Handle, b: Handle, x: Handle) -> Code;
+}
+
+// Vectors, their scatters and index sets.
+unsafe extern "C" {
     fn VecGetArray(v: Handle, values: *mut *mut f64) -> Code;
     fn VecRestoreArray(v: Handle, values: *mut *mut f64) -> Code;
     fn VecGetLocalSize(v: Handle, n: *mut PetscInt) -> Code;
@@ -149,7 +158,6 @@ unsafe extern "C" {
         is: *mut Handle,
     ) -> Code;
     fn ISDestroy(is: *mut Handle) -> Code;
-    fn atexit(f: extern "C" fn()) -> c_int;
 }
 
 const PETSC_TRUE: c_int = 1;
