@@ -507,10 +507,13 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
         dofs.n_free() - dofs.n_free_u()
     );
     // The model a run sets up with: its first step's on a loading path.
-    let first = (model.clone())
-        .map(|m| run::contact_model(&case, &problem, Some(m)))
-        .transpose()?
-        .map(|m| loading.as_ref().map_or_else(|| m.clone(), |l| l.at_first(&m)));
+    let first =
+        model.clone().map(|m| run::contact_model(&case, &problem, Some(m))).transpose()?.map(|m| {
+            match &loading {
+                Some(l) => l.at_first(&m),
+                None => m,
+            }
+        });
     print_memory_prediction(
         case.linear_solver()?,
         &problem,

@@ -497,7 +497,7 @@ mod transfer_tests {
         assert!(!cheaper_by_solves(97, &counted(3.0 * block + 1.0)));
         let two = solve * (1.0 + BLOCK_COLUMN_SHARE);
         assert!(cheaper_by_solves(98, &counted(3.0 * block + two + 1.0)));
-        // A block is cheaper than its columns one by one.
-        assert!(block < 32.0 * solve);
+        // A block of 32 costs less than 32 solves alone.
+        assert!(cheaper_by_solves(32, &counted(32.0 * solve)));
     }
 }

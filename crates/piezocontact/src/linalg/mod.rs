@@ -210,10 +210,11 @@ pub fn processes() -> usize {
 /// pool the run is on). faer sums in an order set by the split, not by the threads, so a run
 /// gives the same answer to the last bit on one thread as on all of them; one thread pays about
 /// 5 % of a 3D numeric factorisation for it, against faer's sequential kernels, when the
-/// caller runs on a thread of the rayon pool (as the command and the Python package do);
-/// called from outside the pool, each of faer's parallel calls is handed to the pool and
-/// waited for, which cost a third more on the 64k-unknown whole-face block. The first call also makes this faer's global
-/// parallelism, which its dense solvers read. One core: sequential.
+/// caller runs on a thread of the rayon pool (as the command, the Python package and
+/// [`crate::algorithm::solve_contact`] do); called from outside the pool, each of faer's
+/// parallel calls is handed to the pool and waited for, which cost a third more on the
+/// 64k-unknown whole-face block. The first call also makes this faer's global parallelism,
+/// which its dense solvers read. One core: sequential.
 pub fn parallelism() -> faer::Par {
     static SPLIT: std::sync::OnceLock<faer::Par> = std::sync::OnceLock::new();
     *SPLIT.get_or_init(|| {
