@@ -1,7 +1,7 @@
 //! `piezocontact run` under `mpirun` with the PETSc backend: the same files as the serial
 //! run on faer, to 1e−9; one process that fails ends them all with one message.
-//! Run with `cargo test -p piezocontact-cli --features petsc --test mpi` (Open MPI's mpirun on
-//! PATH).
+//! Run with `cargo test --workspace --features piezocontact-cli/petsc --test mpi` (Open
+//! MPI's mpirun on PATH).
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

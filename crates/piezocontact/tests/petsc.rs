@@ -2,7 +2,7 @@
 //!
 //! Each test starts itself again under `mpirun -n N` (Open MPI's, found on PATH) for each N;
 //! the processes run the test's body, in which every assertion is checked on every process.
-//! Run with `cargo test -p piezocontact --features petsc --test petsc`.
+//! Run with `cargo test --workspace --features piezocontact-cli/petsc --test petsc`.
 
 use piezocontact::assembly::Assembler;
 use piezocontact::case::Case;
