@@ -215,8 +215,9 @@ fn a_factor_too_large_for_the_memory_is_refused_before_it_is_computed() {
 /// `check` predicts the exact solver's dense matrices beside the factor, from the condensed
 /// set a run starts with: Example 7.2 (PV2) on a 768 × 4 bar condenses both displacement
 /// components of its 513 Γ3 nodes (the flat foundation reaches all), m = 1026, so 7 m × m
-/// matrices of 8 bytes = 56.2 MiB. A memory limit above the factor but below those matrices
-/// is refused by `check` as by `run`, with both numbers.
+/// matrices of 8 bytes, and the 32 right-hand sides of a growth (n free unknowns each):
+/// 8 (7 m² + 32 n) bytes. A memory limit above the factor but below those matrices is
+/// refused by `check` as by `run`, with both numbers.
 #[test]
 fn check_predicts_the_exact_solver_s_dense_matrices_and_refuses_them_when_too_large() {
     let args = ["check", "cases/paper-7.2.toml", "--set", "solver.method=\"newton\""];
@@ -224,7 +225,9 @@ fn check_predicts_the_exact_solver_s_dense_matrices_and_refuses_them_when_too_la
     let fits = piezocontact(&[&args[..], &mesh[..]].concat());
     let t = text(&fits);
     assert!(fits.status.success(), "{t}");
-    let dense = 7.0 * 8.0 * (2.0f64 * 513.0).powi(2) / (1024.0 * 1024.0);
+    let free: f64 =
+        t.split(" free (").next().and_then(|s| s.rsplit(' ').next()).unwrap().parse().unwrap();
+    let dense = 8.0 * (7.0 * (2.0f64 * 513.0).powi(2) + 32.0 * free) / (1024.0 * 1024.0);
     assert!(t.contains(&format!("dense: {dense:.1} MiB")) && t.contains("(513 Γ3 nodes"), "{t}");
     let refused =
         command().env("PIEZOCONTACT_MEMORY_LIMIT", "50000000").args(args).args(mesh).output();

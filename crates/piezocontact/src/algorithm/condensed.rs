@@ -30,6 +30,8 @@ pub struct Condensed {
     pub(super) kept: Vec<bool>,
     /// Whether ϕ of the nodes is condensed.
     with_phi: bool,
+    /// Free unknowns of the problem: the length of each right-hand side a growth solves.
+    n_free: usize,
     /// Whether friction is absent, so that a node whose normal is a coordinate axis condenses
     /// u_ν alone (its tangential components carry no contact force and stay with the interior).
     frictionless: bool,
@@ -115,6 +117,7 @@ impl Condensed {
             phi: Vec::new(),
             kept: Vec::new(),
             with_phi,
+            n_free: dofs.n_free(),
             frictionless,
         };
         let push = |this: &mut Self, dof: usize| {
@@ -219,10 +222,11 @@ impl Condensed {
 
     /// The bytes of the dense work of the condensation: the Schur complement, its factor
     /// block, the one kept for the next set, the block inverted to reach a new set and the
-    /// Newton systems, about 7 dense m × m matrices.
+    /// Newton systems, about 7 dense m × m matrices; and the [`SOLVE_BLOCK`] right-hand sides
+    /// of n free unknowns that a growth solves at once.
     pub fn dense_bytes(&self) -> f64 {
         let m = self.len() as f64;
-        7.0 * 8.0 * m * m
+        8.0 * (7.0 * m * m + (SOLVE_BLOCK * self.n_free) as f64)
     }
 
     /// Checks that [`Self::dense_bytes`] fit in `available` bytes.
@@ -393,13 +397,15 @@ mod tests {
             axes: Vec::new(),
             kept: Vec::new(),
             with_phi: false,
+            n_free: 1_000_000,
             frictionless: false,
         };
+        // 8 bytes × (7 × 30000² + 32 × 10⁶) = 47.2 GiB.
         assert!(many.check_memory(64.0 * 2f64.powi(30)).is_ok());
         let e = many.check_memory(16.0 * 2f64.powi(30)).unwrap_err().to_string();
         assert!(
             e.contains("30000 condensed Γ3 unknowns")
-                && e.contains("46.9 GiB")
+                && e.contains("47.2 GiB")
                 && e.contains("uzawa"),
             "{e}"
         );
