@@ -37,17 +37,16 @@ pub struct Condensed {
     frictionless: bool,
 }
 
-/// How the exact solver guesses the Γ3 nodes to condense first.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// How the exact solver guesses the Γ3 nodes to condense first, and at most how many.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Guess {
-    /// Every node within the foundation's reach, or the `max_condensed` nearest.
-    Nearest,
+    /// Every node within the foundation's reach, or this many nearest to it.
+    Nearest(usize),
     /// The nodes inside the foundation when the undeformed body penetrates it — for a ball
     /// pressed in by d, the disc of radius √(2Rd), which holds Hertz's contact disc of radius
-    /// √(Rd) — else as [`Guess::Nearest`]. Nodes of the contact zone outside it are added by
-    /// [`Condensed::grown`], at the cost of a factorisation.
-    #[default]
-    Interpenetration,
+    /// √(Rd) — else as [`Guess::Nearest`]; at most this many. Nodes of the contact zone
+    /// outside it are added by [`Condensed::grown`].
+    Interpenetration(usize),
 }
 
 /// ϕ of a Γ3 node in the condensed problem.
@@ -63,26 +62,29 @@ pub(super) enum Phi {
 }
 
 impl Condensed {
-    /// The first guess of the Γ3 nodes to condense, at most `max_nodes` of them: with
-    /// [`Guess::Interpenetration`] and a foundation that the undeformed body already
-    /// penetrates, the nodes inside it (g_a ≤ 0); else every node within the foundation's
-    /// reach. When they are more than `max_nodes`, the `max_nodes` nearest to the foundation
-    /// (smallest gap; the first of equal ones). [`Condensed::grown`] corrects the guess. A
-    /// node's u is condensed, and its ϕ when `with_phi` (the laws that read ϕ can act: a
-    /// penetration g_p > 0); a prescribed ϕ (a Γ3 node on Γa) is not an unknown.
+    /// The first guess of the Γ3 nodes to condense: with [`Guess::Interpenetration`] and a
+    /// foundation that the undeformed body already penetrates, the nodes inside it
+    /// (g_a ≤ 0); else every node within the foundation's reach. When they are more than the
+    /// guess's count, that many nearest to the foundation (smallest gap; the first of equal
+    /// ones). [`Condensed::grown`] corrects the guess. A node's u is condensed, and its ϕ when
+    /// `with_phi` (the laws that read ϕ can act: a penetration g_p > 0); a prescribed ϕ (a Γ3
+    /// node on Γa) is not an unknown.
     pub fn new(
         dofs: &DofMap,
         surface: &ContactSurface,
         (with_phi, frictionless): (bool, bool),
-        max_nodes: usize,
         guess: Guess,
     ) -> Self {
         let gap = &surface.gap;
         let mut reach: Vec<usize> = (0..surface.len()).filter(|&i| gap[i].is_finite()).collect();
         let inside = reach.iter().filter(|&&i| gap[i] <= 0.0).count();
-        if guess == Guess::Interpenetration && inside > 0 {
-            reach.retain(|&i| gap[i] <= 0.0);
-        }
+        let max_nodes = match guess {
+            Guess::Interpenetration(n) if inside > 0 => {
+                reach.retain(|&i| gap[i] <= 0.0);
+                n
+            }
+            Guess::Interpenetration(n) | Guess::Nearest(n) => n,
+        };
         if reach.len() > max_nodes {
             reach.sort_by(|&a, &b| gap[a].total_cmp(&gap[b]).then(a.cmp(&b)));
             reach.truncate(max_nodes);
@@ -161,14 +163,14 @@ impl Condensed {
     /// while u_ν ≤ g_a. `None` when every left-out node is there. Else the condensation
     /// with those that pass it added, and with them the left-out nodes as near to touching
     /// (u_ν − g_a above minus the largest excess e), deepest first. When that would exceed
-    /// `max_nodes`, condensed nodes clear of the foundation make room, the clearest first;
-    /// an error when none can.
+    /// `max_nodes` (`None`: no cap), condensed nodes clear of the foundation make room, the
+    /// clearest first; an error when none can.
     pub fn grown(
         &self,
         dofs: &DofMap,
         surface: &ContactSurface,
         x: &[f64],
-        max_nodes: usize,
+        max_nodes: Option<usize>,
     ) -> Result<Option<Self>> {
         let excess = |i: usize| {
             let nu = surface.frame(i)[0];
@@ -194,13 +196,14 @@ impl Condensed {
         left_out.retain(|(_, v)| *v > -largest);
         let mut kept = self.kept.clone();
         let count = self.node_count();
-        let short = (count + left_out.len()).saturating_sub(max_nodes);
+        let cap = max_nodes.unwrap_or(usize::MAX);
+        let short = (count + left_out.len()).saturating_sub(cap);
         let clear = ranked(true).into_iter().rev().take_while(|(_, v)| *v < 0.0).take(short);
         clear.for_each(|(i, _)| kept[i] = false);
-        let room = max_nodes - kept.iter().filter(|k| **k).count();
+        let room = cap.saturating_sub(kept.iter().filter(|k| **k).count());
         if room == 0 {
             return Err(Error::Input(format!(
-                "the contact zone is larger than solver.max_condensed = {max_nodes} nodes: with that many Γ3 nodes condensed and touching, {touching} more still touch the foundation; raise solver.max_condensed to at least {} (its dense matrices grow as its square), or use solver.method = \"uzawa\"",
+                "the contact zone is larger than solver.max_condensed = {cap} nodes: with that many Γ3 nodes condensed and touching, {touching} more still touch the foundation; raise solver.max_condensed to at least {} (its dense matrices grow as its square), or use solver.method = \"uzawa\"",
                 count + touching
             )));
         }
@@ -428,7 +431,7 @@ mod slot_tests {
         let dofs = DofMap::new(fixture.problem()).unwrap();
         let surface = &fixture.surface;
         for (frictionless, per_node) in [(true, 1), (false, 3)] {
-            let c = Condensed::new(&dofs, surface, (false, frictionless), 2000, Guess::Nearest);
+            let c = Condensed::new(&dofs, surface, (false, frictionless), Guess::Nearest(2000));
             assert_eq!(c.len(), per_node * c.node_count(), "frictionless: {frictionless}");
             let i = (0..surface.len()).find(|&i| c.kept[i]).unwrap();
             let axes = c.slots(i).1.to_vec();
@@ -454,7 +457,7 @@ mod transfer_tests {
             &["mesh.nx=24", "mesh.ny=4", "contact.penetration=0.05", "conductivity.ke=0.5"],
         );
         let dofs = DofMap::new(fixture.problem()).unwrap();
-        let all = Condensed::new(&dofs, &fixture.surface, (true, false), 2000, Guess::Nearest);
+        let all = Condensed::new(&dofs, &fixture.surface, (true, false), Guess::Nearest(2000));
         let m = all.len();
         assert!(m > 40, "{m} condensed unknowns");
         let analysed: Vec<usize> = all.free[..2 * m / 3].to_vec();

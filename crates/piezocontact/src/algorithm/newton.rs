@@ -97,11 +97,11 @@ pub struct Parameters {
     pub tol: f64,
     /// Cap on Newton steps per condensed problem.
     pub max_inner: usize,
-    /// The most Γ3 nodes condensed into the dense problem. A Γ3 with more nodes within the
-    /// foundation's reach starts from the nodes nearest to it, and trades clear nodes for
-    /// left-out nodes that turn out to touch (model §11).
-    pub max_condensed: usize,
-    /// The first guess of the condensed nodes.
+    /// The most Γ3 nodes condensed into the dense problem: at this cap, clear nodes are traded
+    /// for left-out nodes that turn out to touch (model §11). `None`: no cap but the memory
+    /// the dense matrices need, so that the condensation grows as far as the contact zone.
+    pub max_condensed: Option<usize>,
+    /// The first guess of the condensed nodes (at most the cap).
     pub guess: Guess,
 }
 
@@ -161,8 +161,12 @@ impl InnerMethod for Newton {
         let with_phi = model.compliance.penetration > 0.0;
         let Parameters { max_condensed, guess, .. } = self.parameters;
         let frictionless = model.pv2.is_none();
-        let condensed =
-            Condensed::new(&dofs, surface, (with_phi, frictionless), max_condensed, guess);
+        let capped = |n: usize| max_condensed.map_or(n, |cap| n.min(cap));
+        let guess = match guess {
+            Guess::Nearest(n) => Guess::Nearest(capped(n)),
+            Guess::Interpenetration(n) => Guess::Interpenetration(capped(n)),
+        };
+        let condensed = Condensed::new(&dofs, surface, (with_phi, frictionless), guess);
         condensed.check_memory(crate::limits::available_memory())?;
         let system = CoupledSystem::with_last(problem, dofs, &condensed.free, solver)?;
         self.c_factor = self.parameters.r / problem.material.elasticity.young();
@@ -247,8 +251,9 @@ impl Newton {
         {
             if rounds == MAX_ROUNDS {
                 return Err(Error::Input(format!(
-                    "the exact solver's condensation of Γ3 did not settle in {MAX_ROUNDS} factorisations (solver.max_condensed = {max_condensed} nodes, {} condensed): raise solver.max_condensed, or use solver.method = \"uzawa\"",
-                    condensed.node_count()
+                    "the exact solver's condensation of Γ3 did not settle in {MAX_ROUNDS} factorisations ({} Γ3 nodes condensed, solver.max_condensed = {}): raise solver.max_condensed, or use solver.method = \"uzawa\"",
+                    condensed.node_count(),
+                    max_condensed.map_or("none".to_string(), |n| format!("{n} nodes"))
                 )));
             }
             rounds += 1;
@@ -782,8 +787,8 @@ mod tests {
             r: 14.7,
             tol: 1e-10,
             max_inner: 100,
-            max_condensed: 2000,
-            guess: Guess::Nearest,
+            max_condensed: Some(2000),
+            guess: Guess::Nearest(2000),
         };
         let mut method = Newton::new(parameters);
         let mut system = method.prepare(fixture.setup(), default_solver()).unwrap();

@@ -224,12 +224,12 @@ impl Case {
                 r,
                 tol: s.tol.unwrap_or(d.tol),
                 max_inner: s.max_inner.unwrap_or(d.max_newton),
-                max_condensed: s.max_condensed.unwrap_or(d.max_condensed),
-                // A cap the file names is the set's size; without one the solver guesses.
-                guess: if s.max_condensed.is_some() {
-                    Guess::Nearest
-                } else {
-                    Guess::Interpenetration
+                max_condensed: s.max_condensed,
+                // A cap the file names is the first set's size; without one the solver
+                // guesses, and the set grows as far as the contact zone.
+                guess: match s.max_condensed {
+                    Some(n) => Guess::Nearest(n),
+                    None => Guess::Interpenetration(d.first_condensed),
                 },
             }),
         }

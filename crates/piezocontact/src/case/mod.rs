@@ -237,8 +237,8 @@ gap = 0.1
             r: 0.25 * 100.0,
             tol: d.tol,
             max_inner: d.max_newton,
-            max_condensed: d.max_condensed,
-            guess: crate::algorithm::condensed::Guess::Interpenetration,
+            max_condensed: None,
+            guess: crate::algorithm::condensed::Guess::Interpenetration(d.first_condensed),
         };
         assert_eq!(c.method_parameters(), MethodParameters::Newton(newton));
         let built = c.build().unwrap();

@@ -41,8 +41,9 @@ pub struct Defaults {
     pub max_newton: usize,
     /// solver.max_outer.
     pub max_outer: usize,
+    /// The most Γ3 nodes of the exact solver's first condensed set without
     /// solver.max_condensed [nodes].
-    pub max_condensed: usize,
+    pub first_condensed: usize,
     /// solver.ordering.
     pub ordering: OrderingKey,
     /// solver.backend.
@@ -69,7 +70,7 @@ pub const DEFAULTS: Defaults = Defaults {
     max_uzawa: 10_000,
     max_newton: 100,
     max_outer: 100,
-    max_condensed: 2000,
+    first_condensed: 2000,
     ordering: OrderingKey::Auto,
     backend: BackendKey::Faer,
 };
@@ -510,8 +511,8 @@ pub struct SolverSection {
     pub max_inner: Option<usize>,
     /// Cap on fixed-point iterations; default 100.
     pub max_outer: Option<usize>,
-    /// The most Γ3 nodes the exact solver condenses into its dense problem; default 2000
-    /// (newton only).
+    /// The most Γ3 nodes the exact solver condenses into its dense problem (newton only);
+    /// default: no cap but memory, from a first set of at most 2000 nodes.
     pub max_condensed: Option<usize>,
     /// The fill-reducing ordering of the factorisation: "auto" (default: nested dissection
     /// on a 3D mesh, else AMD and nested dissection both analysed and the smaller factor

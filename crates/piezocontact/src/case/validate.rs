@@ -108,12 +108,21 @@ impl Case {
                 Rule("solver.eps_fp", p.eps_fp, positive, "ε_fp > 0"),
                 Rule("solver.max_inner", p.max_inner as f64, at_least_one, "at least 1"),
             ]),
-            MethodParameters::Newton(p) => rules.extend([
-                Rule("solver.r", p.r, positive, "r > 0"),
-                Rule("solver.tol", p.tol, positive, "a tolerance > 0"),
-                Rule("solver.max_inner", p.max_inner as f64, at_least_one, "at least 1"),
-                Rule("solver.max_condensed", p.max_condensed as f64, at_least_one, "at least 1"),
-            ]),
+            MethodParameters::Newton(p) => {
+                rules.extend([
+                    Rule("solver.r", p.r, positive, "r > 0"),
+                    Rule("solver.tol", p.tol, positive, "a tolerance > 0"),
+                    Rule("solver.max_inner", p.max_inner as f64, at_least_one, "at least 1"),
+                ]);
+                if let Some(cap) = p.max_condensed {
+                    rules.push(Rule(
+                        "solver.max_condensed",
+                        cap as f64,
+                        at_least_one,
+                        "at least 1",
+                    ));
+                }
+            }
         }
         rules.push(Rule("solver.max_outer", self.max_outer() as f64, at_least_one, "at least 1"));
         let mut lines = Vec::new();

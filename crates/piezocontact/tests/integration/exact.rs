@@ -28,8 +28,13 @@ fn newton(r_per_young: f64) -> Settings {
 fn condensing(r_per_young: f64, max_condensed: usize) -> Settings {
     let young = PAPER_UNITS.stress(58.7102);
     let r = r_per_young * young;
-    let parameters =
-        newton::Parameters { r, tol: 1e-10, max_inner: 100, max_condensed, guess: Guess::Nearest };
+    let parameters = newton::Parameters {
+        r,
+        tol: 1e-10,
+        max_inner: 100,
+        max_condensed: Some(max_condensed),
+        guess: Guess::Nearest(max_condensed),
+    };
     Settings::new(Newton::new(parameters), 100)
 }
 

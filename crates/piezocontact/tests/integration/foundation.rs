@@ -11,16 +11,16 @@ use piezocontact::contact::Foundation;
 use piezocontact::material::ElasticLaw;
 use piezocontact::problem::Problem;
 
-/// Newton condensing at most `max_condensed` Γ3 nodes.
+/// Newton condensing at most `max_condensed` Γ3 nodes, the nearest first.
 fn newton(max_condensed: usize) -> Settings {
+    newton_with(Some(max_condensed), Guess::Nearest(max_condensed))
+}
+
+/// Newton with its cap and its first guess.
+fn newton_with(max_condensed: Option<usize>, guess: Guess) -> Settings {
     let young = PAPER_UNITS.stress(58.7102);
-    let parameters = newton::Parameters {
-        r: 0.25 * young,
-        tol: 1e-10,
-        max_inner: 100,
-        max_condensed,
-        guess: Guess::Nearest,
-    };
+    let parameters =
+        newton::Parameters { r: 0.25 * young, tol: 1e-10, max_inner: 100, max_condensed, guess };
     Settings::new(Newton::new(parameters), 10)
 }
 
@@ -274,6 +274,20 @@ fn a_contact_zone_larger_than_max_condensed_is_refused() {
     );
 }
 
+/// Without a cap, the same first set of the 4 nearest nodes grows as far as the contact
+/// zone: the solution of the whole condensation, with every touching node condensed.
+#[test]
+fn without_a_cap_the_condensation_grows_as_far_as_the_contact_zone() {
+    let (problem, model) = ball_on_block();
+    let whole = solve(&problem, &model);
+    let grown = solve_with(&problem, &model, &newton_with(None, Guess::Nearest(4)));
+    let touching = whole.sigma_nu.iter().filter(|s| **s < 0.0).count();
+    assert!(touching > 4 && grown.condensed_nodes >= touching, "{}", grown.condensed_nodes);
+    let size = whole.x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let gap = whole.x.iter().zip(&grown.x).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+    assert!(gap <= 1e-10 * size, "{gap} of {size}");
+}
+
 /// The default first guess of the exact solver: the nodes inside the ball (g_a ≤ 0), which
 /// hold its contact zone — far fewer than the nodes within reach, one factorisation, and the
 /// solution of the whole condensation.
@@ -281,15 +295,7 @@ fn a_contact_zone_larger_than_max_condensed_is_refused() {
 fn the_first_guess_is_the_nodes_inside_the_ball() {
     let (problem, model) = ball_on_block();
     let whole = solve(&problem, &model);
-    let young = PAPER_UNITS.stress(58.7102);
-    let parameters = newton::Parameters {
-        r: 0.25 * young,
-        tol: 1e-10,
-        max_inner: 100,
-        max_condensed: 2000,
-        guess: Guess::Interpenetration,
-    };
-    let guessed = solve_with(&problem, &model, &Settings::new(Newton::new(parameters), 10));
+    let guessed = solve_with(&problem, &model, &newton_with(None, Guess::Interpenetration(2000)));
     let surface = &whole.surface;
     let inside = surface.gap.iter().filter(|g| **g <= 0.0).count();
     let touching = whole.sigma_nu.iter().filter(|s| **s < 0.0).count();

@@ -74,8 +74,8 @@ fn indent(mesh_name: &str, depth: f64) -> (f64, f64) {
         r: 0.25 * YOUNG,
         tol: 1e-10,
         max_inner: 100,
-        max_condensed: 2000,
-        guess: Guess::Nearest,
+        max_condensed: Some(2000),
+        guess: Guess::Nearest(2000),
     };
     let settings = Settings::new(Newton::new(parameters), 10);
     let solution = solve_contact(&problem, &model, &settings).unwrap();

@@ -23,8 +23,8 @@ fn newton() -> Settings {
         r: 0.25 * 58.7102,
         tol: 1e-10,
         max_inner: 100,
-        max_condensed: 2000,
-        guess: Guess::Nearest,
+        max_condensed: Some(2000),
+        guess: Guess::Nearest(2000),
     };
     Settings::new(Newton::new(parameters), 20)
 }
