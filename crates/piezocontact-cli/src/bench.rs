@@ -9,6 +9,7 @@
 
 use crate::say;
 use anyhow::{Result, anyhow, bail};
+use piezocontact::algorithm::condensed::SOLVE_BLOCK;
 use piezocontact::algorithm::solve_contact_with;
 use piezocontact::assembly::secant_moduli;
 use piezocontact::case::{Built, Case};
@@ -184,12 +185,10 @@ pub(crate) fn mesh_case(path: &Path) -> Result<Case> {
     Ok(Case::from_text(Path::new("bench.toml"), &text, &[])?)
 }
 
-/// Right-hand sides of the blocked solve that `measure` times (`solve32_s`).
-const BLOCK: usize = 32;
-
 /// Assembles, analyses, factorises and solves once with `ordering` on `threads` threads, and
-/// [`BLOCK`] right-hand sides at once, then times faer's bare factorisation with the same
-/// analysis; prints the row.
+/// the [`SOLVE_BLOCK`] right-hand sides that a growth of the condensation solves at once
+/// (`solve32_s`), then times faer's bare factorisation with the same analysis; prints the
+/// row.
 fn measure(
     name: &str,
     problem: &Problem,
@@ -208,7 +207,7 @@ fn measure(
     system.solve(None)?;
     let timings = system.timings();
     let stats = system.solver_stats();
-    let mut block: Vec<f64> = system.rhs().repeat(BLOCK);
+    let mut block: Vec<f64> = system.rhs().repeat(SOLVE_BLOCK);
     system.solve_free(&mut block)?;
     let solve_block = system.solver_stats().solve_seconds - stats.solve_seconds;
     let (pattern, assembly) = (dof_map + timings.pattern, timings.assembly);

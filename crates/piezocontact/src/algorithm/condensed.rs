@@ -49,6 +49,17 @@ pub enum Guess {
     Interpenetration(usize),
 }
 
+impl Guess {
+    /// The same guess of at most `cap` nodes (`None`: no cap).
+    pub fn at_most(self, cap: Option<usize>) -> Self {
+        let capped = |n: usize| cap.map_or(n, |cap| n.min(cap));
+        match self {
+            Guess::Nearest(n) => Guess::Nearest(capped(n)),
+            Guess::Interpenetration(n) => Guess::Interpenetration(capped(n)),
+        }
+    }
+}
+
 /// ϕ of a Γ3 node in the condensed problem.
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Phi {
@@ -305,7 +316,7 @@ impl SchurSource {
 }
 
 /// Right-hand sides solved at once by [`schur_from`]: the factor is read once per block.
-const SOLVE_BLOCK: usize = 32;
+pub const SOLVE_BLOCK: usize = 32;
 
 /// The Schur complement S_W of the free unknowns `wanted` from `base`, the Schur complement
 /// S_B of the free unknowns `base_set` of the current factorisation of `system`. The (W, W)
@@ -389,6 +400,14 @@ pub fn cheaper_by_solves(new_unknowns: usize, stats: &SolverStats) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A cap bounds the first guess's count and keeps its kind; no cap changes nothing.
+    #[test]
+    fn a_cap_bounds_the_first_guess() {
+        assert_eq!(Guess::Nearest(2000).at_most(Some(4)), Guess::Nearest(4));
+        assert_eq!(Guess::Interpenetration(3).at_most(Some(4)), Guess::Interpenetration(3));
+        assert_eq!(Guess::Interpenetration(2000).at_most(None), Guess::Interpenetration(2000));
+    }
 
     #[test]
     fn a_condensed_problem_too_large_for_memory_is_refused() {

@@ -161,11 +161,7 @@ impl InnerMethod for Newton {
         let with_phi = model.compliance.penetration > 0.0;
         let Parameters { max_condensed, guess, .. } = self.parameters;
         let frictionless = model.pv2.is_none();
-        let capped = |n: usize| max_condensed.map_or(n, |cap| n.min(cap));
-        let guess = match guess {
-            Guess::Nearest(n) => Guess::Nearest(capped(n)),
-            Guess::Interpenetration(n) => Guess::Interpenetration(capped(n)),
-        };
+        let guess = guess.at_most(max_condensed);
         let condensed = Condensed::new(&dofs, surface, (with_phi, frictionless), guess);
         condensed.check_memory(crate::limits::available_memory())?;
         let system = CoupledSystem::with_last(problem, dofs, &condensed.free, solver)?;
