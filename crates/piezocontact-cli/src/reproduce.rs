@@ -1,4 +1,4 @@
-//! `piezocontact reproduce`: regenerates the numerical results of [P] Section 7 — Examples
+//! `piezocontact reproduce`: regenerates the numerical results of \[P\] Section 7 — Examples
 //! 7.1 and 7.2, Table 2, Figures 1–4 — with a Theorem 4.1 convergence figure, a mesh study
 //! and a stopping-rule study, and writes REPORT.md around them.
 
@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 const PAPER_71: &str = include_str!("../../../cases/paper-7.1.toml");
 const PAPER_72: &str = include_str!("../../../cases/paper-7.2.toml");
 
-/// Table 2 of [P]: µ = k_e and the outer iteration counts.
+/// Table 2 of \[P\]: µ = k_e and the outer iteration counts.
 pub const TABLE2: [(f64, usize); 8] = [
     (0.6, 7),
     (0.2, 5),

@@ -2,7 +2,7 @@
 //!
 //! `println!` panics when stdout is a pipe whose reader has closed (`piezocontact mesh-info
 //! FILE | head -n 1`). [`say!`](crate::say!) and [`say_err!`](crate::say_err!) write through
-//! [`line`] instead: the first failed write marks the stream closed and the rest of the
+//! [`line()`] instead: the first failed write marks the stream closed and the rest of the
 //! command's output to it is dropped, while the command carries on to its own exit code.
 
 use std::io::Write;

@@ -1,7 +1,7 @@
 //! # piezocontact
 //!
 //! Finite elements for the static contact of a piezoelectric body with a foundation, after
-//! [P]: a piezoelectric body with nonlinear Hencky elasticity in contact with a foundation
+//! \[P\]: a piezoelectric body with nonlinear Hencky elasticity in contact with a foundation
 //! through normal compliance with finite penetration; problem PV1 (frictionless,
 //! nonconductive foundation) and PV2 (regularised Coulomb friction, conductive foundation).
 //! P1 elements in 2D (triangles) and 3D (tetrahedra) share every code path.
@@ -12,8 +12,10 @@
 //!
 //! One meaning per symbol in code. Units are those of the case's consistent system (model §9):
 //! length, stress, charge, potential.
+//! A quantity's doc comment gives its unit in brackets, \[stress\] (escaped in the source,
+//! `\[stress\]`, so that rustdoc does not take it for a link).
 //!
-//! | symbol | identifier | meaning | unit | [P] |
+//! | symbol | identifier | meaning | unit | \[P\] |
 //! |---|---|---|---|---|
 //! | u, ϕ, x | `u`, `phi`, `x` | displacement, electric potential, x = (u, ϕ) | length, potential | (2.1) |
 //! | σ | `sigma` | stress | stress | (2.2) |
@@ -86,7 +88,7 @@
 //! ## Reference
 //!
 //! The model and the method are stated in `docs/model.md` of the repository; "model §n" in doc
-//! comments is its section n. [P] is the paper whose model and method piezocontact implements:
+//! comments is its section n. \[P\] is the paper whose model and method piezocontact implements:
 //! equation numbers (2.x), (6.x), the Algorithms 1–4 and the Examples 7.1–7.2 are its.
 
 /// The one dimension dispatch: calls `f::<D, N>(args)` with (D, N) = (2, 3) on a triangle

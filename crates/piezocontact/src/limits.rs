@@ -1,10 +1,10 @@
 //! The machine's limits that inputs are checked against before the work starts.
 
-/// The environment variable that caps the memory a run may plan for [bytes], below what the
+/// The environment variable that caps the memory a run may plan for \[bytes\], below what the
 /// machine has available (for a machine shared with other work).
 pub const MEMORY_LIMIT_VAR: &str = "PIEZOCONTACT_MEMORY_LIMIT";
 
-/// Memory available to this process [bytes]: MemAvailable of /proc/meminfo (else 24 GiB),
+/// Memory available to this process \[bytes\]: MemAvailable of /proc/meminfo (else 24 GiB),
 /// or less when [`MEMORY_LIMIT_VAR`] says so.
 pub fn available_memory() -> f64 {
     let machine = std::fs::read_to_string("/proc/meminfo")
@@ -18,7 +18,7 @@ pub fn available_memory() -> f64 {
     cap.filter(|c| *c > 0.0).map_or(machine, |c| c.min(machine))
 }
 
-/// This process's peak resident memory so far [bytes]: VmHWM of /proc/self/status (Linux);
+/// This process's peak resident memory so far \[bytes\]: VmHWM of /proc/self/status (Linux);
 /// `None` elsewhere.
 pub fn peak_resident_bytes() -> Option<f64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;

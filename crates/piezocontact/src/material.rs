@@ -1,4 +1,4 @@
-//! Constitutive law of the piezoelectric body, [P] (2.2)–(2.3):
+//! Constitutive law of the piezoelectric body, \[P\] (2.2)–(2.3):
 //!
 //! ```text
 //! σ = F ε(u) + Eᵀ∇ϕ,        D = E ε(u) − β∇ϕ,
@@ -15,7 +15,7 @@
 use crate::error::{Error, Result};
 
 /// The function g of Hencky's law (2.3): the secant shear modulus as a function of
-/// t = ‖ε^D‖² [stress].
+/// t = ‖ε^D‖² \[stress\].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ElasticLaw {
     /// Linear elasticity, g ≡ µ1.
@@ -23,7 +23,7 @@ pub enum ElasticLaw {
     /// The paper's Hencky law (Section 7): g(t) = µ1 for t ≤ t0,
     /// g(t) = µ1 (t0/t)(1 + ln(t/t0)) for t > t0.
     Hencky {
-        /// t0: elasticity limit on ‖ε^D‖² [dimensionless].
+        /// t0: elasticity limit on ‖ε^D‖² \[dimensionless\].
         t0: f64,
     },
 }
@@ -31,16 +31,16 @@ pub enum ElasticLaw {
 /// The elasticity operator F of (2.3).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Elasticity {
-    /// k0 = E/(3 − 6ν): bulk coefficient [stress].
+    /// k0 = E/(3 − 6ν): bulk coefficient \[stress\].
     pub k0: f64,
-    /// µ1 = E/(2 + 2ν): shear modulus at small strain [stress].
+    /// µ1 = E/(2 + 2ν): shear modulus at small strain \[stress\].
     pub mu1: f64,
     /// The law g.
     pub law: ElasticLaw,
 }
 
 impl Elasticity {
-    /// Young's modulus E = 9 k0 µ1 / (3 k0 + µ1) [stress].
+    /// Young's modulus E = 9 k0 µ1 / (3 k0 + µ1) \[stress\].
     pub fn young(&self) -> f64 {
         9.0 * self.k0 * self.mu1 / (3.0 * self.k0 + self.mu1)
     }
@@ -50,7 +50,7 @@ impl Elasticity {
         (3.0 * self.k0 - 2.0 * self.mu1) / (6.0 * self.k0 + 2.0 * self.mu1)
     }
 
-    /// From Young's modulus E [stress] and Poisson's ratio ν, as in [P] Section 7:
+    /// From Young's modulus E \[stress\] and Poisson's ratio ν, as in \[P\] Section 7:
     /// µ1 = E/(2 + 2ν), k0 = E/(3 − 6ν).
     pub fn from_young_poisson(young: f64, poisson: f64, law: ElasticLaw) -> Result<Self> {
         if !(young.is_finite() && young > 0.0) {
@@ -71,7 +71,7 @@ impl Elasticity {
         Ok(Self { k0: young / (3.0 - 6.0 * poisson), mu1: young / (2.0 + 2.0 * poisson), law })
     }
 
-    /// g(t) [stress], t = ‖ε^D‖².
+    /// g(t) \[stress\], t = ‖ε^D‖².
     pub fn g(&self, t: f64) -> f64 {
         match self.law {
             ElasticLaw::Hencky { t0 } if t > t0 => self.mu1 * (t0 / t) * (1.0 + (t / t0).ln()),
@@ -79,7 +79,7 @@ impl Elasticity {
         }
     }
 
-    /// g'(t) [stress], for a Newton method: −µ1 t0 ln(t/t0)/t² above t0, 0 below.
+    /// g'(t) \[stress\], for a Newton method: −µ1 t0 ln(t/t0)/t² above t0, 0 below.
     pub fn dg(&self, t: f64) -> f64 {
         match self.law {
             ElasticLaw::Hencky { t0 } if t > t0 => -self.mu1 * t0 * (t / t0).ln() / (t * t),
@@ -157,7 +157,7 @@ impl Material {
         Ok(Self { dim, elasticity, e, beta })
     }
 
-    /// σ = k0 tr(ε) I + 2 g ε^D + Eᵀ∇ϕ with a given secant modulus g [stress], (2.2).
+    /// σ = k0 tr(ε) I + 2 g ε^D + Eᵀ∇ϕ with a given secant modulus g \[stress\], (2.2).
     pub fn stress<const D: usize>(
         &self,
         eps: &[[f64; D]; D],

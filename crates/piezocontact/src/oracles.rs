@@ -40,9 +40,9 @@ use std::f64::consts::PI;
 pub struct Indentation {
     /// The force P [stress·length²].
     pub force: f64,
-    /// The radius a of the contact disc [length].
+    /// The radius a of the contact disc \[length\].
     pub radius: f64,
-    /// The mean pressure P/(πa²) [stress].
+    /// The mean pressure P/(πa²) \[stress\].
     pub mean_pressure: f64,
 }
 
@@ -52,7 +52,7 @@ impl Indentation {
     }
 }
 
-/// E* = E/(1 − ν²) of an isotropic solid [stress].
+/// E* = E/(1 − ν²) of an isotropic solid \[stress\].
 pub fn plane_strain_modulus(young: f64, poisson: f64) -> f64 {
     young / (1.0 - poisson * poisson)
 }
@@ -64,7 +64,7 @@ pub fn hertz(modulus: f64, radius: f64, depth: f64) -> Indentation {
     Indentation::new(4.0 / 3.0 * modulus * radius.sqrt() * depth.powf(1.5), a)
 }
 
-/// Sneddon: a rigid cone of half-angle `half_angle` [rad] pressed `depth` into a half-space
+/// Sneddon: a rigid cone of half-angle `half_angle` \[rad\] pressed `depth` into a half-space
 /// of modulus `modulus` (E*).
 pub fn sneddon(modulus: f64, half_angle: f64, depth: f64) -> Indentation {
     let tan = half_angle.tan();
@@ -78,7 +78,7 @@ pub fn boussinesq(modulus: f64, radius: f64, depth: f64) -> Indentation {
 }
 
 /// Delafargue and Ulm's indentation modulus of a transversely isotropic solid whose axis (3)
-/// is normal to the surface, from its stiffnesses c11, c13, c33, c44 [stress].
+/// is normal to the surface, from its stiffnesses c11, c13, c33, c44 \[stress\].
 pub fn transversely_isotropic_modulus(c11: f64, c13: f64, c33: f64, c44: f64) -> f64 {
     let stiffness = (c11 * c33 - c13 * c13) / c11;
     let compliance = 1.0 / c44 + 2.0 / ((c11 * c33).sqrt() + c13);
@@ -104,9 +104,9 @@ pub struct Piezoelectric {
 /// The indentation moduli of a piezoelectric half-space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PiezoelectricIndentation {
-    /// C* under an insulating indenter [stress].
+    /// C* under an insulating indenter \[stress\].
     pub insulating: f64,
-    /// C* under a conducting, grounded indenter [stress].
+    /// C* under a conducting, grounded indenter \[stress\].
     pub conducting: f64,
     /// ϕ/δ on the surface under an insulating indenter, δ the displacement into the body
     /// [potential/length].

@@ -31,7 +31,7 @@ pub struct Loading {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LoadStep {
     /// The foundation's displacement along the direction from its `[foundation]` position
-    /// [length].
+    /// \[length\].
     pub depth: f64,
     /// The factor on every applied load [-].
     pub load_factor: f64,
@@ -58,19 +58,19 @@ pub struct CurveRow {
     pub step: usize,
     /// The factor on the applied loads [-].
     pub load_factor: f64,
-    /// The foundation's displacement along the loading direction [length].
+    /// The foundation's displacement along the loading direction \[length\].
     pub depth: f64,
     /// The force the body exerts on the foundation, d components [stress·length^(d−1)].
     pub force: Vec<f64>,
     /// The measure of the contact zone [length^(d−1)].
     pub contact_measure: f64,
-    /// √(measure/π) in 3D, half the measure in 2D [length].
+    /// √(measure/π) in 3D, half the measure in 2D \[length\].
     pub contact_radius: f64,
-    /// The largest contact pressure −σ_ν [stress].
+    /// The largest contact pressure −σ_ν \[stress\].
     pub max_pressure: f64,
-    /// ϕ at the Γ3 node with the largest pressure [potential].
+    /// ϕ at the Γ3 node with the largest pressure \[potential\].
     pub phi_center: f64,
-    /// The mean of ϕ over the contact zone (over Γ3 when nothing touches) [potential].
+    /// The mean of ϕ over the contact zone (over Γ3 when nothing touches) \[potential\].
     pub phi_mean: f64,
     /// The measures of the stick and slip zones [length^(d−1)].
     pub stick_measure: f64,

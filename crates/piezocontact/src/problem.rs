@@ -1,4 +1,4 @@
-//! The data of a static piezoelectric problem ([P] (2.1)–(2.4)): mesh, material, boundary
+//! The data of a static piezoelectric problem (\[P\] (2.1)–(2.4)): mesh, material, boundary
 //! roles and loads. [`Problem::new`] checks the roles once.
 
 use crate::error::{Error, Result};
@@ -22,7 +22,7 @@ pub fn constant_scalar(s: f64) -> ScalarField {
     Arc::new(move |_| s)
 }
 
-/// Boundary roles of [P] (2.4), each a list of mesh part indices. Parts with no role are
+/// Boundary roles of \[P\] (2.4), each a list of mesh part indices. Parts with no role are
 /// traction free and charge free (natural conditions).
 #[derive(Clone, Default)]
 pub struct Boundary {
@@ -32,14 +32,14 @@ pub struct Boundary {
     pub grounded: Vec<usize>,
     /// Γ3: the contact surface.
     pub contact: Vec<usize>,
-    /// Γ2 with its traction density f2 [stress].
+    /// Γ2 with its traction density f2 \[stress\].
     pub traction: Vec<(usize, VectorField)>,
     /// Γb with its surface charge density q2 [charge/length^(d−1)].
     pub charge: Vec<(usize, ScalarField)>,
-    /// Prescribed displacement on Γ1 [length]; `None` is the model's u = 0. Used by
+    /// Prescribed displacement on Γ1 \[length\]; `None` is the model's u = 0. Used by
     /// verification problems (patch tests, manufactured solutions).
     pub clamped_value: Option<VectorField>,
-    /// Prescribed potential on Γa [potential]; `None` is the model's ϕ = 0.
+    /// Prescribed potential on Γa \[potential\]; `None` is the model's ϕ = 0.
     pub grounded_value: Option<ScalarField>,
 }
 

@@ -13,22 +13,22 @@ use std::fmt::Write;
 pub struct Row {
     /// Node coordinates (3 components).
     pub x: [f64; 3],
-    /// u_ν [length].
+    /// u_ν \[length\].
     pub u_nu: f64,
-    /// u_τ along τ1 and τ2 of [`crate::contact::ContactSurface::frame`] (τ2 = 0 in 2D) [length].
+    /// u_τ along τ1 and τ2 of [`crate::contact::ContactSurface::frame`] (τ2 = 0 in 2D) \[length\].
     pub u_tau: [f64; 2],
-    /// σ_ν [stress].
+    /// σ_ν \[stress\].
     pub sigma_nu: f64,
-    /// σ_τ = −λ_f along τ1 and τ2 [stress].
+    /// σ_τ = −λ_f along τ1 and τ2 \[stress\].
     pub sigma_tau: [f64; 2],
-    /// σ_τ as a vector in the global axes [stress].
+    /// σ_τ as a vector in the global axes \[stress\].
     pub friction_traction: [f64; 3],
     /// g_a,i: the gap along ν_i; where ν_i misses the foundation (the node cannot touch it),
-    /// the shortest distance to the foundation instead [length].
+    /// the shortest distance to the foundation instead \[length\].
     pub gap: f64,
-    /// ϕ [potential].
+    /// ϕ \[potential\].
     pub phi: f64,
-    /// s of the last outer step [stress].
+    /// s of the last outer step \[stress\].
     pub s: f64,
     /// Status.
     pub status: NodeStatus,
@@ -229,7 +229,7 @@ pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &
     })
 }
 
-/// The `memory` object of summary.json [bytes]: the factorisation's size as its symbolic
+/// The `memory` object of summary.json \[bytes\]: the factorisation's size as its symbolic
 /// analysis predicted it, the exact solver's dense condensed matrices (0 without), and the
 /// process's peak resident memory measured when the solve ended (null where the system does
 /// not say).

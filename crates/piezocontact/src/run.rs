@@ -32,7 +32,7 @@ pub struct ContactRun {
     pub settings: Settings,
     /// The case's warnings (the paper's hypotheses, unused keys).
     pub warnings: Vec<String>,
-    /// Wall time of the solve and the assessment [s].
+    /// Wall time of the solve and the assessment \[s\].
     pub seconds: f64,
 }
 
@@ -77,7 +77,7 @@ impl ContactRun {
         })
     }
 
-    /// max |σ_ν| and max |σ_τ| on Γ3 [stress].
+    /// max |σ_ν| and max |σ_τ| on Γ3 \[stress\].
     pub fn peaks(&self) -> (f64, f64) {
         let max = |f: fn(&Row) -> f64| self.rows.iter().map(|r| f(r).abs()).fold(0.0, f64::max);
         (max(|r| r.sigma_nu), max(|r| r.sigma_tau[0].hypot(r.sigma_tau[1])))
@@ -214,11 +214,11 @@ pub struct StaticRun {
     pub problem: Problem,
     /// The solution.
     pub solution: StaticSolution,
-    /// max ‖u‖ over the nodes [length].
+    /// max ‖u‖ over the nodes \[length\].
     pub max_u: f64,
-    /// The smallest and the largest nodal ϕ [potential].
+    /// The smallest and the largest nodal ϕ \[potential\].
     pub phi_range: (f64, f64),
-    /// Wall time [s].
+    /// Wall time \[s\].
     pub seconds: f64,
 }
 

@@ -14,17 +14,17 @@ use std::time::Instant;
 /// Wall-clock seconds spent in each phase.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Timings {
-    /// The sparsity pattern and its gather plan, once per run [s].
+    /// The sparsity pattern and its gather plan, once per run \[s\].
     pub pattern: f64,
-    /// Element matrices summed into the pattern (every refill), and f̌ [s].
+    /// Element matrices summed into the pattern (every refill), and f̌ \[s\].
     pub assembly: f64,
-    /// Symbolic analysis (ordering, elimination tree, the factor's storage) [s].
+    /// Symbolic analysis (ordering, elimination tree, the factor's storage) \[s\].
     pub symbolic: f64,
-    /// All numeric factorisations [s].
+    /// All numeric factorisations \[s\].
     pub numeric: f64,
     /// Number of numeric factorisations.
     pub numeric_count: usize,
-    /// All triangular solves [s].
+    /// All triangular solves \[s\].
     pub solve: f64,
     /// Number of solves.
     pub solve_count: usize,
@@ -33,7 +33,7 @@ pub struct Timings {
     pub factor_bytes: f64,
     /// The bytes of the exact solver's dense condensed matrices at the end (0 without).
     pub dense_bytes: f64,
-    /// The process's peak resident memory when these timings were taken [bytes] (`None`
+    /// The process's peak resident memory when these timings were taken \[bytes\] (`None`
     /// where the system does not say).
     pub peak_resident_bytes: Option<f64>,
 }

@@ -1,4 +1,4 @@
-//! The outer fixed point of [P] Section 6 — Algorithm 1 (PV2) and Algorithm 3 (PV1) — around
+//! The outer fixed point of \[P\] Section 6 — Algorithm 1 (PV2) and Algorithm 3 (PV1) — around
 //! an inner method (model §7): the paper's Uzawa block relaxation ([`uzawa`], Algorithms 2
 //! and 4) or the exact solver ([`newton`], model §11). The outer loop knows no method: it
 //! asks an [`InnerMethod`] to set up the coupled system with the caller's linear solver, to
@@ -169,7 +169,7 @@ pub struct Step<'a> {
     pub mollifier: &'a Mollifier,
     /// x_n: the previous outer iterate (global; zero at the first step).
     pub previous: &'a [f64],
-    /// s_n on the Γ3 nodes: the friction bound at x_n [stress] (zero for PV1).
+    /// s_n on the Γ3 nodes: the friction bound at x_n \[stress\] (zero for PV1).
     pub friction_bound: &'a [f64],
     /// Hencky's law linearised at x_n, with which B̌ was factorised.
     pub linearisation: &'a Linearisation,
@@ -225,11 +225,11 @@ pub struct ContactSolution {
     pub surface: ContactSurface,
     /// The multipliers of the last inner solve.
     pub state: ContactState,
-    /// s_n: the friction bound used in the last inner solve [stress].
+    /// s_n: the friction bound used in the last inner solve \[stress\].
     pub s_used: Vec<f64>,
-    /// s_{n+1} = µ|Rσ_ν(x_{n+1})|: the friction bound of the last outer step [stress].
+    /// s_{n+1} = µ|Rσ_ν(x_{n+1})|: the friction bound of the last outer step \[stress\].
     pub s: Vec<f64>,
-    /// σ_ν on the Γ3 nodes [stress].
+    /// σ_ν on the Γ3 nodes \[stress\].
     pub sigma_nu: Vec<f64>,
     /// Whether both loops met their stopping rules.
     pub converged: bool,

@@ -34,7 +34,7 @@ pub struct KktResidual {
     pub contact: f64,
     /// max_i ‖λ_f − P_s(λ_f + c u_τ)‖ / c / max‖u‖, with s = µ|Rσ_ν(x)| (PV2).
     pub friction: f64,
-    /// max_i (u_ν − ρ)₊ [length].
+    /// max_i (u_ν − ρ)₊ \[length\].
     pub penetration: f64,
     /// The largest of the four relative residuals.
     pub max: f64,

@@ -1,5 +1,5 @@
 //! Uzawa block relaxation for the augmented Lagrangian, Algorithm 2 (with friction) and
-//! Algorithm 4 (without), [P] (6.9)–(6.12), (6.16), as restated in model §7.
+//! Algorithm 4 (without), \[P\] (6.9)–(6.12), (6.16), as restated in model §7.
 //!
 //! ```text
 //! Step 1  (B̌(x_n) + r M) x^{k+1} = f_{1,n} + Σ_i w_i [(r p_c − λ_c) ν_i + (r p_f − λ_f)]

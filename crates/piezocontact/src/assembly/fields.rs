@@ -1,6 +1,6 @@
 //! Fields and norms of a solution, element by element: strain and ∇ϕ, the secant moduli of
 //! Hencky's law, the internal force with the true law, σ and D for output, the L2 norm of the
-//! stopping rules and the norm of the space X of [P] (3.1).
+//! stopping rules and the norm of the space X of \[P\] (3.1).
 
 use super::kernel::{element_matrix, local_dofs, simplex};
 use crate::dofs::DofMap;
@@ -108,7 +108,7 @@ impl MassNorm {
     }
 }
 
-/// ‖x‖²_X = ‖ε(u)‖²_{L2} + ‖∇ϕ‖²_{L2}, the norm of the product space X of [P] (3.1), in
+/// ‖x‖²_X = ‖ε(u)‖²_{L2} + ‖∇ϕ‖²_{L2}, the norm of the product space X of \[P\] (3.1), in
 /// which Theorem 4.1 bounds ‖x(µ, k_e) − x‖_X.
 pub fn x_norm_squared(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<f64> {
     let mut sum = 0.0;
@@ -151,15 +151,15 @@ pub const FLOOR: f64 = 0.3;
 /// linearly where the secant alone converges more slowly.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Linearisation {
-    /// g_e(‖ε^D(u_n)‖²) [stress].
+    /// g_e(‖ε^D(u_n)‖²) \[stress\].
     pub moduli: Vec<f64>,
-    /// Per element: (4 g'(t) [stress], ε^D(u_n) padded to 3 × 3); empty for the secant, and
+    /// Per element: (4 g'(t) \[stress\], ε^D(u_n) padded to 3 × 3); empty for the secant, and
     /// a zero coefficient where the element keeps its secant.
     pub tangent: Vec<(f64, [[f64; 3]; 3])>,
 }
 
 impl Linearisation {
-    /// The secant alone, with the moduli g_e [stress].
+    /// The secant alone, with the moduli g_e \[stress\].
     pub fn secant(moduli: Vec<f64>) -> Self {
         Self { moduli, tangent: Vec::new() }
     }
@@ -207,7 +207,7 @@ fn deviator_tensor<const D: usize, const N: usize>(
     Ok(deviator)
 }
 
-/// Per-element secant moduli g(‖ε^D(u_n)‖²) [stress] at the iterate x_n (global vector).
+/// Per-element secant moduli g(‖ε^D(u_n)‖²) \[stress\] at the iterate x_n (global vector).
 pub fn secant_moduli(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Vec<f64>> {
     (0..problem.mesh.n_cells())
         .map(|c| {
@@ -220,7 +220,7 @@ pub fn secant_moduli(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Vec<
 /// Element fields of a solution, padded to 3D for output.
 #[derive(Clone, Debug, Default)]
 pub struct ElementFields {
-    /// σ per element, 3 × 3 row-major [stress], with the true law g(‖ε^D(u)‖²).
+    /// σ per element, 3 × 3 row-major \[stress\], with the true law g(‖ε^D(u)‖²).
     pub sigma: Vec<[f64; 9]>,
     /// D per element [charge/length^(d−1)].
     pub electric_displacement: Vec<[f64; 3]>,

@@ -1,4 +1,4 @@
-//! Element kernels of the symmetric coupled form B̌ ([P] (6.2), model §5): one P1 simplex at a
+//! Element kernels of the symmetric coupled form B̌ (\[P\] (6.2), model §5): one P1 simplex at a
 //! time, exact (all gradients are constant on an element).
 //!
 //! Local DOF order on an element with N = d + 1 nodes: u_i at node a is `a·d + i`, ϕ at node
@@ -16,7 +16,7 @@ pub const M_MAX: usize = 16;
 pub type ElementMatrix = [[f64; M_MAX]; M_MAX];
 
 /// The rank-one part of Hencky's consistent tangent on a simplex, `coefficient` = 4 g'(t)
-/// [stress] and `deviator` = ε^D(u_n) ([`super::Linearisation`]): the vector a with
+/// \[stress\] and `deviator` = ε^D(u_n) ([`super::Linearisation`]): the vector a with
 /// a_(a,i) = Σ_j ε^D_ij ∂_jN_a, so that the uu block gains |K| coefficient a aᵀ and aᵀ u_e = t.
 pub fn tangent_vector<const D: usize, const N: usize>(
     s: &Simplex<D, N>,
@@ -31,7 +31,7 @@ pub fn tangent_vector<const D: usize, const N: usize>(
     a
 }
 
-/// The element matrix of B̌ on a simplex with secant modulus `g` [stress].
+/// The element matrix of B̌ on a simplex with secant modulus `g` \[stress\].
 ///
 /// ```text
 /// uu: |K| [k0 ∂_iN_a ∂_jN_b + 2g (½(δ_ij ∇N_a·∇N_b + ∂_jN_a ∂_iN_b) − ∂_iN_a ∂_jN_b / d)]

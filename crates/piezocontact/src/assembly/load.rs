@@ -1,4 +1,4 @@
-//! The right-hand side f̌ of [P] (6.3), model §5:
+//! The right-hand side f̌ of \[P\] (6.3), model §5:
 //!
 //! ```text
 //! (f̌, y) = ∫Ω f0·v + ∫Γ2 f2·v − ∫Ω q0 ξ + ∫Γb q2 ξ

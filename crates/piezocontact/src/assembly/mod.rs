@@ -1,4 +1,4 @@
-//! Assembly of the symmetric coupled system of [P] (6.2)–(6.3) (model §5):
+//! Assembly of the symmetric coupled system of \[P\] (6.2)–(6.3) (model §5):
 //!
 //! ```text
 //! B̌(x_n; x, y) = (k0 tr ε(u) I + 2 g_n ε^D(u), ε(v)) + (Eᵀ∇ϕ, ε(v)) − (β∇ϕ, ∇ξ) + (Eε(u), ∇ξ)
@@ -152,7 +152,7 @@ impl Assembler {
         &self.pattern
     }
 
-    /// The matrix of B̌(x_n) for per-element secant `moduli` g_e [stress], plus the nodal
+    /// The matrix of B̌(x_n) for per-element secant `moduli` g_e \[stress\], plus the nodal
     /// `blocks` (one per block node, or none at all), and the Dirichlet lifting −K_fc x_c
     /// (free DOFs) to add to the right-hand side.
     pub fn matrix(

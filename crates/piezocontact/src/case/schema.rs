@@ -17,13 +17,13 @@ pub struct Defaults {
     pub c_nu: f64,
     /// contact.alpha_nu [-].
     pub alpha_nu: f64,
-    /// contact.n_nu [length].
+    /// contact.n_nu \[length\].
     pub n_nu: f64,
-    /// contact.h_nu_range (the paper's 128) [potential].
+    /// contact.h_nu_range (the paper's 128) \[potential\].
     pub h_nu_range: f64,
     /// conductivity.delta [1/length].
     pub delta: f64,
-    /// conductivity.L [potential].
+    /// conductivity.L \[potential\].
     pub truncation: f64,
     /// solver.method.
     pub method: MethodKey,
@@ -42,7 +42,7 @@ pub struct Defaults {
     /// solver.max_outer.
     pub max_outer: usize,
     /// The most Γ3 nodes of the exact solver's first condensed set without
-    /// solver.max_condensed [nodes].
+    /// solver.max_condensed \[nodes\].
     pub first_condensed: usize,
     /// solver.ordering.
     pub ordering: OrderingKey,
@@ -124,9 +124,9 @@ impl Default for Units {
 pub struct MeshSection {
     /// Gmsh MSH 4.1 file, relative to the case file; replaces the rectangle.
     pub file: Option<PathBuf>,
-    /// Rectangle: [x0, x1] [length].
+    /// Rectangle: [x0, x1] \[length\].
     pub x: Option<[f64; 2]>,
-    /// Rectangle: [y0, y1] [length].
+    /// Rectangle: [y0, y1] \[length\].
     pub y: Option<[f64; 2]>,
     /// Rectangle: cells along x.
     pub nx: Option<usize>,
@@ -134,7 +134,7 @@ pub struct MeshSection {
     pub ny: Option<usize>,
     /// Rectangle: "right" (lower-left–upper-right diagonal, default) or "left".
     pub diagonal: Option<DiagonalKey>,
-    /// Rectangle: boundary part name → segments such as "[0,2]x{0}".
+    /// Rectangle: boundary part name → segments such as "\[0,2\]x{0}".
     #[serde(default)]
     pub segments: BTreeMap<String, Vec<String>>,
 }
@@ -162,7 +162,7 @@ pub struct MaterialSection {
     /// "hencky" (the paper's g, default) or "linear" (g ≡ µ1).
     #[serde(default = "default_law")]
     pub law: LawKey,
-    /// E: Young's modulus [stress].
+    /// E: Young's modulus \[stress\].
     pub young: f64,
     /// ν: Poisson's ratio [-].
     pub poisson: f64,
@@ -199,7 +199,7 @@ fn default_t0() -> f64 {
 pub struct TractionLoad {
     /// Boundary parts carrying it.
     pub parts: Vec<String>,
-    /// f2: traction density, d components [stress].
+    /// f2: traction density, d components \[stress\].
     pub f2: Vec<f64>,
 }
 
@@ -213,7 +213,7 @@ pub struct ChargeLoad {
     pub q2: f64,
 }
 
-/// `[boundary]`: boundary part names by role ([P] (2.4)).
+/// `[boundary]`: boundary part names by role (\[P\] (2.4)).
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoundarySection {
@@ -259,10 +259,10 @@ pub enum ProblemKey {
 pub struct ContactSection {
     /// "PV1" or "PV2"; default PV2 when `[friction]` or `[conductivity]` is present, else PV1.
     pub problem: Option<ProblemKey>,
-    /// g_a: gap, where compliance and conduction start (the paper's ρ) [length].
+    /// g_a: gap, where compliance and conduction start (the paper's ρ) \[length\].
     #[serde(default)]
     pub gap: f64,
-    /// g_p ≥ 0: penetration before the rigid stop at u_ν = g_a + g_p [length].
+    /// g_p ≥ 0: penetration before the rigid stop at u_ν = g_a + g_p \[length\].
     #[serde(default)]
     pub penetration: f64,
     /// c_ν > 0 of h_ν [stress/length].
@@ -271,10 +271,10 @@ pub struct ContactSection {
     /// α_ν > 1 of h_ν [-].
     #[serde(default = "default_alpha_nu")]
     pub alpha_nu: f64,
-    /// n_ν > 0: saturation of p_ν [length].
+    /// n_ν > 0: saturation of p_ν \[length\].
     #[serde(default = "default_n_nu")]
     pub n_nu: f64,
-    /// The potential difference at which h_ν saturates (the paper's 128) [potential].
+    /// The potential difference at which h_ν saturates (the paper's 128) \[potential\].
     #[serde(default = "default_h_nu_range")]
     pub h_nu_range: f64,
 }
@@ -292,7 +292,7 @@ pub struct FrictionSection {
     /// R: "identity" (local Coulomb, default) or "mollifier" (nonlocal, radius `radius`).
     #[serde(default)]
     pub regularization: RegularizationKey,
-    /// Radius a of the mollifier [length].
+    /// Radius a of the mollifier \[length\].
     #[serde(default)]
     pub radius: f64,
     /// On a loading path: "static" (the paper's law at every step, default) or "incremental"
@@ -339,13 +339,13 @@ pub struct ConductivitySection {
     /// k_e ≥ 0: conductivity coefficient [charge/(potential·length^d)].
     #[serde(default)]
     pub ke: f64,
-    /// ϕ0: potential of the foundation [potential].
+    /// ϕ0: potential of the foundation \[potential\].
     #[serde(default)]
     pub phi0: f64,
     /// δ > 0 of ψ0 [1/length].
     #[serde(default = "default_delta")]
     pub delta: f64,
-    /// L > 0: truncation of φ_L [potential].
+    /// L > 0: truncation of φ_L \[potential\].
     #[serde(default = "default_truncation", rename = "L")]
     pub truncation: f64,
 }
@@ -400,20 +400,20 @@ pub enum FoundationKind {
 pub struct FoundationSection {
     /// "plane", "sphere", "cone", "punch" or "surface".
     pub kind: FoundationKind,
-    /// Plane: a point of it, d components [length].
+    /// Plane: a point of it, d components \[length\].
     pub point: Option<Vec<f64>>,
     /// Plane: its normal, d components, out of the foundation toward the body (normalised).
     pub normal: Option<Vec<f64>>,
-    /// Sphere: its centre; punch: the centre of its flat face; d components [length].
+    /// Sphere: its centre; punch: the centre of its flat face; d components \[length\].
     pub center: Option<Vec<f64>>,
-    /// Sphere: its radius; punch: the radius of its face (the half-width in 2D) [length].
+    /// Sphere: its radius; punch: the radius of its face (the half-width in 2D) \[length\].
     pub radius: Option<f64>,
-    /// Cone: its apex, d components [length].
+    /// Cone: its apex, d components \[length\].
     pub apex: Option<Vec<f64>>,
     /// Cone, punch: the axis, d components, from the apex (the face) into the indenter, away
     /// from the body (normalised).
     pub axis: Option<Vec<f64>>,
-    /// Cone: the half-angle between the axis and the flank [degrees], in (0, 90).
+    /// Cone: the half-angle between the axis and the flank \[degrees\], in (0, 90).
     pub half_angle: Option<f64>,
     /// Surface: a closed triangulated surface, a Gmsh .msh or an .stl file relative to the
     /// case file, in the mesh's units.
@@ -428,7 +428,7 @@ pub struct FoundationSection {
 pub struct LoadingSection {
     /// The way the indenter travels, d components (normalised), e.g. [0.0, 0.0, -1.0].
     pub direction: Option<Vec<f64>>,
-    /// The foundation's displacements along `direction`, one per step [length]: a list, or
+    /// The foundation's displacements along `direction`, one per step \[length\]: a list, or
     /// `{ from = a, to = b, steps = n }` for the n depths a + (b − a) k/n, k = 1…n.
     pub depths: Option<Depths>,
     /// The factors on f0, q0, f2 and q2, one per step [-].
@@ -446,9 +446,9 @@ pub enum Depths {
     List(Vec<f64>),
     /// `steps` equal increments from `from` (excluded) to `to`.
     Range {
-        /// The depth before the first step [length].
+        /// The depth before the first step \[length\].
         from: f64,
-        /// The depth of the last step [length].
+        /// The depth of the last step \[length\].
         to: f64,
         /// The number of steps.
         steps: usize,

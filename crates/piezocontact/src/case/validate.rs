@@ -139,7 +139,7 @@ impl Case {
     }
 
     /// The paper's hypotheses (h1)–(h6) checked on this case's data, as warnings with the
-    /// numbers (Section 2 of [P]); an empty list when all hold.
+    /// numbers (Section 2 of \[P\]); an empty list when all hold.
     pub fn hypothesis_warnings(&self, material: &Material) -> Vec<String> {
         let el = material.elasticity;
         let d = material.dim as f64;

@@ -29,41 +29,41 @@ pub enum Foundation {
     ConstantGap,
     /// A rigid half-space.
     Plane {
-        /// A point of the plane [length] (3 components, the last 0 in 2D).
+        /// A point of the plane \[length\] (3 components, the last 0 in 2D).
         point: [f64; 3],
         /// Its unit normal, out of the foundation toward the body.
         normal: [f64; 3],
     },
     /// A rigid ball (a disk in 2D), the body outside it.
     Sphere {
-        /// Centre [length].
+        /// Centre \[length\].
         center: [f64; 3],
-        /// Radius [length].
+        /// Radius \[length\].
         radius: f64,
     },
     /// A rigid cone (a wedge in 2D), the body outside it.
     Cone {
-        /// The apex [length].
+        /// The apex \[length\].
         apex: [f64; 3],
         /// Unit vector from the apex into the cone, away from the body.
         axis: [f64; 3],
-        /// The half-angle α [rad], in (0, π/2).
+        /// The half-angle α \[rad\], in (0, π/2).
         half_angle: f64,
     },
     /// A rigid flat cylindrical punch (a flat strip in 2D) with a sharp edge.
     Punch {
-        /// The centre of its flat face [length].
+        /// The centre of its flat face \[length\].
         center: [f64; 3],
         /// Unit vector along its axis, from the face into the punch, away from the body.
         axis: [f64; 3],
-        /// The radius of its face (in 2D its half-width) [length].
+        /// The radius of its face (in 2D its half-width) \[length\].
         radius: f64,
     },
     /// A rigid closed surface from a file (3D), the solid it bounds the indenter.
     Surface {
         /// The surface.
         surface: Arc<RigidSurface>,
-        /// Its rigid displacement from the file's position [length].
+        /// Its rigid displacement from the file's position \[length\].
         shift: [f64; 3],
     },
 }
@@ -76,7 +76,7 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 impl Foundation {
-    /// The distance from x along the unit vector ν to the surface [length]: +∞ when the ray
+    /// The distance from x along the unit vector ν to the surface \[length\]: +∞ when the ray
     /// misses it, negative when x is inside the foundation (0 for the constant gap).
     pub fn distance_along(&self, x: [f64; 3], nu: [f64; 3]) -> f64 {
         match *self {
@@ -107,7 +107,7 @@ impl Foundation {
         }
     }
 
-    /// The same surface moved rigidly by `shift` [length] (the constant gap does not move).
+    /// The same surface moved rigidly by `shift` \[length\] (the constant gap does not move).
     pub fn translated(&self, shift: [f64; 3]) -> Self {
         let moved = |p: [f64; 3]| [0, 1, 2].map(|k| p[k] + shift[k]);
         match *self {
@@ -201,7 +201,7 @@ impl Foundation {
         }
     }
 
-    /// The shortest distance from x to the surface [length] (negative inside), for output.
+    /// The shortest distance from x to the surface \[length\] (negative inside), for output.
     pub fn distance(&self, x: [f64; 3]) -> f64 {
         match *self {
             Self::ConstantGap => 0.0,

@@ -1,4 +1,4 @@
-//! Contact laws on Γ3, [P] (2.5)–(2.8) and Section 7, with the gap/penetration reading of
+//! Contact laws on Γ3, \[P\] (2.5)–(2.8) and Section 7, with the gap/penetration reading of
 //! model §9. Every constant is a parameter; the paper's forms are the provided choice.
 
 /// Normal compliance with finite penetration, (2.5):
@@ -10,29 +10,29 @@
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NormalCompliance {
-    /// g_a: the gap, where compliance and conduction start (the paper's ρ) [length]; with a
+    /// g_a: the gap, where compliance and conduction start (the paper's ρ) \[length\]; with a
     /// foundation surface, the offset added to the distance along ν_i (model §12).
     pub gap: f64,
-    /// g_p ≥ 0: penetration before the rigid stop at u_ν = g_a + g_p [length].
+    /// g_p ≥ 0: penetration before the rigid stop at u_ν = g_a + g_p \[length\].
     pub penetration: f64,
     /// c_ν > 0 [stress/length].
     pub c_nu: f64,
     /// α_ν > 1 [-].
     pub alpha_nu: f64,
-    /// n_ν > 0: saturation of p_ν [length].
+    /// n_ν > 0: saturation of p_ν \[length\].
     pub n_nu: f64,
-    /// S: the potential difference at which h_ν saturates (128 in [P]) [potential].
+    /// S: the potential difference at which h_ν saturates (128 in \[P\]) \[potential\].
     pub h_nu_range: f64,
 }
 
 impl NormalCompliance {
     /// The rigid stop g_a,i + g_p at a node of gap g_a,i (the ρ of Algorithms 2 and 4)
-    /// [length].
+    /// \[length\].
     pub fn stop(&self, gap: f64) -> f64 {
         gap + self.penetration
     }
 
-    /// p_ν(s) [length].
+    /// p_ν(s) \[length\].
     pub fn p_nu(&self, s: f64) -> f64 {
         s.clamp(0.0, self.n_nu)
     }
@@ -46,7 +46,7 @@ impl NormalCompliance {
         }
     }
 
-    /// The compliance pressure h_ν(t) p_ν(s) [stress] at s = u_ν − g_a,i, t = ϕ − ϕ0
+    /// The compliance pressure h_ν(t) p_ν(s) \[stress\] at s = u_ν − g_a,i, t = ϕ − ϕ0
     /// ([`super::ContactModel::arguments`]).
     pub fn pressure(&self, s: f64, t: f64) -> f64 {
         self.h_nu(t) * self.p_nu(s)
@@ -74,7 +74,7 @@ pub struct Conduction {
     pub ke: f64,
     /// δ > 0 [1/length].
     pub delta: f64,
-    /// L > 0 [potential].
+    /// L > 0 \[potential\].
     pub truncation: f64,
 }
 
@@ -84,7 +84,7 @@ impl Conduction {
         self.ke * (self.delta * s).clamp(0.0, 1.0)
     }
 
-    /// φ_L(s) [potential].
+    /// φ_L(s) \[potential\].
     pub fn phi_l(&self, s: f64) -> f64 {
         s.clamp(-self.truncation, self.truncation)
     }
@@ -108,10 +108,10 @@ impl Conduction {
 pub enum Regularization {
     /// R = identity: local Coulomb friction.
     Identity,
-    /// A mollifier average of σ_ν over the Γ3 nodes within `radius` [length], weighted by
+    /// A mollifier average of σ_ν over the Γ3 nodes within `radius` \[length\], weighted by
     /// w_j (1 − (r/a)²)² — nonlocal Coulomb friction.
     Mollifier {
-        /// a > 0 [length].
+        /// a > 0 \[length\].
         radius: f64,
     },
 }

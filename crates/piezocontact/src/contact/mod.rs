@@ -31,7 +31,7 @@ pub struct ContactSurface {
     pub weight: Vec<f64>,
     /// ν_i, outward unit normals.
     pub normal: Vec<[f64; 3]>,
-    /// g_a,i: the gap at node i [length], where compliance and conduction start; the rigid stop
+    /// g_a,i: the gap at node i \[length\], where compliance and conduction start; the rigid stop
     /// is at g_a,i + g_p. +∞ where the node cannot touch the foundation.
     pub gap: Vec<f64>,
 }

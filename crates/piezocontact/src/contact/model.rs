@@ -17,7 +17,7 @@ pub struct ContactModel {
     pub pv2: Option<(Friction, Conduction)>,
     /// The foundation's surface, which sets the gap of every Γ3 node (model §12).
     pub foundation: Foundation,
-    /// ϕ0: the potential of the foundation [potential], which h_ν and φ_L read.
+    /// ϕ0: the potential of the foundation \[potential\], which h_ν and φ_L read.
     pub phi0: f64,
 }
 
@@ -28,7 +28,7 @@ impl ContactModel {
         (u_nu - gap, phi - self.phi0)
     }
 
-    /// The compliance pressure h_ν(ϕ − ϕ0) p_ν(u_ν − g_a,i) [stress].
+    /// The compliance pressure h_ν(ϕ − ϕ0) p_ν(u_ν − g_a,i) \[stress\].
     pub fn pressure(&self, u_nu: f64, phi: f64, gap: f64) -> f64 {
         let (s, t) = self.arguments(u_nu, phi, gap);
         self.compliance.pressure(s, t)
@@ -62,9 +62,9 @@ impl ContactModel {
 /// The multipliers on the Γ3 nodes.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ContactState {
-    /// λ_c: contact pressure of the rigid stop [stress].
+    /// λ_c: contact pressure of the rigid stop \[stress\].
     pub lambda_c: Vec<f64>,
-    /// λ_f: friction traction (σ_τ = −λ_f) [stress], 3 components (d used).
+    /// λ_f: friction traction (σ_τ = −λ_f) \[stress\], 3 components (d used).
     pub lambda_f: Vec<[f64; 3]>,
 }
 
@@ -117,7 +117,7 @@ pub fn normal_stress(
         .collect()
 }
 
-/// The friction bound s = µ |R σ_ν| on the Γ3 nodes [stress], (2.7): `mu` per node and the
+/// The friction bound s = µ |R σ_ν| on the Γ3 nodes \[stress\], (2.7): `mu` per node and the
 /// regularisation R of σ_ν.
 pub fn friction_bound(mu: &[f64], mollifier: &Mollifier, sigma_nu: &[f64]) -> Vec<f64> {
     mollifier
@@ -128,7 +128,7 @@ pub fn friction_bound(mu: &[f64], mollifier: &Mollifier, sigma_nu: &[f64]) -> Ve
         .collect()
 }
 
-/// s = µ |R σ_ν| at one node, from µ and (R σ_ν)_i [stress].
+/// s = µ |R σ_ν| at one node, from µ and (R σ_ν)_i \[stress\].
 pub fn node_bound(mu: f64, r_sigma_nu: f64) -> f64 {
     mu * r_sigma_nu.abs()
 }

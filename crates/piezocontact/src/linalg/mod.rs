@@ -1,7 +1,7 @@
 //! Sparse symmetric linear algebra and the seam between the coupled system and a linear-solver
 //! backend (model §5, §7, §11). The only module that names faer.
 //!
-//! The matrix of Step 1 of Algorithms 2 and 4 ([P] Section 6) is symmetric quasi-definite,
+//! The matrix of Step 1 of Algorithms 2 and 4 (\[P\] Section 6) is symmetric quasi-definite,
 //! `[K_uu G; Gᵀ −K_ϕϕ]` with K_uu and K_ϕϕ positive definite once the Dirichlet rows are
 //! removed (model §5). The default backend, [`LdltSolver`], is faer's sparse LDLᵀ: it exists
 //! for every symmetric ordering without pivoting, with d_k > 0 on u rows and d_k < 0 on ϕ
@@ -83,13 +83,13 @@ pub enum Ordering {
 /// Counts and wall-clock times of a linear solver.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SolverStats {
-    /// Symbolic analysis: the ordering, the elimination tree and the factor's storage [s].
+    /// Symbolic analysis: the ordering, the elimination tree and the factor's storage \[s\].
     pub symbolic_seconds: f64,
-    /// All numeric factorisations [s].
+    /// All numeric factorisations \[s\].
     pub numeric_seconds: f64,
     /// Number of numeric factorisations.
     pub numeric_count: usize,
-    /// All solves [s].
+    /// All solves \[s\].
     pub solve_seconds: f64,
     /// Number of solves.
     pub solve_count: usize,

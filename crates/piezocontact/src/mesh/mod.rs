@@ -3,7 +3,7 @@
 //! A [`Mesh`] holds node coordinates, cells (triangles in 2D, tetrahedra in 3D) and boundary
 //! parts: named sets of boundary facets (segments in 2D, triangles in 3D). Parts come from the
 //! segments of a [`rectangle`] or from the physical groups of a [`gmsh`] file; a case maps part
-//! names to the roles Γ1, Γ2, Γ3, Γa, Γb of the model ([P] (2.4)).
+//! names to the roles Γ1, Γ2, Γ3, Γa, Γb of the model (\[P\] (2.4)).
 //!
 //! [`Mesh::new`] checks the mesh once: node indices in range, finite coordinates, consistent
 //! orientation (a mesh whose cells are all clockwise is reoriented; mixed orientation means

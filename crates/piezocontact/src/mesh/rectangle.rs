@@ -1,5 +1,5 @@
 //! Structured triangulations of a rectangle, as the paper's Example 7.1 needs
-//! (Ω = [0,12]×[0,2], [P] Section 7), with boundary parts given by segments such as
+//! (Ω = \[0,12\]×\[0,2\], \[P\] Section 7), with boundary parts given by segments such as
 //! `[0,2]x{0}` (the bottom edge from x = 0 to x = 2) or `{12}x[0,2]` (the right side).
 
 use super::{BoundaryPart, Mesh};
@@ -19,9 +19,9 @@ pub enum Diagonal {
 /// A rectangle [x0, x1] × [y0, y1] split into nx × ny cells of two triangles each.
 #[derive(Clone, Debug)]
 pub struct Rectangle {
-    /// [x0, x1] [length].
+    /// [x0, x1] \[length\].
     pub x: [f64; 2],
-    /// [y0, y1] [length].
+    /// [y0, y1] \[length\].
     pub y: [f64; 2],
     /// Cells along x.
     pub nx: usize,

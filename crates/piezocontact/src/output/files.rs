@@ -4,7 +4,7 @@
 //!   never sees half a file. While an output directory is claimed, the temporary files live in
 //!   a staging directory *beside* it: a run killed at any moment leaves only complete files in
 //!   the output directory.
-//! - [`claim`] refuses a directory holding files that piezocontact did not write (unless
+//! - `claim` refuses a directory holding files that piezocontact did not write (unless
 //!   forced) and clears our own earlier output there, so that a rerun replaces it whole. The
 //!   files written are listed in the directory's [`MARKER`] file.
 
@@ -106,7 +106,7 @@ fn release() {
 pub struct Claimed(());
 
 impl Claimed {
-    /// See [`claim`].
+    /// Claims `dir` (the module documentation says how).
     pub fn new(dir: &Path, force: bool) -> Result<Self> {
         claim(dir, force)?;
         Ok(Self(()))

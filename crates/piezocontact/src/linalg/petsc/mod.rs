@@ -12,8 +12,8 @@
 //! As [`super::LdltSolver`], the matrix is scaled symmetrically by its diagonal,
 //! `D A D` with `D = diag(|a_ii|^{-1/2})`, so that the u and ϕ blocks meet on equal terms in
 //! MUMPS's pivoting. MUMPS's inertia (INFOG(12), the negative pivots) is checked against the
-//! quasi-definite matrix's: one per ϕ row (on one process: see
-//! [`PetscSolver::check_inertia`]).
+//! quasi-definite matrix's: one per ϕ row (on one process only: the
+//! private `PetscSolver::check_inertia` says why).
 //!
 //! With a Schur set, MUMPS leaves the Schur block out of the factor and returns S dense on
 //! rank 0, which broadcasts it; a solve is then the interior with the Schur unknowns at zero
