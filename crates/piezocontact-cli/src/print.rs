@@ -50,8 +50,10 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         kkt.friction
     );
     say!("  force balance      = relative imbalance {:.1e}", run.solution.balance.imbalance);
+    // The exact solver's condensed problem, where there is one.
+    let dense = if t.dense > 0.0 { format!(", dense problem {:.3} s", t.dense) } else { "".into() };
     say!(
-        "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}), total {:.3} s",
+        "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}){dense}, total {:.3} s",
         t.pattern,
         t.assembly,
         t.symbolic,

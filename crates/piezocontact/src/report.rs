@@ -246,6 +246,7 @@ pub fn timings(t: &Timings) -> Value {
     json!({
         "pattern": t.pattern, "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
         "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count,
+        "dense": t.dense,
     })
 }
 

@@ -28,6 +28,9 @@ pub struct Timings {
     pub solve: f64,
     /// Number of solves.
     pub solve_count: usize,
+    /// The exact solver's dense condensed problem: its Schur complements (beyond the solves
+    /// counted above) and Newton's iterations (0 without one) \[s\].
+    pub dense: f64,
     /// The bytes the last symbolic analysis predicted for a numeric factorisation (0 before
     /// one, or from a backend that predicts none).
     pub factor_bytes: f64,
@@ -39,6 +42,11 @@ pub struct Timings {
 }
 
 impl Timings {
+    /// The phases the system counts: pattern, assembly, symbolic, numeric and solves \[s\].
+    pub fn counted(&self) -> f64 {
+        self.pattern + self.assembly + self.symbolic + self.numeric + self.solve
+    }
+
     /// Assembly time with the solver's counts and times.
     fn with(pattern: f64, assembly: f64, solver: &dyn LinearSolver) -> Self {
         let s = solver.stats();
@@ -50,6 +58,7 @@ impl Timings {
             numeric_count: s.numeric_count,
             solve: s.solve_seconds,
             solve_count: s.solve_count,
+            dense: 0.0,
             factor_bytes: s.factor_bytes,
             dense_bytes: 0.0,
             peak_resident_bytes: crate::limits::peak_resident_bytes(),

@@ -71,6 +71,11 @@ pub trait InnerMethod: std::fmt::Debug + Send + Sync {
     fn dense_bytes(&self) -> f64 {
         0.0
     }
+    /// The time spent on the method's condensed problem outside the system's counted phases
+    /// ([`crate::solver::Timings::dense`]), over every step so far \[s\].
+    fn dense_seconds(&self) -> f64 {
+        0.0
+    }
 }
 
 /// Parameters of the outer fixed point and the inner method.
@@ -429,6 +434,7 @@ impl ContactSolver {
         }
         solution.timings = self.system.timings();
         solution.timings.dense_bytes = method.dense_bytes();
+        solution.timings.dense = method.dense_seconds();
         solution.condensed_nodes = method.condensed_nodes();
         solution.dofs = self.system.dofs().clone();
         let constant = method.complementarity_constant();
