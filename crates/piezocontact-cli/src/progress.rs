@@ -8,7 +8,6 @@ use crate::say::quiet;
 use crate::say_err;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use piezocontact::algorithm::Progress;
-use std::cell::Cell;
 use std::io::IsTerminal;
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
@@ -76,9 +75,9 @@ pub struct Reporter {
     /// The inner method's name.
     method: &'static str,
     /// The current outer step and its cap.
-    outer: Cell<(usize, usize)>,
+    outer: Mutex<(usize, usize)>,
     /// When the last plain line was written.
-    last: Cell<Instant>,
+    last: Mutex<Instant>,
     /// Time between two plain lines.
     interval: Duration,
     /// Shows a factorisation in progress (on a terminal every second, else every interval).
@@ -110,8 +109,8 @@ impl Reporter {
             bar,
             plain: !terminal && shown,
             method,
-            outer: Cell::new((0, 0)),
-            last: Cell::new(Instant::now()),
+            outer: Mutex::new((0, 0)),
+            last: Mutex::new(Instant::now()),
             interval,
             ticker,
         }
@@ -124,7 +123,7 @@ impl Reporter {
         }
         let factorising = match event {
             Progress::Factorising { unknowns } => {
-                let (step, _) = self.outer.get();
+                let (step, _) = read(&self.outer);
                 Some(format!("outer step {step}: factorising B̌ ({unknowns} unknowns)"))
             }
             _ => None,
@@ -135,11 +134,11 @@ impl Reporter {
         let message = match event {
             Progress::Factorising { .. } => factorising.unwrap_or_default(),
             Progress::Outer { step, max } => {
-                self.outer.set((step, max));
+                write(&self.outer, (step, max));
                 format!("outer step {step} (of at most {max})")
             }
             Progress::Inner { iteration, criterion, tolerance } => {
-                let (step, max) = self.outer.get();
+                let (step, max) = read(&self.outer);
                 let what = if self.method == "newton" { "Newton step" } else { "Uzawa iteration" };
                 format!(
                     "outer step {step} (of at most {max}), {what} {iteration}: criterion {criterion:.2e} (stops below {tolerance:.1e})"
@@ -148,8 +147,8 @@ impl Reporter {
         };
         match &self.bar {
             Some(bar) => bar.set_message(message),
-            None if self.last.get().elapsed() >= self.interval => {
-                self.last.set(Instant::now());
+            None if read(&self.last).elapsed() >= self.interval => {
+                write(&self.last, Instant::now());
                 say_err!("progress: {message}");
             }
             None => {}
@@ -163,4 +162,15 @@ impl Drop for Reporter {
             bar.finish_and_clear();
         }
     }
+}
+
+/// The value in `cell` (a reporter is shared by the threads of a run; a poisoned lock
+/// still holds a usable value).
+fn read<T: Copy>(cell: &Mutex<T>) -> T {
+    *cell.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Puts `value` in `cell`.
+fn write<T>(cell: &Mutex<T>, value: T) {
+    *cell.lock().unwrap_or_else(|e| e.into_inner()) = value;
 }

@@ -209,7 +209,7 @@ impl PathRun {
         case: &Case,
         built: Built,
         solver: Box<dyn LinearSolver>,
-        progress: &dyn Fn(Progress),
+        progress: &(dyn Fn(Progress) + Sync),
     ) -> Result<Self> {
         let start = Instant::now();
         let Built { mut problem, model, settings, warnings, loading } = built;

@@ -48,7 +48,7 @@ impl ContactRun {
     pub fn solve_with(
         case: &Case,
         solver: Box<dyn LinearSolver>,
-        progress: &dyn Fn(Progress),
+        progress: &(dyn Fn(Progress) + Sync),
     ) -> Result<Self> {
         Self::solve_built(case, case.build()?, solver, progress)
     }
@@ -58,7 +58,7 @@ impl ContactRun {
         case: &Case,
         built: Built,
         solver: Box<dyn LinearSolver>,
-        progress: &dyn Fn(Progress),
+        progress: &(dyn Fn(Progress) + Sync),
     ) -> Result<Self> {
         let start = Instant::now();
         let Built { problem, model, settings, warnings, .. } = built;

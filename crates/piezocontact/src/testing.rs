@@ -12,6 +12,9 @@ use crate::problem::Problem;
 pub const PAPER_71: &str = include_str!("../../../cases/paper-7.1.toml");
 /// Example 7.2 (PV2) as the case file gives it.
 pub const PAPER_72: &str = include_str!("../../../cases/paper-7.2.toml");
+/// The 3D indentation (a ball pressed into a PZT block, PV2) as the case file gives it; its
+/// mesh path is relative to `cases/`, so a test names a mesh by its absolute path.
+pub const INDENTATION_3D: &str = include_str!("../../../cases/indentation-3d.toml");
 
 /// The case `text` with `overrides`, validated and built.
 pub fn built(text: &str, overrides: &[&str]) -> Built {

@@ -182,7 +182,7 @@ pub struct Step<'a> {
     /// incremental friction), `None` for the paper's static law (from the reference).
     pub slip_origin: Option<&'a [f64]>,
     /// Told of every inner iteration.
-    pub progress: &'a dyn Fn(Progress),
+    pub progress: &'a (dyn Fn(Progress) + Sync),
 }
 
 impl Step<'_> {
@@ -278,7 +278,7 @@ pub fn solve_contact_with(
     model: &ContactModel,
     settings: &Settings,
     solver: Box<dyn LinearSolver>,
-    progress: &dyn Fn(Progress),
+    progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<ContactSolution> {
     ContactSolver::new(problem, model, settings, solver)?.solve(problem, model, progress)
 }
@@ -353,7 +353,7 @@ impl ContactSolver {
         &mut self,
         problem: &Problem,
         model: &ContactModel,
-        progress: &dyn Fn(Progress),
+        progress: &(dyn Fn(Progress) + Sync),
     ) -> Result<ContactSolution> {
         let surface =
             self.surface.clone().with_gaps(problem, &model.foundation, model.compliance.gap);
@@ -477,7 +477,7 @@ impl Fixed {
         solution: &'a ContactSolution,
         friction_bound: &'a [f64],
         linearisation: &'a Linearisation,
-        progress: &'a dyn Fn(Progress),
+        progress: &'a (dyn Fn(Progress) + Sync),
     ) -> Step<'a> {
         Step {
             problem,

@@ -41,15 +41,38 @@ impl DenseMatrix {
         self.mat.col_mut(j).try_as_col_major_mut().map(|c| c.as_slice_mut()).unwrap_or(&mut [])
     }
 
-    /// y = A x.
+    /// y = A x, by faer's matrix-vector product with the run's split of the work (the same
+    /// bits on any number of threads, as [`super::parallelism`] says).
     pub fn mul(&self, x: &[f64]) -> Vec<f64> {
-        let mut y = vec![0.0; self.n()];
-        for (j, &xj) in x.iter().enumerate() {
-            if xj != 0.0 {
-                y.iter_mut().zip(self.col(j)).for_each(|(yi, a)| *yi += a * xj);
-            }
-        }
+        let n = self.n();
+        let mut y = vec![0.0; n];
+        faer::linalg::matmul::matmul(
+            MatMut::from_column_major_slice_mut(&mut y, n, 1),
+            faer::Accum::Replace,
+            self.mat.as_ref(),
+            faer::MatRef::from_column_major_slice(x, n, 1),
+            1.0,
+            super::parallelism(),
+        );
         y
+    }
+
+    /// Writes column j with `fill(j, column)` for every j, the columns in parallel (each by
+    /// one call, so the bits do not depend on the threads), and returns what the calls
+    /// returned, in column order.
+    pub fn fill_columns<T: Send>(
+        &mut self,
+        fill: impl Fn(usize, &mut [f64]) -> T + Sync,
+    ) -> Vec<T> {
+        use rayon::prelude::*;
+        self.mat
+            .par_col_iter_mut()
+            .enumerate()
+            .map(|(j, column)| {
+                let column = column.try_as_col_major_mut().map(|c| c.as_slice_mut());
+                fill(j, column.unwrap_or(&mut []))
+            })
+            .collect()
     }
 
     /// A ← (A + Aᵀ)/2.
@@ -84,13 +107,36 @@ impl DenseMatrix {
     /// Solves Aᵀ x = b by LU with partial pivoting (the matrix is stored by the columns of
     /// Aᵀ, that is by the rows of A).
     pub fn solve_transposed(&self, b: &[f64]) -> Result<Vec<f64>> {
+        self.lu_transposed().solve(b)
+    }
+
+    /// The LU factors (partial pivoting) of Aᵀ, kept to solve with again.
+    pub fn lu_transposed(&self) -> TransposedLu {
+        super::parallelism(); // As in `inverse`.
+        TransposedLu { lu: self.mat.transpose().partial_piv_lu() }
+    }
+}
+
+/// The LU factors of the transpose of a [`DenseMatrix`] (Newton's dense system, model §11).
+#[derive(Debug)]
+pub struct TransposedLu {
+    lu: faer::linalg::solvers::PartialPivLu<f64>,
+}
+
+impl TransposedLu {
+    /// Order of the matrix.
+    pub fn n(&self) -> usize {
+        use faer::linalg::solvers::ShapeCore;
+        self.lu.nrows()
+    }
+
+    /// Solves Aᵀ x = b with the factors; an error when x is not finite (A singular).
+    pub fn solve(&self, b: &[f64]) -> Result<Vec<f64>> {
         use faer::linalg::solvers::Solve;
         let n = self.n();
         check_length("right-hand side", n, b.len())?;
-        super::parallelism(); // As in `inverse`.
-        let lu = self.mat.transpose().partial_piv_lu();
         let mut x = b.to_vec();
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, n, 1));
+        self.lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, n, 1));
         if let Some(k) = x.iter().position(|v| !v.is_finite()) {
             return Err(Error::SingularSystem {
                 detail: format!("the dense Newton system is singular (component {k})"),
