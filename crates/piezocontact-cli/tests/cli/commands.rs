@@ -220,6 +220,23 @@ fn a_gmsh_case_runs_and_mesh_info_describes_the_file() {
     );
 }
 
+/// Every committed case is valid: `check` reads it and its mesh and says so.
+#[test]
+fn every_committed_case_checks() {
+    let mut cases: Vec<String> = std::fs::read_dir(root().join("cases"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.ends_with(".toml"))
+        .collect();
+    cases.sort();
+    assert!(cases.len() >= 6, "{cases:?}");
+    for case in cases.iter().map(|name| format!("cases/{name}")) {
+        let o = piezocontact(&["check", &case]);
+        let t = text(&o);
+        assert!(o.status.success() && t.contains(&format!("{case}: valid")), "{t}");
+    }
+}
+
 #[test]
 fn contact_overrides_reach_the_solver() {
     let o = piezocontact(&[
