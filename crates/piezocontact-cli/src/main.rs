@@ -138,7 +138,8 @@ enum Command {
         #[arg(long, conflicts_with = "lu")]
         contact: bool,
         /// With --contact: a contact case (a .toml file) instead, run as PV1 and as PV2 with
-        /// µ = 0.3, e.g. cases/block-3d.toml (a block whose whole bottom face touches); with
+        /// µ = 0.3, e.g. cases/block-3d.toml (a block whose whole bottom face touches) or
+        /// cases/bar-3d.toml (a bar bent onto a plane along part of its bottom face); with
         /// --path: the case whose loading path is timed.
         #[arg(long, conflicts_with = "sizes")]
         case: Option<PathBuf>,
