@@ -39,7 +39,8 @@ const HALVINGS: usize = 8;
 /// the one it was made from.
 const GUESS_STEPS: usize = 30;
 /// A chord step (the last dense factorisation again, the sets unchanged) is taken when it
-/// lowers the merit ‖scaled E‖² at least this much; else a Newton step is.
+/// brings the merit ‖scaled E‖² down to this fraction of its value or less; else a Newton
+/// step is.
 const CHORD_DECREASE: f64 = 1e-2;
 /// Condensed problems solved in one outer step, at most (each after a factorisation).
 const MAX_ROUNDS: usize = 10;
