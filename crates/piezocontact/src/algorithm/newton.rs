@@ -423,14 +423,19 @@ impl<'a> Local<'a> {
         let mut previous_sets: Option<Vec<u8>> = None;
         let (mut stop, mut iterations) = (Stop::Cap, cap);
         let (mut frozen, mut factorisations) = (None, 0);
+        // E at y when the last step's line search or chord test has evaluated it already.
+        let mut next: Option<Evaluation> = None;
         for k in 0..cap {
             if let Some(signal) = crate::interrupt::requested() {
                 (stop, iterations) = (Stop::Interrupted(signal), k);
                 break;
             }
-            let eval = self.evaluate(&y);
+            let eval = next.take().unwrap_or_else(|| self.evaluate(&y));
             let (delta, alpha) = match self.step(&y, &eval, &mut frozen, &mut factorisations) {
-                Ok(step) => step,
+                Ok((delta, alpha, at_next)) => {
+                    next = at_next;
+                    (delta, alpha)
+                }
                 Err(e) => {
                     (stop, iterations) = (Stop::NotFinite(e.to_string()), k + 1);
                     break;
@@ -457,33 +462,35 @@ impl<'a> Local<'a> {
         Iteration { y, stop, iterations, factorisations, history }
     }
 
-    /// The step δ at y and its length α: a chord step — the dense system factorised last
-    /// (`frozen`, made for the same sets) with the right-hand side at y — when it multiplies
-    /// the merit by at most [`CHORD_DECREASE`], α = 1; else a Newton step, factorised (counted in
-    /// `factorisations` and kept in `frozen`), with its line search. Once the sets have
-    /// settled, Newton's last steps thus cost a solve each instead of a factorisation.
+    /// The step δ at y, its length α and E at y + α δ when evaluated: a chord step — the
+    /// dense system factorised last (`frozen`, made for the same sets) with the right-hand
+    /// side at y — when it multiplies the merit by at most [`CHORD_DECREASE`], α = 1; else a
+    /// Newton step, factorised (counted in `factorisations` and kept in `frozen`), with its
+    /// line search. Once the sets have settled, Newton's last steps thus cost a solve each
+    /// instead of a factorisation.
     fn step(
         &self,
         y: &[f64],
         eval: &Evaluation,
         frozen: &mut Option<(Vec<u8>, TransposedLu)>,
         factorisations: &mut usize,
-    ) -> Result<(Vec<f64>, f64)> {
+    ) -> Result<(Vec<f64>, f64, Option<Evaluation>)> {
         let merit = self.merit(eval);
         if let Some((_, lu)) = frozen.as_ref().filter(|(sets, _)| *sets == eval.sets)
             && let Ok((delta, _)) = self.newton_step(y, eval, Some(lu))
         {
             let trial: Vec<f64> = y.iter().zip(&delta).map(|(a, d)| a + d).collect();
-            if self.merit(&self.evaluate(&trial)) <= CHORD_DECREASE * merit {
-                return Ok((delta, 1.0));
+            let at_trial = self.evaluate(&trial);
+            if self.merit(&at_trial) <= CHORD_DECREASE * merit {
+                return Ok((delta, 1.0, Some(at_trial)));
             }
         }
         *frozen = None; // freed before the new factorisation: one dense LU at a time
         let (delta, lu) = self.newton_step(y, eval, None)?;
         *factorisations += 1;
         *frozen = lu.map(|lu| (eval.sets.clone(), lu));
-        let alpha = self.line_search(y, &delta, merit);
-        Ok((delta, alpha))
+        let (alpha, at_next) = self.line_search(y, &delta, merit);
+        Ok((delta, alpha, at_next))
     }
 
     /// The first iterate from y (the solve without contact forces on a cold start, else the
@@ -661,18 +668,19 @@ impl<'a> Local<'a> {
             }
             -eval.residual[k] - fixed.iter().map(|&v| gradient[v] * delta[v]).sum::<f64>()
         };
-        let frozen = frozen.filter(|lu| lu.n() == free.len());
-        let (rhs, lu) = if frozen.is_some() {
-            (free.par_iter().map(|&k| row(k, None)).collect(), None)
-        } else {
-            let mut reduced = DenseMatrix::zeros(free.len());
-            let rhs = reduced.fill_columns(|column, out| row(free[column], Some(out)));
-            (rhs, Some(reduced.lu_transposed()))
+        // The same sets fix the same unknowns, so frozen factors have the free rows' order.
+        let (solved, lu) = match frozen {
+            Some(lu) => {
+                let rhs: Vec<f64> = free.par_iter().map(|&k| row(k, None)).collect();
+                (lu.solve(&rhs)?, None)
+            }
+            None => {
+                let mut reduced = DenseMatrix::zeros(free.len());
+                let rhs = reduced.fill_columns(|column, out| row(free[column], Some(out)));
+                let lu = reduced.lu_transposed();
+                (lu.solve(&rhs)?, Some(lu))
+            }
         };
-        let factors = lu.as_ref().or(frozen).ok_or_else(|| {
-            Error::LinearAlgebra("a Newton step without its dense factorisation".into())
-        })?;
-        let solved = factors.solve(&rhs)?;
         free.iter().zip(solved).for_each(|(&k, d)| delta[k] = d);
         Ok((delta, lu))
     }
@@ -745,16 +753,17 @@ impl<'a> Local<'a> {
 
     /// The step length: the first of 1, ½, ¼, … (2⁻⁸ at the least) that decreases ‖scaled
     /// E‖² enough (Armijo), else the full step.
-    fn line_search(&self, y: &[f64], delta: &[f64], current: f64) -> f64 {
+    fn line_search(&self, y: &[f64], delta: &[f64], current: f64) -> (f64, Option<Evaluation>) {
         let mut alpha = 1.0;
         for _ in 0..=HALVINGS {
             let trial: Vec<f64> = y.iter().zip(delta).map(|(a, d)| a + alpha * d).collect();
-            if self.merit(&self.evaluate(&trial)) <= (1.0 - 1e-4 * alpha) * current {
-                return alpha;
+            let at_trial = self.evaluate(&trial);
+            if self.merit(&at_trial) <= (1.0 - 1e-4 * alpha) * current {
+                return (alpha, Some(at_trial));
             }
             alpha *= 0.5;
         }
-        1.0
+        (1.0, None)
     }
 }
 

@@ -104,13 +104,8 @@ impl DenseMatrix {
         Ok(Self { mat: inverse })
     }
 
-    /// Solves Aᵀ x = b by LU with partial pivoting (the matrix is stored by the columns of
-    /// Aᵀ, that is by the rows of A).
-    pub fn solve_transposed(&self, b: &[f64]) -> Result<Vec<f64>> {
-        self.lu_transposed().solve(b)
-    }
-
-    /// The LU factors (partial pivoting) of Aᵀ, kept to solve with again.
+    /// The LU factors (partial pivoting) of Aᵀ (the matrix stored by the columns of Aᵀ, that
+    /// is by the rows of A), kept to solve with again.
     pub fn lu_transposed(&self) -> TransposedLu {
         super::parallelism(); // As in `inverse`.
         TransposedLu { lu: self.mat.transpose().partial_piv_lu() }

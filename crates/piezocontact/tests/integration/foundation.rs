@@ -285,7 +285,6 @@ fn without_a_cap_the_condensation_grows_as_far_as_the_contact_zone() {
     let start = std::time::Instant::now();
     let grown = solve_with(&problem, &model, &newton_with(None, Guess::Nearest(4)));
     let (wall, t) = (start.elapsed().as_secs_f64(), grown.timings);
-    println!("{t:?} in {wall} s");
     assert!(t.dense > 0.0 && t.counted() + t.dense <= wall, "{t:?} in {wall} s");
     let touching = whole.sigma_nu.iter().filter(|s| **s < 0.0).count();
     assert!(touching > 4 && grown.condensed_nodes >= touching, "{}", grown.condensed_nodes);
