@@ -171,16 +171,18 @@ impl Condensed {
 
     /// The active-set check of the nodes left out (model §11): at the solution `x` of the
     /// condensed problem, a left-out node carries no contact force, which is its law only
-    /// while u_ν ≤ g_a. `None` when every left-out node is there. Else the condensation
-    /// with those that pass it added, and with them the left-out nodes as near to touching
-    /// (u_ν − g_a above minus the largest excess e), deepest first. When that would exceed
-    /// `max_nodes` (`None`: no cap), condensed nodes clear of the foundation make room, the
+    /// while u_ν ≤ g_a and its friction bound `bound` (s = µ|Rσ_ν| per Γ3 node, which a
+    /// nonlocal R spreads from the touching nodes to their neighbours, even to those whose
+    /// normal misses the foundation) is 0. `None` when
+    /// every left-out node is there. Else the condensation with those that fail it added,
+    /// and with them the left-out nodes as near to touching (u_ν − g_a above minus the
+    /// largest excess e), deepest first. When that would exceed `max_nodes` (`None`: no
+    /// cap), condensed nodes clear of the foundation and without a bound make room, the
     /// clearest first; an error when none can.
     pub fn grown(
         &self,
-        dofs: &DofMap,
-        surface: &ContactSurface,
-        x: &[f64],
+        (dofs, surface): (&DofMap, &ContactSurface),
+        (x, bound): (&[f64], &[f64]),
         max_nodes: Option<usize>,
     ) -> Result<Option<Self>> {
         let excess = |i: usize| {
@@ -189,33 +191,38 @@ impl Condensed {
                 (0..surface.dim()).map(|k| nu[k] * x[dofs.u(surface.nodes[i], k)]).sum();
             u_nu - surface.gap[i]
         };
-        let reach = |i: &usize| surface.gap[*i].is_finite();
+        // A node whose normal misses the foundation cannot touch it, but may bear friction.
+        let in_play = |i: &usize| surface.gap[*i].is_finite() || bound[*i] > 0.0;
         let ranked = |kept: bool| {
             let mut nodes: Vec<(usize, f64)> = (0..surface.len())
-                .filter(|i| reach(i) && self.kept[*i] == kept)
+                .filter(|i| in_play(i) && self.kept[*i] == kept)
                 .map(|i| (i, excess(i)))
                 .collect();
             nodes.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
             nodes
         };
+        let fails = |&(i, v): &(usize, f64)| v > 0.0 || bound[i] > 0.0;
         let mut left_out = ranked(false);
-        let touching = left_out.iter().filter(|(_, v)| *v > 0.0).count();
-        if touching == 0 {
+        // Those that fail their law first (a stable sort keeps the deepest first).
+        left_out.sort_by_key(|node| !fails(node));
+        let failing = left_out.iter().filter(|node| fails(node)).count();
+        if failing == 0 {
             return Ok(None);
         }
-        let largest = left_out[0].1;
-        left_out.retain(|(_, v)| *v > -largest);
+        let largest = left_out[..failing].iter().fold(0.0_f64, |e, (_, v)| e.max(*v));
+        left_out.retain(|node| fails(node) || node.1 > -largest);
         let mut kept = self.kept.clone();
         let count = self.node_count();
         let cap = max_nodes.unwrap_or(usize::MAX);
         let short = (count + left_out.len()).saturating_sub(cap);
-        let clear = ranked(true).into_iter().rev().take_while(|(_, v)| *v < 0.0).take(short);
+        let clear = ranked(true).into_iter().rev().filter(|(i, _)| bound[*i] == 0.0);
+        let clear = clear.take_while(|(_, v)| *v < 0.0).take(short);
         clear.for_each(|(i, _)| kept[i] = false);
         let room = cap.saturating_sub(kept.iter().filter(|k| **k).count());
         if room == 0 {
             return Err(Error::Input(format!(
-                "the contact zone is larger than solver.max_condensed = {cap} nodes: with that many Γ3 nodes condensed and touching, {touching} more still touch the foundation; raise solver.max_condensed to at least {} (its dense matrices grow as its square), or use solver.method = \"uzawa\"",
-                count + touching
+                "the contact zone is larger than solver.max_condensed = {cap} nodes: with that many Γ3 nodes condensed and touching, {failing} more still touch the foundation or bear friction from nodes that do; raise solver.max_condensed to at least {} (its dense matrices grow as its square), or use solver.method = \"uzawa\"",
+                count + failing
             )));
         }
         left_out.into_iter().take(room).for_each(|(i, _)| kept[i] = true);

@@ -312,6 +312,31 @@ fn the_first_guess_is_the_nodes_inside_the_ball() {
     assert!(gap <= 1e-10 * size, "{gap} of {size}");
 }
 
+/// Nonlocal friction (a mollifier of radius 0.35, two mesh spacings) lends the nodes around
+/// the contact zone a friction bound: the first guess — the nodes inside the ball — leaves
+/// out nodes that bear friction though they do not touch, and the growth adds them, so that
+/// the run ends at the solution of the whole condensation, with every node that has a bound
+/// condensed.
+#[test]
+fn nonlocal_friction_grows_the_condensation_to_the_nodes_it_reaches() {
+    use piezocontact::contact::law::Regularization;
+    let (problem, mut model) = ball_on_block();
+    let friction = &mut model.pv2.as_mut().unwrap().0;
+    friction.regularization = Regularization::Mollifier { radius: 0.35 };
+    let whole = solve(&problem, &model);
+    let guessed = solve_with(&problem, &model, &newton_with(None, Guess::Interpenetration(2000)));
+    let surface = &whole.surface;
+    let inside = surface.gap.iter().filter(|g| **g <= 0.0).count();
+    // A bound above round-off: the computed σ_ν of a node clear of the ball is not 0 exactly.
+    let largest = whole.s.iter().fold(0.0_f64, |m, s| m.max(*s));
+    let bound = whole.s.iter().filter(|s| **s > 1e-8 * largest).count();
+    assert!(bound > inside, "{bound} nodes with a friction bound, {inside} inside the ball");
+    assert!(guessed.condensed_nodes >= bound, "{} condensed", guessed.condensed_nodes);
+    let size = whole.x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let gap = whole.x.iter().zip(&guessed.x).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+    assert!(gap <= 1e-10 * size, "{gap} of {size}");
+}
+
 /// Without friction, a flat contact face along the axes condenses u_ν alone (the tangential
 /// components carry no force and stay with the interior): PV1 on the ball gives the solution
 /// of PV2 with µ = k_e = 0, which condenses every component — to round-off — with the same
