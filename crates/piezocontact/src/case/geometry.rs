@@ -203,21 +203,47 @@ impl Case {
         })
     }
 
-    /// Refuses a rigid surface from a file that no Γ3 normal meets: nothing could touch it.
-    pub(super) fn check_reach(&self, problem: &Problem, model: &ContactModel) -> Result<()> {
-        let Foundation::Surface { surface, .. } = &model.foundation else { return Ok(()) };
-        let dofs = DofMap::new(problem)?;
-        let gamma3 =
-            ContactSurface::new(problem, &dofs)?.with_gaps(problem, &model.foundation, 0.0);
-        if gamma3.is_empty() || gamma3.gap.iter().any(|g| g.is_finite()) {
+    /// Refuses a foundation that no Γ3 normal meets — where the case puts it, or at any step
+    /// of its loading path: nothing could touch it, and the run would end with no contact
+    /// (mostly an axis or a normal the wrong way round).
+    pub(super) fn check_reach(
+        &self,
+        problem: &Problem,
+        model: &ContactModel,
+        loading: Option<&Loading>,
+    ) -> Result<()> {
+        if model.foundation == Foundation::ConstantGap {
             return Ok(());
         }
-        Err(input!(
-            "{}: foundation.file: {}: no normal of the {} Γ3 nodes meets the surface: move it (it is read in the mesh's coordinates) in front of the contact parts",
-            self.locate("foundation.file"),
-            surface.file.display(),
-            gamma3.len()
-        ))
+        let dofs = DofMap::new(problem)?;
+        let gamma3 = ContactSurface::new(problem, &dofs)?;
+        let positions: Vec<ContactModel> = match loading {
+            Some(path) if !path.steps.is_empty() => {
+                path.steps.iter().map(|step| path.model_at(model, step)).collect()
+            }
+            _ => vec![model.clone()],
+        };
+        let reached = |m: &ContactModel| {
+            let gaps = gamma3.clone().with_gaps(problem, &m.foundation, 0.0).gap;
+            gaps.iter().any(|g| g.is_finite())
+        };
+        if gamma3.is_empty() || positions.iter().any(reached) {
+            return Ok(());
+        }
+        let at = if positions.len() > 1 { " at any step of the loading path" } else { "" };
+        let n = gamma3.len();
+        Err(match &model.foundation {
+            Foundation::Surface { surface, .. } => input!(
+                "{}: foundation.file: {}: no normal of the {n} Γ3 nodes meets the surface{at}: move it (it is read in the mesh's coordinates) in front of the contact parts",
+                self.locate("foundation.file"),
+                surface.file.display(),
+            ),
+            other => input!(
+                "{}: no normal of the {n} Γ3 nodes meets the foundation{at}: {}",
+                self.locate("foundation.kind"),
+                reach_hint(other)
+            ),
+        })
     }
 
     /// The loading path of `[loading]` for a d-dimensional body, `None` without the table.
@@ -299,5 +325,26 @@ impl Case {
             ));
         }
         Ok(Some(depths))
+    }
+}
+
+/// What to check in a foundation that no Γ3 normal meets.
+fn reach_hint(foundation: &Foundation) -> &'static str {
+    match foundation {
+        Foundation::Plane { .. } => {
+            "foundation.normal points out of the foundation toward the body; check its sign and foundation.point"
+        }
+        Foundation::Sphere { .. } => {
+            "move foundation.center in front of the contact parts, or enlarge foundation.radius"
+        }
+        Foundation::Cone { .. } => {
+            "foundation.axis points from the apex into the cone, away from the body; check its sign and foundation.apex"
+        }
+        Foundation::Punch { .. } => {
+            "foundation.axis points from the punch's face into the punch, away from the body; check its sign and foundation.center"
+        }
+        Foundation::ConstantGap | Foundation::Surface { .. } => {
+            "move it in front of the contact parts"
+        }
     }
 }

@@ -97,10 +97,10 @@ impl Case {
         self.contact_settings()?;
         let problem = self.problem_checked()?;
         let model = self.contact_model(&problem)?;
-        if let Some(model) = &model {
-            self.check_reach(&problem, model)?;
-        }
         let loading = self.loading(problem.mesh.dim())?;
+        if let Some(model) = &model {
+            self.check_reach(&problem, model, loading.as_ref())?;
+        }
         let mut warnings = self.hypothesis_warnings(&problem.material);
         warnings.extend(self.setting_warnings());
         Ok(Built { problem, model, settings: self.settings_checked(), warnings, loading })

@@ -397,6 +397,36 @@ fn a_surface_out_of_reach_is_refused() {
     );
 }
 
+/// A punch whose axis points toward the body, and a ball beside the patch, are refused when
+/// the case is built, with the key to check; the same ball on a path that carries it over
+/// the patch is not.
+#[test]
+fn a_foundation_no_normal_meets_is_refused() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/indentation-curve.toml");
+    let build = |overrides: &[&str]| {
+        let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+        Case::load(&file, &overrides).unwrap().build().err().map(|e| e.to_string())
+    };
+    let punch = [
+        "foundation.kind=\"punch\"",
+        "foundation.center=[0.0, 0.0, 0.01]",
+        "foundation.radius=0.2",
+        "loading.direction=[0.0, 0.0, 1.0]",
+    ];
+    let e = build(&[&punch[..], &["foundation.axis=[0.0, 0.0, -1.0]"]].concat()).unwrap();
+    assert!(
+        e.contains("no normal of the")
+            && e.contains("at any step")
+            && e.contains("foundation.axis"),
+        "{e}"
+    );
+    assert_eq!(build(&[&punch[..], &["foundation.axis=[0.0, 0.0, 1.0]"]].concat()), None);
+    let beside = ["foundation.center=[3.0, 0.0, 0.98]", "loading.direction=[-1.0, 0.0, 0.0]"];
+    let e = build(&[&beside[..], &["loading.depths=[0.0, 1.0]"]].concat()).unwrap();
+    assert!(e.contains("no normal of the") && e.contains("foundation.center"), "{e}");
+    assert_eq!(build(&[&beside[..], &["loading.depths=[0.0, 3.0]"]].concat()), None);
+}
+
 /// A path of load factors (the paper's bar, its load halved then whole) gives at each step the
 /// single run of the scaled loads: f̌ is assembled again only when the factor changes.
 #[test]
