@@ -322,7 +322,9 @@ impl Semismooth<'_> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;
         let local = Local::new(self, schur.get(system, &cond.free)?, x_hat);
-        let from = local.gather(self.start.unwrap_or(&local.x_hat));
+        let from = local
+            .zero_if_solution()
+            .unwrap_or_else(|| local.gather(self.start.unwrap_or(&local.x_hat)));
         let guess = local.onto_foundation(&from, self.start.is_none());
         let cap = if guess == from { self.max_inner } else { GUESS_STEPS.min(self.max_inner) };
         let mut newton = local.iterate(guess.clone(), cap);
@@ -525,6 +527,16 @@ impl<'a> Local<'a> {
             }
         }
         y
+    }
+
+    /// y = 0 when it solves every equation exactly — no load and no foundation inside the
+    /// body, as at the end of a path that unloads — else `None`. The problem having one
+    /// solution, the iteration then starts there and stops at its first step: from another
+    /// start its iterates would tend to 0, where a step relative to the iterate cannot fall
+    /// below round-off.
+    fn zero_if_solution(&self) -> Option<Vec<f64>> {
+        let zero = vec![0.0; self.semismooth.condensed.len()];
+        self.evaluate(&zero).residual.iter().all(|e| *e == 0.0).then_some(zero)
     }
 
     /// The condensed entries of a global vector, in local coordinates.

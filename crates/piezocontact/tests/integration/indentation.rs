@@ -248,6 +248,25 @@ fn the_steps_of_a_path_are_the_solves_of_their_problems() {
     assert!(d < 1e-12, "a path of one step differs from run by {d}");
 }
 
+/// A path that withdraws the ball to where it just touches ends in the unloaded state x = 0,
+/// which the exact solver takes in one step — with a conductive ball and a penetration, whose
+/// laws have their kinks at 0, as without them. Before, its iterates tended to 0 (by a
+/// factor of ~0.07 a step with the conduction) while its step, relative to them, stayed
+/// O(1): the last step hit the cap of 100 Newton steps.
+#[test]
+fn a_path_back_to_the_unloaded_state_ends_at_zero() {
+    for extra in [&[][..], &["conductivity.ke=0.5", "contact.penetration=0.01"][..]] {
+        let case = curve_case(&[&["loading.depths=[0.002, 0.0]"], extra].concat());
+        let path =
+            PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
+        assert!(path.converged(), "{extra:?}: {:?}", path.failure);
+        let last = &path.last.solution;
+        assert_eq!(path.curve[1].newton_steps, 1, "{extra:?}");
+        assert!(last.x.iter().all(|v| *v == 0.0), "{extra:?}: x is not 0");
+        assert!(path.curve[0].force[2] > 0.0 && path.curve[1].force[2] == 0.0, "{extra:?}");
+    }
+}
+
 /// No charge enters the block but through its electrodes (the ball does not conduct, no
 /// charge is applied): the charges of the two grounded electrodes cancel at every step, and
 /// pressing deeper draws more.
