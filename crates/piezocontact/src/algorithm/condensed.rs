@@ -289,6 +289,11 @@ impl SchurSource {
         Self { analysed: analysed.to_vec(), last: None }
     }
 
+    /// Whether the factor's ordering keeps `set` last, in that order.
+    pub fn analyses(&self, set: &[usize]) -> bool {
+        self.analysed == set
+    }
+
     /// The solves [`SchurSource::get`] would make for `wanted` with the current
     /// factorisation of `system`: the wanted unknowns outside the set it would start from.
     pub fn solves_for(&self, system: &CoupledSystem, wanted: &[usize]) -> usize {

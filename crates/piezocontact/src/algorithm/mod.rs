@@ -54,6 +54,12 @@ pub trait InnerMethod: std::fmt::Debug + Send + Sync {
     fn prepare(&mut self, setup: Setup, solver: Box<dyn LinearSolver>) -> Result<CoupledSystem>;
     /// The nodal blocks that the method adds to B̌ on the Γ3 nodes.
     fn blocks(&self) -> &[NodalBlock];
+    /// Told before the outer loop factorises `system` again (Hencky's linearisation changed):
+    /// the method may order its unknowns anew.
+    fn before_factorisation(&mut self, system: &mut CoupledSystem) -> Result<()> {
+        let _ = system;
+        Ok(())
+    }
     /// Solves the contact problem of one outer step with the factorised `system`.
     fn solve(&mut self, step: &Step, system: &mut CoupledSystem) -> Result<InnerResult>;
     /// How a stop of outer step `outer_step` reads in an error.
@@ -375,10 +381,15 @@ impl ContactSolver {
                 break;
             }
             progress(Progress::Outer { step: n, max: self.max_outer });
-            let (linearisation, blocks) = (&self.linearisation, self.method.blocks());
+            let linearisation = &self.linearisation;
             if self.changed {
                 progress(Progress::Factorising { unknowns: self.system.dofs().n_free() });
-                if let Err(e) = self.system.factorize_linearised(problem, linearisation, blocks) {
+                let reordered = self.method.before_factorisation(&mut self.system);
+                let blocks = self.method.blocks();
+                let factorised = reordered.and_then(|()| {
+                    self.system.factorize_linearised(problem, linearisation, blocks)
+                });
+                if let Err(e) = factorised {
                     solution.failure = Some(factorisation_failure(n, e));
                     break;
                 }

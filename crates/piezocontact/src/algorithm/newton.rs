@@ -187,6 +187,19 @@ impl InnerMethod for Newton {
         &[]
     }
 
+    /// A condensation grown by solves (model §11) is ordered last before B̌ is factorised
+    /// again, so that its Schur complement is read off the new factor instead of being taken
+    /// by the same solves after every factorisation.
+    fn before_factorisation(&mut self, system: &mut CoupledSystem) -> Result<()> {
+        if let Some(condensed) = &self.condensed
+            && !self.schur.analyses(&condensed.free)
+        {
+            system.put_last(&condensed.free)?;
+            self.schur = SchurSource::new(&condensed.free);
+        }
+        Ok(())
+    }
+
     fn solve(&mut self, step: &Step, system: &mut CoupledSystem) -> Result<InnerResult> {
         let mut condensed = self.condensed.take().ok_or_else(|| {
             Error::LinearAlgebra("the exact solver solved before it was prepared".into())

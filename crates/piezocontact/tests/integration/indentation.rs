@@ -267,6 +267,26 @@ fn a_path_back_to_the_unloaded_state_ends_at_zero() {
     }
 }
 
+/// A path with Hencky's law active refactorises at every outer step; a condensation grown by
+/// solves at the second depth is ordered last before the next factorisation, so that its
+/// Schur complement is read off the factor: each factorisation serves the step's two solves
+/// and a growth solves each new unknown once — not once per factorisation, as when the
+/// ordering kept the first depth's set last.
+#[test]
+fn a_condensation_grown_by_solves_is_ordered_last_before_the_next_factorisation() {
+    let case =
+        curve_case(&["material.law=\"hencky\"", "material.t0=1e-4", "loading.depths=[0.01, 0.02]"]);
+    let path =
+        PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
+    assert!(path.converged(), "{:?}", path.failure);
+    let last = &path.last.solution;
+    let t = &last.timings;
+    let unknowns = 3 * last.condensed_nodes;
+    println!("{} factorisations, {} solves, {unknowns} condensed", t.numeric_count, t.solve_count);
+    assert!(t.numeric_count > 4, "Hencky's law is not active: {t:?}");
+    assert!(t.solve_count <= 2 * t.numeric_count + unknowns, "{t:?}");
+}
+
 /// No charge enters the block but through its electrodes (the ball does not conduct, no
 /// charge is applied): the charges of the two grounded electrodes cancel at every step, and
 /// pressing deeper draws more.
