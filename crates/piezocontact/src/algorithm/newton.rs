@@ -234,7 +234,12 @@ impl InnerMethod for Newton {
             iterations: outer_history.len(),
             criterion: kkt.max,
             tolerance: tol,
-            history: super::tail(outer_history),
+            // The criterion is the KKT residual, measured once at the end: its parts say
+            // which condition stays above the tolerance.
+            history: format!(
+                "KKT residual of equilibrium u {:.1e}, ϕ {:.1e}, contact {:.1e}, friction {:.1e}",
+                kkt.equilibrium_u, kkt.equilibrium_phi, kkt.contact, kkt.friction
+            ),
             hint: "the KKT residual stays above solver.tol: round-off of an ill-conditioned \
                    problem, or a tolerance below what double precision reaches here"
                 .into(),
@@ -948,6 +953,24 @@ mod tests {
         let x_hat = system.solve(None).unwrap();
         let local = Local::new(&semismooth, system.schur_complement().unwrap(), x_hat);
         check(&local, &result)
+    }
+
+    /// A KKT residual above solver.tol fails the run, and the error names its parts (not the
+    /// outer loop's history, another criterion); at the tolerance it passes.
+    #[test]
+    fn a_kkt_residual_above_the_tolerance_names_its_parts() {
+        let parameters = Parameters {
+            r: 1.0,
+            tol: 1e-12,
+            max_inner: 100,
+            max_condensed: None,
+            guess: Guess::Nearest(2000),
+        };
+        let method = Newton::new(parameters);
+        let kkt = KktResidual { contact: 3e-11, friction: 2e-13, max: 3e-11, ..Default::default() };
+        let e = method.accept(&kkt, &[0.0]).unwrap().to_string();
+        assert!(e.contains("contact 3.0e-11, friction 2.0e-13") && e.contains("1e-12"), "{e}");
+        assert!(method.accept(&KktResidual { max: 1e-12, ..kkt }, &[0.0]).is_none());
     }
 
     /// Once the sets have settled, Newton's last steps solve with the last dense
