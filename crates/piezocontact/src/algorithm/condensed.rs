@@ -173,12 +173,11 @@ impl Condensed {
     /// condensed problem, a left-out node carries no contact force, which is its law only
     /// while u_ν ≤ g_a and its friction bound `bound` (s = µ|Rσ_ν| per Γ3 node, which a
     /// nonlocal R spreads from the touching nodes to their neighbours, even to those whose
-    /// normal misses the foundation) is 0. `None` when
-    /// every left-out node is there. Else the condensation with those that fail it added,
-    /// and with them the left-out nodes as near to touching (u_ν − g_a above minus the
-    /// largest excess e), deepest first. When that would exceed `max_nodes` (`None`: no
-    /// cap), condensed nodes clear of the foundation and without a bound make room, the
-    /// clearest first; an error when none can.
+    /// normal misses the foundation) is 0. `None` when every left-out node is there. Else
+    /// the condensation with those that fail it added, and with them the left-out nodes as
+    /// near to touching (u_ν − g_a above minus the largest excess e), deepest first. When
+    /// that would exceed `max_nodes` (`None`: no cap), condensed nodes clear of the
+    /// foundation and without a bound make room, the clearest first; an error when none can.
     pub fn grown(
         &self,
         (dofs, surface): (&DofMap, &ContactSurface),
