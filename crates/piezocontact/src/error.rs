@@ -109,8 +109,9 @@ pub enum Error {
 
     /// An iteration cap was hit before the stopping rule held.
     #[error(
-        "{what} did not converge in {iterations} iterations: last criterion {criterion:.3e}, \
-         tolerance {tolerance:e} (criterion history, last values: {history}); {hint}"
+        "{what} did not converge in {iterations} iteration{}: last criterion {criterion:.3e}, \
+         tolerance {tolerance:e} (criterion history, last values: {history}); {hint}",
+        if *.iterations == 1 { "" } else { "s" }
     )]
     NotConverged {
         what: String,

@@ -956,7 +956,8 @@ mod tests {
     }
 
     /// A KKT residual above solver.tol fails the run, and the error names its parts (not the
-    /// outer loop's history, another criterion); at the tolerance it passes.
+    /// outer loop's history, another criterion) and the outer steps, one in the singular; at
+    /// the tolerance it passes.
     #[test]
     fn a_kkt_residual_above_the_tolerance_names_its_parts() {
         let parameters = Parameters {
@@ -970,6 +971,9 @@ mod tests {
         let kkt = KktResidual { contact: 3e-11, friction: 2e-13, max: 3e-11, ..Default::default() };
         let e = method.accept(&kkt, &[0.0]).unwrap().to_string();
         assert!(e.contains("contact 3.0e-11, friction 2.0e-13") && e.contains("1e-12"), "{e}");
+        assert!(e.contains("in 1 iteration:"), "{e}");
+        let e = method.accept(&kkt, &[0.0, 0.0]).unwrap().to_string();
+        assert!(e.contains("in 2 iterations:"), "{e}");
         assert!(method.accept(&KktResidual { max: 1e-12, ..kkt }, &[0.0]).is_none());
     }
 
