@@ -54,8 +54,8 @@ pub trait InnerMethod: std::fmt::Debug + Send + Sync {
     fn prepare(&mut self, setup: Setup, solver: Box<dyn LinearSolver>) -> Result<CoupledSystem>;
     /// The nodal blocks that the method adds to B̌ on the Γ3 nodes.
     fn blocks(&self) -> &[NodalBlock];
-    /// Told before the outer loop factorises `system` again (Hencky's linearisation changed):
-    /// the method may order its unknowns anew.
+    /// Told before the outer loop factorises `system` (first, and whenever Hencky's
+    /// linearisation has changed): the method may order its unknowns anew.
     fn before_factorisation(&mut self, system: &mut CoupledSystem) -> Result<()> {
         let _ = system;
         Ok(())

@@ -22,8 +22,8 @@ use super::condensed::{self, Condensed, Guess, Phi, SchurSource};
 use super::residual::KktResidual;
 use super::{InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
 use crate::assembly::NodalBlock;
-use crate::contact::ContactState;
-use crate::contact::model::node_bound;
+use crate::contact::model::{node_bound, normal_stress};
+use crate::contact::{self, ContactState};
 use crate::error::{Error, Result};
 use crate::linalg::{DenseMatrix, LinearSolver, TransposedLu};
 use crate::solver::CoupledSystem;
@@ -276,12 +276,12 @@ impl Newton {
         let c_factor = self.c_factor;
         let start = (self.solved > 0).then_some(step.previous);
         let first = Semismooth { step, condensed, c_factor, max_inner, start };
-        let (mut result, mut bound) = first.run(system, schur)?;
+        let mut result = first.run(system, schur)?;
         let mut rounds = 1;
         while matches!(result.stop, Stop::Converged)
             && let Some(grown) = condensed.grown(
                 (system.dofs(), step.surface),
-                (&result.x, &bound),
+                (&result.x, &friction_bound(step, system, &result)),
                 max_condensed,
             )?
         {
@@ -303,8 +303,7 @@ impl Newton {
                 *schur = SchurSource::new(&condensed.free);
             }
             let start = Some(result.x.as_slice());
-            let next;
-            (next, bound) =
+            let next =
                 Semismooth { step, condensed, c_factor, max_inner, start }.run(system, schur)?;
             let history = [std::mem::take(&mut result.history), next.history].concat();
             result =
@@ -312,6 +311,19 @@ impl Newton {
         }
         Ok(result)
     }
+}
+
+/// The friction bound s = µ|Rσ_ν| per Γ3 node at `result` (0 without friction), from σ_ν of its
+/// multipliers, as the outer loop records it: 0 where the laws make it so (λ_c = 0 off the
+/// active set, no compliance at u_ν ≤ g_a, no force on a node left out), not the round-off of
+/// the condensed forces — so that a left-out node bears friction only from nodes that touch.
+fn friction_bound(step: &Step, system: &CoupledSystem, result: &InnerResult) -> Vec<f64> {
+    let Some((mu, mollifier)) = step.friction() else {
+        return vec![0.0; step.surface.len()];
+    };
+    let (dofs, surface) = (system.dofs(), step.surface);
+    let sigma_nu = normal_stress(dofs, surface, step.model, &result.x, &result.state);
+    contact::model::friction_bound(mu, mollifier, &sigma_nu)
 }
 
 /// One semismooth Newton solve of the condensed problem of an outer step.
@@ -330,13 +342,8 @@ struct Semismooth<'a> {
 
 impl Semismooth<'_> {
     /// Solves the condensed problem with the factorised `system` (ordered with the free
-    /// unknowns `schur` was made for last) and recovers the whole solution, with the friction
-    /// bound s per Γ3 node (`Local::bounds`).
-    pub fn run(
-        &self,
-        system: &mut CoupledSystem,
-        schur: &mut SchurSource,
-    ) -> Result<(InnerResult, Vec<f64>)> {
+    /// unknowns `schur` was made for last) and recovers the whole solution.
+    pub fn run(&self, system: &mut CoupledSystem, schur: &mut SchurSource) -> Result<InnerResult> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;
         let local = Local::new(self, schur.get(system, &cond.free)?, x_hat);
@@ -358,7 +365,6 @@ impl Semismooth<'_> {
         }
         let Iteration { y, stop, iterations, history, .. } = newton;
         let eval = local.evaluate(&y);
-        let bound = local.bounds(&y, &eval);
         let mut forces = vec![0.0; system.dofs().n_free()];
         for (k, f) in local.to_global(&eval.forces).into_iter().enumerate() {
             forces[cond.free[k]] = f;
@@ -381,7 +387,7 @@ impl Semismooth<'_> {
             state.lambda_f[i] =
                 [0, 1, 2].map(|k| (1..3).map(|a| frame[a][k] * tangential[a - 1]).sum());
         }
-        Ok((InnerResult { x, state, iterations, history, stop }, bound))
+        Ok(InnerResult { x, state, iterations, history, stop })
     }
 }
 
@@ -597,25 +603,6 @@ impl<'a> Local<'a> {
     fn pressure(&self, u_nu: f64, phi: Option<f64>, i: usize) -> f64 {
         let (step, gap) = (self.semismooth.step, self.semismooth.step.surface.gap[i]);
         phi.map_or(0.0, |phi| step.model.pressure(u_nu, phi, gap))
-    }
-
-    /// The friction bound s = µ|Rσ_ν| per Γ3 node at y (0 without friction), with σ_ν = 0
-    /// where the law says so — at the nodes neither in contact nor within the compliance's
-    /// reach (u_ν ≤ g_a), whose computed σ_ν is round-off, and at the nodes left out — so
-    /// that a left-out node bears friction only from nodes that touch.
-    fn bounds(&self, y: &[f64], eval: &Evaluation) -> Vec<f64> {
-        let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
-        let n3 = step.surface.len();
-        let Some((mu, mollifier)) = step.friction() else {
-            return vec![0.0; n3];
-        };
-        let touching = |i: usize| {
-            cond.kept[i] && (eval.sets[i] & 1 == 1 || y[cond.u[i][0]] > step.surface.gap[i])
-        };
-        let sigma_nu: Vec<f64> =
-            (0..n3).map(|i| if touching(i) { eval.sigma_nu[i] } else { 0.0 }).collect();
-        let r_sigma = mollifier.apply(&sigma_nu);
-        (0..n3).map(|i| node_bound(mu[i], r_sigma[i])).collect()
     }
 
     /// ‖scaled E‖².
@@ -948,7 +935,7 @@ mod tests {
             max_inner: 100,
             start: None,
         };
-        let result = semismooth.run(&mut system, &mut SchurSource::new(&condensed.free)).unwrap().0;
+        let result = semismooth.run(&mut system, &mut SchurSource::new(&condensed.free)).unwrap();
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
         let local = Local::new(&semismooth, system.schur_complement().unwrap(), x_hat);

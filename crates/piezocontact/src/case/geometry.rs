@@ -212,9 +212,7 @@ impl Case {
         model: &ContactModel,
         loading: Option<&Loading>,
     ) -> Result<()> {
-        if model.foundation == Foundation::ConstantGap {
-            return Ok(());
-        }
+        let Some((key, hint)) = reach_hint(&model.foundation) else { return Ok(()) };
         let dofs = DofMap::new(problem)?;
         let gamma3 = ContactSurface::new(problem, &dofs)?;
         let positions: Vec<ContactModel> = match loading {
@@ -231,19 +229,11 @@ impl Case {
             return Ok(());
         }
         let at = if positions.len() > 1 { " at any step of the loading path" } else { "" };
-        let n = gamma3.len();
-        Err(match &model.foundation {
-            Foundation::Surface { surface, .. } => input!(
-                "{}: foundation.file: {}: no normal of the {n} Γ3 nodes meets the surface{at}: move it (it is read in the mesh's coordinates) in front of the contact parts",
-                self.locate("foundation.file"),
-                surface.file.display(),
-            ),
-            other => input!(
-                "{}: no normal of the {n} Γ3 nodes meets the foundation{at}: {}",
-                self.locate("foundation.kind"),
-                reach_hint(other)
-            ),
-        })
+        Err(input!(
+            "{}: no normal of the {} Γ3 nodes meets the foundation{at}: {hint}",
+            self.locate(key),
+            gamma3.len()
+        ))
     }
 
     /// The loading path of `[loading]` for a d-dimensional body, `None` without the table.
@@ -328,23 +318,34 @@ impl Case {
     }
 }
 
-/// What to check in a foundation that no Γ3 normal meets.
-fn reach_hint(foundation: &Foundation) -> &'static str {
-    match foundation {
-        Foundation::Plane { .. } => {
-            "foundation.normal points out of the foundation toward the body; check its sign and foundation.point"
-        }
-        Foundation::Sphere { .. } => {
-            "move foundation.center in front of the contact parts, or enlarge foundation.radius"
-        }
-        Foundation::Cone { .. } => {
-            "foundation.axis points from the apex into the cone, away from the body; check its sign and foundation.apex"
-        }
-        Foundation::Punch { .. } => {
-            "foundation.axis points from the punch's face into the punch, away from the body; check its sign and foundation.center"
-        }
-        Foundation::ConstantGap | Foundation::Surface { .. } => {
-            "move it in front of the contact parts"
-        }
-    }
+/// The key to point at and what to check in a foundation that no Γ3 normal meets; `None` for
+/// the paper's constant gap, which every normal meets.
+fn reach_hint(foundation: &Foundation) -> Option<(&'static str, String)> {
+    let (key, hint) = match foundation {
+        Foundation::ConstantGap => return None,
+        Foundation::Plane { .. } => (
+            "foundation.normal",
+            "foundation.normal points out of the foundation toward the body; check its sign and foundation.point".into(),
+        ),
+        Foundation::Sphere { .. } => (
+            "foundation.center",
+            "move foundation.center in front of the contact parts, or enlarge foundation.radius".into(),
+        ),
+        Foundation::Cone { .. } => (
+            "foundation.axis",
+            "foundation.axis points from the apex into the cone, away from the body; check its sign and foundation.apex".into(),
+        ),
+        Foundation::Punch { .. } => (
+            "foundation.axis",
+            "foundation.axis points from the punch's face into the punch, away from the body; check its sign and foundation.center".into(),
+        ),
+        Foundation::Surface { surface, .. } => (
+            "foundation.file",
+            format!(
+                "foundation.file: {}: move it (it is read in the mesh's coordinates) in front of the contact parts",
+                surface.file.display()
+            ),
+        ),
+    };
+    Some((key, hint))
 }

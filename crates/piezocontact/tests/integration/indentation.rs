@@ -431,7 +431,7 @@ fn a_surface_out_of_reach_is_refused() {
     assert!(
         e.contains("foundation.file")
             && e.contains("ball-tip.stl")
-            && e.contains("no normal of the 1370 Γ3 nodes meets the surface"),
+            && e.contains("no normal of the 1370 Γ3 nodes meets the foundation"),
         "{e}"
     );
 }
