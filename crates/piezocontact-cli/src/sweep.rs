@@ -20,12 +20,19 @@ pub struct Job {
     pub out: Option<PathBuf>,
 }
 
-/// Runs the jobs on `threads` threads and returns the runs in the jobs' order.
+/// Runs the jobs on `threads` threads and returns the runs in the jobs' order; the first
+/// job that fails fails them all.
 pub fn run_jobs(jobs: Vec<Job>, threads: usize) -> Result<Vec<ContactRun>> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.max(1))
-        .build()
-        .map_err(|e| anyhow!("thread pool: {e}"))?;
+    run_each(jobs, threads).into_iter().collect()
+}
+
+/// Runs the jobs on `threads` threads and returns each one's run or error, in the jobs'
+/// order.
+pub fn run_each(jobs: Vec<Job>, threads: usize) -> Vec<Result<ContactRun>> {
+    let pool = match rayon::ThreadPoolBuilder::new().num_threads(threads.max(1)).build() {
+        Ok(pool) => pool,
+        Err(e) => return jobs.iter().map(|_| Err(anyhow!("thread pool: {e}"))).collect(),
+    };
     let total = jobs.len();
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = ProgressBar::new(total as u64);
@@ -39,19 +46,18 @@ pub fn run_jobs(jobs: Vec<Job>, threads: usize) -> Result<Vec<ContactRun>> {
     let results: Vec<Result<ContactRun>> = pool.install(|| {
         jobs.par_iter()
             .map(|job| {
-                let run =
-                    ContactRun::solve(&job.case).with_context(|| format!("run {}", job.label))?;
-                if let Some(out) = &job.out {
-                    run.write(&job.case, out)?;
-                }
+                let run = solve_job(job);
                 let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
-                let line = format!(
-                    "{}: {} outer iterations, {}, {:.2} s",
-                    job.label,
-                    run.solution.outer_iterations,
-                    if run.solution.converged { "converged" } else { "NOT converged" },
-                    run.seconds
-                );
+                let line = match &run {
+                    Ok(run) => format!(
+                        "{}: {} outer iterations, {}, {:.2} s",
+                        job.label,
+                        run.solution.outer_iterations,
+                        if run.solution.converged { "converged" } else { "NOT converged" },
+                        run.seconds
+                    ),
+                    Err(_) => format!("{}: failed", job.label),
+                };
                 match &bar {
                     Some(bar) => {
                         bar.inc(1);
@@ -59,14 +65,23 @@ pub fn run_jobs(jobs: Vec<Job>, threads: usize) -> Result<Vec<ContactRun>> {
                     }
                     None => say_err!("[{k}/{total}] {line}"),
                 }
-                Ok(run)
+                run
             })
             .collect()
     });
     if let Some(bar) = bar {
         bar.finish();
     }
-    results.into_iter().collect()
+    results
+}
+
+/// Solves a job and writes its files.
+fn solve_job(job: &Job) -> Result<ContactRun> {
+    let run = ContactRun::solve(&job.case).with_context(|| format!("run {}", job.label))?;
+    if let Some(out) = &job.out {
+        run.write(&job.case, out)?;
+    }
+    Ok(run)
 }
 
 /// The number of threads: `--jobs`, or the machine's cores.
@@ -100,7 +115,10 @@ pub struct SweepRequest<'a> {
     pub out: &'a Path,
 }
 
-/// Runs a sweep; returns whether every run converged.
+/// Runs a sweep; returns whether every run converged. A run that fails (the solver refused
+/// its case) keeps its row, marked unconverged with its measures empty, its error goes to
+/// stderr, and the sweep fails once sweep.csv is written; a case with a loading path is
+/// refused before any run.
 pub fn sweep(request: &SweepRequest) -> Result<bool> {
     let (keys, values) = parse_set_list(request.set_list)?;
     let reference = if request.reference.is_empty() {
@@ -108,6 +126,7 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
     } else {
         let overrides: Vec<String> = request.set.iter().chain(request.reference).cloned().collect();
         let case = Case::load(request.case, &overrides)?;
+        one_position(&case)?;
         let out = request.out.join("reference");
         Some(run_jobs(vec![Job { label: "reference".into(), case, out: Some(out) }], 1)?.remove(0))
     };
@@ -116,36 +135,82 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
         let mut overrides = request.set.to_vec();
         overrides.extend(keys.iter().map(|k| format!("{k}={value}")));
         let case = Case::load(request.case, &overrides)?;
+        one_position(&case)?;
         let label = format!("{}={value}", keys.join("="));
         jobs.push(Job { label, case, out: Some(request.out.join(format!("run-{i:02}"))) });
     }
-    let runs = run_jobs(jobs, threads(request.jobs))?;
+    let units = jobs[0].case.file.units.clone();
+    let runs = run_each(jobs, threads(request.jobs));
     let mut csv = keys.join(",");
     csv.push_str(",outer_iterations,inner_iterations,converged,max_abs_sigma_nu,max_abs_sigma_tau,contact_length,stick_length,slip_length,distance_to_reference,wall_seconds\n");
+    let (mut converged, mut failed) = (true, 0);
     for (value, run) in values.iter().zip(&runs) {
-        let (sigma_nu, sigma_tau) = run.peaks();
-        let (contact, stick, slip) = run.zones();
-        let distance = match &reference {
-            Some(r) => csv_number(run.distance_to(r)?),
-            None => String::new(),
-        };
-        let _ = writeln!(
-            csv,
-            "{},{},{},{},{},{},{},{},{},{distance},{:.3}",
-            vec![value.as_str(); keys.len()].join(","),
-            run.solution.outer_iterations,
-            run.solution.inner_iterations.iter().sum::<usize>(),
-            run.solution.converged,
-            csv_number(sigma_nu),
-            csv_number(sigma_tau),
-            csv_number(contact),
-            csv_number(stick),
-            csv_number(slip),
-            run.seconds
-        );
+        let values = vec![value.as_str(); keys.len()].join(",");
+        match run {
+            Ok(run) => {
+                let distance = match &reference {
+                    Some(r) => csv_number(run.distance_to(r)?),
+                    None => String::new(),
+                };
+                let _ = writeln!(csv, "{values},{}", row(run, &distance));
+                converged &= run.solution.converged;
+            }
+            Err(e) => {
+                say_err!("error: {e:#}");
+                let _ = writeln!(csv, "{values},,,false,,,,,,,");
+                failed += 1;
+            }
+        }
     }
     write_atomic(&request.out.join("sweep.csv"), csv.as_bytes())?;
     say!("{}", csv.trim_end());
+    if let Some(run) = runs.iter().find_map(|r| r.as_ref().ok()) {
+        say!("{}", units_line(&units, run.problem.mesh.dim()));
+    }
     say!("wrote {} and one directory per run", request.out.join("sweep.csv").display());
-    Ok(runs.iter().all(|r| r.solution.converged))
+    if failed > 0 {
+        bail!(
+            "{failed} of {} runs failed (the errors above); their rows in sweep.csv are marked \
+             unconverged, without results",
+            runs.len()
+        );
+    }
+    Ok(converged)
+}
+
+/// What the columns of sweep.csv measure, in the case's units, for a `dim`-D body.
+fn units_line(units: &piezocontact::case::Units, dim: usize) -> String {
+    let (measure, power) = if dim == 3 { ("areas", "²") } else { ("lengths", "") };
+    format!(
+        "units: max_abs_sigma_nu, max_abs_sigma_tau in {}; contact_length, stick_length, \
+         slip_length: {measure} of the zones on Γ3 in {}{power}; distance_to_reference: \
+         ‖x − x_ref‖_X / ‖x_ref‖_X [-]; wall_seconds in s",
+        units.stress, units.length
+    )
+}
+
+/// Refuses a case with a loading path: one run per value would ignore it.
+fn one_position(case: &Case) -> Result<()> {
+    match case.file.loading {
+        Some(_) => Err(case.path_in_one_run().into()),
+        None => Ok(()),
+    }
+}
+
+/// The columns of sweep.csv after the swept values, for a run that ended.
+fn row(run: &ContactRun, distance: &str) -> String {
+    let (sigma_nu, sigma_tau) = run.peaks();
+    let (contact, stick, slip) = run.zones();
+    format!(
+        "{},{},{},{},{},{},{},{},{distance},{:.3}",
+        run.solution.outer_iterations,
+        run.solution.inner_iterations.iter().sum::<usize>(),
+        run.solution.converged,
+        csv_number(sigma_nu),
+        csv_number(sigma_tau),
+        csv_number(contact),
+        csv_number(stick),
+        csv_number(slip),
+        run.seconds
+    )
 }

@@ -53,13 +53,17 @@ impl ContactRun {
         Self::solve_built(case, case.build()?, solver, progress)
     }
 
-    /// [`ContactRun::solve_with`] on a case already built.
+    /// [`ContactRun::solve_with`] on a case already built; one with a loading path is refused
+    /// ([`Case::path_in_one_run`]).
     pub fn solve_built(
         case: &Case,
         built: Built,
         solver: Box<dyn LinearSolver>,
         progress: &(dyn Fn(Progress) + Sync),
     ) -> Result<Self> {
+        if built.loading.is_some() {
+            return Err(case.path_in_one_run());
+        }
         let start = Instant::now();
         let Built { problem, model, settings, warnings, .. } = built;
         let model = contact_model(case, &problem, model)?;

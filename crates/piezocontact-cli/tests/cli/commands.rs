@@ -514,6 +514,8 @@ fn table2_trend() {
         "2",
     ]);
     assert!(o.status.success(), "{}", text(&o));
+    let units = "max_abs_sigma_tau in GPa; contact_length, stick_length, slip_length: lengths of the zones on Γ3 in m;";
+    assert!(text(&o).contains(units), "{}", text(&o));
     let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
     let rows: Vec<Vec<String>> =
         csv.lines().skip(1).map(|l| l.split(',').map(str::to_string).collect()).collect();
@@ -525,6 +527,29 @@ fn table2_trend() {
     assert_eq!(within_one, 8, "{outer:?} against the paper's {paper:?}");
     let distance: Vec<f64> = rows.iter().map(|r| r[10].parse().unwrap()).collect();
     assert!(distance[0] > distance[3] && distance[3] > distance[7], "{distance:?}");
+}
+
+/// A sweep of a 3D case says that its zone measures are areas, in the case's length unit
+/// squared; their columns keep the names of the 2D lengths.
+#[test]
+fn a_3d_sweep_measures_its_zones_as_areas() {
+    let out = temp_dir("sweep-3d");
+    let o = piezocontact(&[
+        "sweep",
+        "cases/indentation-3d.toml",
+        "--set",
+        "mesh.file=\"../meshes/indent-3d-h0.05.msh\"",
+        "--set-list",
+        "friction.mu=0.1,0.3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(t.contains("stick_length, slip_length: areas of the zones on Γ3 in m²;"), "{t}");
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(header.contains(",contact_length,stick_length,slip_length,"), "{header}");
 }
 
 /// --threads bounds a run (summary.json says so) and leaves its answer alone to the last bit:

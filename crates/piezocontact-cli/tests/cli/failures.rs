@@ -346,3 +346,64 @@ fn a_stale_staging_directory_is_removed_by_the_next_run() {
     assert!(alive.exists(), "a running process's staging directory was removed");
     std::fs::remove_dir_all(&alive).unwrap();
 }
+
+/// A sweep with a run that the solver refuses still writes sweep.csv with every row: the
+/// refused run's marked unconverged without results, the other's with them; the error names
+/// the run, and the sweep exits 1.
+#[test]
+fn a_sweep_keeps_the_rows_of_the_runs_that_fail() {
+    let out = temp_dir("sweep-failed-run");
+    let o = piezocontact(&[
+        "sweep",
+        "cases/paper-7.1.toml",
+        "--set",
+        "mesh.nx=24",
+        "--set",
+        "mesh.ny=4",
+        "--set",
+        "solver.method=\"newton\"",
+        "--set-list",
+        "solver.max_condensed=1,100",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(t.contains("run solver.max_condensed=1: ") && t.contains("1 of 2 runs failed"), "{t}");
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    assert!(rows[0][0] == "1" && rows[0][3] == "false", "{csv}");
+    assert!(rows[0][1..].iter().filter(|c| c.is_empty()).count() == 9, "{csv}");
+    assert!(rows[1][0] == "100" && rows[1][3] == "true", "{csv}");
+    assert!(rows[1][4].parse::<f64>().unwrap() > 0.0, "{csv}");
+    assert!(out.join("run-01/summary.json").exists() && !out.join("run-00").exists());
+}
+
+/// A case with a loading path is refused by sweep before any run, at the line of its
+/// [loading] table: one run per value would solve the foundation's first position alone.
+#[test]
+fn a_sweep_refuses_a_loading_path() {
+    let out = temp_dir("sweep-path");
+    let o = piezocontact(&[
+        "sweep",
+        "cases/indentation-curve.toml",
+        "--set-list",
+        "friction.mu=0.1,0.3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let t = text(&o);
+    let line = std::fs::read_to_string(root().join("cases/indentation-curve.toml"))
+        .unwrap()
+        .lines()
+        .position(|l| l.starts_with("[loading]"))
+        .unwrap()
+        + 1;
+    assert_eq!(o.status.code(), Some(1), "{t}");
+    assert!(
+        t.contains(&format!("cases/indentation-curve.toml:{line}: the case has a [loading] path")),
+        "{t}"
+    );
+    assert!(!out.join("run-00").exists() && !out.join("sweep.csv").exists(), "{t}");
+}

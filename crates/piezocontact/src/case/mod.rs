@@ -82,6 +82,19 @@ impl Case {
         }
     }
 
+    /// The error of a case with a `[loading]` path given to one run, which would solve the
+    /// foundation where `[foundation]` puts it, under the loads unscaled, and ignore the path
+    /// ([`crate::path::PathRun`] follows it).
+    pub fn path_in_one_run(&self) -> Error {
+        input!(
+            "{}: the case has a [loading] path, which one run does not follow (it would solve \
+             the foundation where [foundation] puts it, under the loads unscaled): solve the \
+             path with `piezocontact run` (one row per step in curve.csv), or remove [loading] \
+             for that one position",
+            self.locate("loading")
+        )
+    }
+
     /// Places an error in this case: at the line of the key it names, else in the file.
     pub fn context(&self, e: Error) -> Error {
         let location = match &e {

@@ -201,6 +201,18 @@ fn cold(depth: f64) -> ContactRun {
     run
 }
 
+/// One run of a case with a loading path is refused, naming [loading] and its line: it
+/// would solve the ball where [foundation] puts it (just touching: no contact at all). Without
+/// the path, the same case is one run.
+#[test]
+fn one_run_refuses_a_loading_path() {
+    let case = curve_case(&[]);
+    let refused = ContactRun::solve(&case).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(refused.contains("indentation-curve.toml:") && refused.contains("[loading] path"));
+    let built = Built { loading: None, ..case.build().unwrap() };
+    assert!(ContactRun::solve_built(&case, built, default_solver(), &|_| {}).is_ok());
+}
+
 /// The largest difference of two solutions relative to the largest |x|.
 fn difference(a: &[f64], b: &[f64]) -> f64 {
     let size = b.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
