@@ -290,7 +290,16 @@ fn contact_problems(target: &str) -> Result<Vec<(&'static str, Case)>> {
         let with = |extra: &[&str]| -> Result<Case> {
             let mut overrides = newton();
             overrides.extend(extra.iter().map(|s| s.to_string()));
-            Ok(Case::load(Path::new(file), &overrides)?)
+            let case = Case::load(Path::new(file), &overrides)?;
+            if case.file.loading.is_some() {
+                bail!(
+                    "{}: the case has a [loading] path, which bench --contact does not follow: \
+                     time it with `bench --path --case {file}`, or remove [loading] to time one \
+                     position",
+                    case.locate("loading")
+                );
+            }
+            Ok(case)
         };
         let pv2 = ["contact.problem=\"PV2\"", "friction.mu=0.3"];
         return Ok(vec![("PV1", with(&["contact.problem=\"PV1\""])?), ("PV2 mu=0.3", with(&pv2)?)]);
@@ -320,6 +329,10 @@ fn contact_problems(target: &str) -> Result<Vec<(&'static str, Case)>> {
 /// `bench --contact`: every measurement in a process of its own (peak memory per run), on
 /// each target: a size "NXxNY" of the paper's bar or a Gmsh mesh.
 pub fn contact(targets: &[String]) -> Result<()> {
+    let names: Vec<Vec<&str>> = targets
+        .iter()
+        .map(|t| Ok(contact_problems(t)?.into_iter().map(|(name, _)| name).collect()))
+        .collect::<Result<_>>()?;
     say!(
         "{:>10} {:>9} {:>11} {:>11} {:>7} {:>12} {:>9} {:>14} {:>8} {:>9} {:>15} {:>9}",
         "mesh",
@@ -353,13 +366,12 @@ pub fn contact(targets: &[String]) -> Result<()> {
             .and_then(|(_, v)| v.parse().ok())
             .ok_or_else(|| anyhow!("the measurement printed no {key}"))
     };
-    for target in targets {
-        let problems = contact_problems(target)?;
+    for (target, names) in targets.iter().zip(names) {
         let plain = one(format!("plain,{target}"))?;
         let (plain_s, plain_mb) = (get(&plain, "seconds")?, get(&plain, "peak_mb")?);
         let size =
             Path::new(target).file_name().map_or(target.clone(), |n| n.to_string_lossy().into());
-        for (k, (name, _)) in problems.iter().enumerate() {
+        for (k, name) in names.into_iter().enumerate() {
             let run = one(format!("contact{k},{target}"))?;
             let (seconds, mb) = (get(&run, "seconds")?, get(&run, "peak_mb")?);
             say!(

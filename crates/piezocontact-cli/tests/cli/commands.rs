@@ -412,6 +412,12 @@ fn error_messages() {
         &["bad.msh", "no $MeshFormat section"],
     );
     assert_error(&["bench", "--sizes", "12by3"], &["'12by3' is not NXxNY"]);
+    // A loading path is not one contact problem: bench --contact would time the unloaded
+    // state (one Newton step, no contact).
+    let o = piezocontact(&["bench", "--contact", "--case", "cases/indentation-curve.toml"]);
+    let t = text(&o);
+    assert!(o.status.code() == Some(1) && !t.contains("kkt_residual"), "{t}");
+    assert!(t.contains("[loading] path") && t.contains("bench --path --case"), "{t}");
 }
 
 #[test]
