@@ -227,3 +227,22 @@ fn an_ordering_with_the_petsc_backend_is_reported_unused() {
     let faer = piezocontact::case::Case::load(&file, &sets[1..]).unwrap();
     assert!(faer.setting_warnings().iter().all(|w| !w.contains("solver.ordering")));
 }
+
+/// `run` says on stderr, also when quiet, which keys of the case nothing reads (here µ under
+/// PV1, which is frictionless) — before, they were in summary.json alone — and the run goes
+/// on; `check` prints them too.
+#[test]
+fn run_and_check_warn_of_keys_nothing_reads() {
+    let dir = temp_dir("unused-keys");
+    let sets = ["--set", "mesh.nx=24", "--set", "mesh.ny=4", "--set", "contact.problem=\"PV1\""];
+    let case = ["cases/paper-7.2.toml"];
+    let out = ["--out", dir.to_str().unwrap()];
+    let o = piezocontact(&[&["-q", "run"][..], &case, &sets, &out].concat());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    let line = "warning: cases/paper-7.2.toml:70: friction is not used: contact.problem = \"PV1\"";
+    assert!(stderr.contains(line) && stderr.contains("conductivity.ke is not used"), "{stderr}");
+    assert!(o.stdout.is_empty());
+    let o = piezocontact(&[&["check"][..], &case, &sets].concat());
+    assert!(String::from_utf8_lossy(&o.stdout).contains(line), "{}", text(&o));
+}

@@ -277,6 +277,39 @@ gap = 0.1
         );
     }
 
+    /// Friction and conduction keys that the problem does not read are reported, each at its
+    /// key; the paper's cases (PV1 with µ = k_e = 0, PV2) and a path with incremental
+    /// friction report none.
+    #[test]
+    fn keys_the_problem_does_not_read_are_reported() {
+        let warned = |overrides: &[&str]| case(MINIMAL, overrides).unwrap().setting_warnings();
+        let pv1 = "contact.problem=\"PV1\"";
+        let friction = warned(&[pv1, "friction.mu=0.3"]);
+        assert!(
+            friction.len() == 1 && friction[0].contains("friction is not used"),
+            "{friction:?}"
+        );
+        let parts = warned(&[pv1, "friction.mu_parts={bottom=0.3}"]);
+        assert!(parts.len() == 1 && parts[0].contains("\"PV1\" is frictionless"), "{parts:?}");
+        let ke = warned(&[pv1, "conductivity.ke=0.5", "conductivity.phi0=1.0"]);
+        assert!(ke.len() == 1 && ke[0].contains("conductivity.ke is not used"), "{ke:?}");
+        let radius = warned(&["friction.mu=0.3", "friction.radius=0.2"]);
+        assert!(radius.len() == 1 && radius[0].contains("friction.radius is not used"));
+        let path = warned(&["friction.mu=0.3", "friction.path=\"incremental\""]);
+        assert!(path.len() == 1 && path[0].contains("friction.path is not used"), "{path:?}");
+        for read in [
+            &[pv1, "friction.mu=0.0", "conductivity.phi0=1.0"][..],
+            &["friction.mu=0.3", "conductivity.ke=0.5"],
+            &["friction.regularization=\"mollifier\"", "friction.radius=0.2"],
+            &["friction.path=\"incremental\"", "loading.depths=[0.1]", "foundation.kind=\"plane\""],
+        ] {
+            assert!(warned(read).is_empty(), "{read:?}: {:?}", warned(read));
+        }
+        for text in [PAPER_71, PAPER_72] {
+            assert!(case(text, &[]).unwrap().setting_warnings().is_empty());
+        }
+    }
+
     #[test]
     fn the_paper_case_gives_the_paper_model() {
         let c = case(PAPER_71, &["mesh.nx=12", "mesh.ny=2"]).unwrap();

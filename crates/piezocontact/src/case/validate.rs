@@ -4,7 +4,7 @@
 
 use super::Case;
 use super::build::MethodParameters;
-use super::schema::{BackendKey, MethodKey, ProblemKey, RegularizationKey};
+use super::schema::{BackendKey, FrictionPathKey, MethodKey, ProblemKey, RegularizationKey};
 use crate::error::{Error, Result};
 use crate::material::{ElasticLaw, Material};
 
@@ -189,6 +189,44 @@ impl Case {
                 "{}: solver.ordering is faer's; with solver.backend = \"petsc\" MUMPS chooses its own ordering (PETSc option -mat_mumps_icntl_7)",
                 self.locate("solver.ordering")
             ));
+        }
+        warnings.extend(self.model_warnings());
+        warnings
+    }
+
+    /// Keys of `[friction]` and `[conductivity]` that the problem does not read, as warnings:
+    /// friction and k_e under PV1 (frictionless, a nonconductive foundation), a mollifier's
+    /// radius without the mollifier, an incremental friction path without a loading path.
+    fn model_warnings(&self) -> Vec<String> {
+        let f = &self.file;
+        let pv1 = self.problem_kind() == ProblemKey::PV1;
+        let mut warnings = Vec::new();
+        let mut unused = |key: &str, why: &str| {
+            warnings.push(format!("{}: {key} is not used: {why}", self.locate(key)));
+        };
+        if let Some(friction) = f.friction.as_ref() {
+            let mollifier = friction.regularization == RegularizationKey::Mollifier;
+            if pv1 && (friction.mu != 0.0 || !friction.mu_parts.is_empty() || mollifier) {
+                unused(
+                    "friction",
+                    "contact.problem = \"PV1\" is frictionless (set \"PV2\" for friction)",
+                );
+            }
+            if friction.radius != 0.0 && !mollifier {
+                unused("friction.radius", "only friction.regularization = \"mollifier\" reads it");
+            }
+            if friction.path == FrictionPathKey::Incremental && f.loading.is_none() {
+                unused(
+                    "friction.path",
+                    "\"incremental\" measures the slip from the previous step of a [loading] path, and the case has none (one run is static)",
+                );
+            }
+        }
+        if pv1 && f.conductivity.as_ref().is_some_and(|k| k.ke != 0.0) {
+            unused(
+                "conductivity.ke",
+                "contact.problem = \"PV1\" has a nonconductive foundation (it reads conductivity.phi0 alone; set \"PV2\" for conduction)",
+            );
         }
         warnings
     }
