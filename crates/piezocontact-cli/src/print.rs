@@ -34,6 +34,10 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         let n3 = solution.surface.len();
         say!("  condensed nodes    = {} of {n3} Γ3 nodes", solution.condensed_nodes);
     }
+    if solution.floored_from.is_some() {
+        let tangent = piezocontact::report::hencky_tangent(solution, !exact);
+        say!("  Hencky tangent     = {tangent} beyond e·t0");
+    }
     say!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
     say!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
     let measure = match run.problem.mesh.dim() {

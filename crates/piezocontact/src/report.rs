@@ -187,6 +187,19 @@ pub fn zone_measures(solution: &ContactSolution, rows: &[Row]) -> (f64, f64, f64
     m
 }
 
+/// How the outer loop linearised Hencky's law (model §7, §13): "secant" (the paper's fixed
+/// point, with the Uzawa method), "whole" (the exact solver's Newton iteration with the whole
+/// tangent, also beyond e·t0, where the law's modulus along ε^D is not positive; the word for
+/// a linear law too), or "floored from outer step k" when that iteration cycled or made a
+/// pivot of B̌ change sign there.
+pub fn hencky_tangent(solution: &ContactSolution, lags: bool) -> String {
+    match solution.floored_from {
+        _ if lags => "secant".into(),
+        None => "whole".into(),
+        Some(k) => format!("floored from outer step {k}"),
+    }
+}
+
 /// The contact part of `summary.json`.
 pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &[Row]) -> Value {
     let max_abs = |f: &dyn Fn(&Row) -> f64| rows.iter().map(|r| f(r).abs()).fold(0.0, f64::max);

@@ -114,6 +114,8 @@ impl ContactRun {
         summary["timings_seconds"]["total"] = json!(self.seconds);
         summary["warnings"] = json!(self.warnings);
         summary["method"] = json!(self.settings.method.name());
+        let lags = self.settings.method.lags_contact();
+        summary["hencky_tangent"] = json!(report::hencky_tangent(&self.solution, lags));
         summary
     }
 

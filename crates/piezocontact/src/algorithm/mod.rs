@@ -22,7 +22,7 @@ pub mod newton;
 pub mod residual;
 pub mod uzawa;
 
-use crate::assembly::{Linearisation, MassNorm, NodalBlock, secant_moduli};
+use crate::assembly::{Beyond, Linearisation, MassNorm, NodalBlock, secant_moduli};
 use crate::contact::law::FrictionPath;
 use crate::contact::model::{friction_bound, nodal_mu, normal_stress};
 use crate::contact::{ContactModel, ContactState, ContactSurface, Mollifier, NodeStatus};
@@ -264,6 +264,9 @@ pub struct ContactSolution {
     pub balance: Balance,
     /// The state the slip is measured from (global), empty for the static law.
     pub slip_origin: Vec<f64>,
+    /// The outer step from which the exact solver floored Hencky's tangent beyond e·t0
+    /// (model §13), if it did.
+    pub floored_from: Option<usize>,
 }
 
 /// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it) with the
@@ -304,6 +307,8 @@ pub struct ContactSolver {
     linearisation: Linearisation,
     /// Whether B̌ must be factorised with `linearisation` before the next step.
     changed: bool,
+    /// What the tangent does beyond t = e·t0 in this solve: whole until it fails.
+    beyond: Beyond,
     max_outer: usize,
     /// The load factor f̌ was assembled with.
     load_factor: f64,
@@ -329,7 +334,8 @@ impl ContactSolver {
         let system = method.prepare(Setup { problem, dofs, surface: &surface, model }, solver)?;
         let fixed = Fixed::new(problem, &surface, model)?;
         let zero = vec![0.0; system.dofs().n_total()];
-        let linearisation = linearise(problem, system.dofs(), &zero, method.lags_contact())?;
+        let lags = method.lags_contact();
+        let linearisation = linearise(problem, system.dofs(), &zero, lags, Beyond::Whole)?;
         let max_outer = settings.max_outer;
         Ok(Self {
             method,
@@ -338,6 +344,7 @@ impl ContactSolver {
             surface,
             linearisation,
             changed: true,
+            beyond: Beyond::Whole,
             max_outer,
             load_factor: problem.load_factor,
             last: None,
@@ -374,28 +381,27 @@ impl ContactSolver {
             self.system.reload(problem);
             self.load_factor = problem.load_factor;
         }
-        let (lags, fixed) = (self.method.lags_contact(), &self.fixed);
+        let lags = self.method.lags_contact();
+        self.beyond = Beyond::Whole;
         for n in 1..=self.max_outer {
             if let Some(signal) = crate::interrupt::requested() {
                 solution.failure = Some(Error::Interrupted { signal });
                 break;
             }
             progress(Progress::Outer { step: n, max: self.max_outer });
-            let linearisation = &self.linearisation;
             if self.changed {
                 progress(Progress::Factorising { unknowns: self.system.dofs().n_free() });
-                let reordered = self.method.before_factorisation(&mut self.system);
-                let blocks = self.method.blocks();
-                let factorised = reordered.and_then(|()| {
-                    self.system.factorize_linearised(problem, linearisation, blocks)
-                });
-                if let Err(e) = factorised {
+                if let Err(e) = self.factorise(problem, &solution.x) {
                     solution.failure = Some(factorisation_failure(n, e));
                     break;
+                }
+                if self.beyond == Beyond::Floored && solution.floored_from.is_none() {
+                    solution.floored_from = Some(n);
                 }
             }
             self.changed = false;
             let s_n = solution.s.clone();
+            let (fixed, linearisation) = (&self.fixed, &self.linearisation);
             let step = fixed.step(problem, model, &solution, &s_n, linearisation, progress);
             let inner = self.method.solve(&step, &mut self.system)?;
             let failure = inner_failure(&self.method.stop_context(n, model.pv2.is_some()), &inner);
@@ -405,18 +411,7 @@ impl ContactSolver {
                 solution.failure = failure;
                 break;
             }
-            let next = linearise(problem, self.system.dofs(), &solution.x, lags)?;
-            self.changed = next != self.linearisation;
-            let criterion = fixed.outer_criterion(
-                problem,
-                &self.system,
-                &solution,
-                &x_previous,
-                self.changed,
-                lags,
-            );
-            solution.outer_history.push(criterion);
-            self.linearisation = next;
+            let criterion = self.relinearise(problem, &mut solution, &x_previous, n)?;
             if criterion < self.method.outer_tolerance() {
                 solution.converged = true;
                 break;
@@ -429,6 +424,55 @@ impl ContactSolver {
         let solution = self.finish(problem, model, solution)?;
         self.last = Some((solution.x.clone(), solution.s.clone()));
         Ok(solution)
+    }
+
+    /// After outer step n: Hencky's law linearised at its solution for the next step, and its
+    /// criterion, pushed onto the history. When Newton's criterion (the whole tangent) grows,
+    /// it can cycle on a law that is not positive beyond e·t0: the floored tangent from step
+    /// n + 1 on.
+    fn relinearise(
+        &mut self,
+        problem: &Problem,
+        solution: &mut ContactSolution,
+        x_previous: &[f64],
+        n: usize,
+    ) -> Result<f64> {
+        let (dofs, lags) = (self.system.dofs(), self.method.lags_contact());
+        let mut next = linearise(problem, dofs, &solution.x, lags, self.beyond)?;
+        let changed = next != self.linearisation;
+        let criterion =
+            self.fixed.outer_criterion(problem, &self.system, solution, x_previous, changed, lags);
+        let grows = solution.outer_history.last().is_some_and(|last| criterion > *last);
+        if !lags && self.beyond == Beyond::Whole && grows {
+            self.beyond = Beyond::Floored;
+            solution.floored_from = Some(n + 1);
+            next = linearise(problem, dofs, &solution.x, lags, Beyond::Floored)?;
+        }
+        self.changed = next != self.linearisation;
+        solution.outer_history.push(criterion);
+        self.linearisation = next;
+        Ok(criterion)
+    }
+
+    /// Factorises B̌ with the linearisation made at `x` (x_n). When the whole tangent gives a
+    /// pivot of the wrong sign (Hencky's law not positive beyond e·t0 in enough elements that
+    /// B̌ is no longer quasi-definite), the floored tangent at x is factorised instead, and
+    /// used for the rest of the solve.
+    fn factorise(&mut self, problem: &Problem, x: &[f64]) -> Result<()> {
+        self.method.before_factorisation(&mut self.system)?;
+        let blocks = self.method.blocks();
+        let factorised = self.system.factorize_linearised(problem, &self.linearisation, blocks);
+        let lags = self.method.lags_contact();
+        if !matches!(factorised, Err(Error::SingularSystem { .. })) || self.beyond != Beyond::Whole
+        {
+            return factorised;
+        }
+        let floored = linearise(problem, self.system.dofs(), x, lags, Beyond::Floored)?;
+        if floored == self.linearisation {
+            return factorised;
+        }
+        (self.beyond, self.linearisation) = (Beyond::Floored, floored);
+        self.system.factorize_linearised(problem, &self.linearisation, blocks)
     }
 
     /// The end of a solve: the cap's error if no other stop, timings, the residuals, and the
@@ -537,11 +581,17 @@ impl Fixed {
 /// the contact terms — the paper's fixed point — and else the consistent tangent with the
 /// secant as its fallback (model §13), a Newton iteration on the law around an exact inner
 /// solve.
-fn linearise(problem: &Problem, dofs: &DofMap, x: &[f64], lags: bool) -> Result<Linearisation> {
+fn linearise(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    lags: bool,
+    beyond: Beyond,
+) -> Result<Linearisation> {
     if lags {
         Ok(Linearisation::secant(secant_moduli(problem, dofs, x)?))
     } else {
-        Linearisation::tangent(problem, dofs, x)
+        Linearisation::tangent(problem, dofs, x, beyond)
     }
 }
 
@@ -669,6 +719,7 @@ impl ContactSolution {
             inner_history: Vec::new(),
             timings: Timings::default(),
             slip_origin: Vec::new(),
+            floored_from: None,
         }
     }
 

@@ -136,6 +136,16 @@ fn x_norm_on<const D: usize, const N: usize>(
 /// slower or not at all in 100 steps).
 pub const FLOOR: f64 = 0.3;
 
+/// What the consistent tangent does beyond t = e·t0, where the law's modulus along ε^D,
+/// 2(g + 2 g' t), is not positive.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Beyond {
+    /// Keeps the law's tangent: Newton's iteration, quadratic near a solution.
+    Whole,
+    /// Floors the modulus along ε^D at [`FLOOR`] times the secant's: a positive matrix.
+    Floored,
+}
+
 /// Hencky's law linearised at an iterate x_n, element by element (model §13): the secant
 /// modulus g_e, and for a Newton step the rank-one part of the consistent tangent,
 ///
@@ -145,10 +155,11 @@ pub const FLOOR: f64 = 0.3;
 /// ```
 ///
 /// used where the law softens (g' ≠ 0). Beyond t = e·t0 the law's tangent along ε^D,
-/// 2(g + 2 g' t), is no longer positive (the limit of (h1)(b)); there the coefficient 4 g' is
-/// replaced by the β that leaves the modulus along ε^D, 2g + β t, at [`FLOOR`] times the
-/// secant's 2g: a positive matrix between the secant and the tangent, which converges
-/// linearly where the secant alone converges more slowly.
+/// 2(g + 2 g' t), is no longer positive (the limit of (h1)(b)); the whole tangent keeps it
+/// there ([`Beyond::Whole`]: Newton's iteration), the floored one ([`Beyond::Floored`])
+/// replaces the coefficient 4 g' by the β that leaves the modulus along ε^D, 2g + β t, at
+/// [`FLOOR`] times the secant's 2g: a positive matrix between the secant and the tangent,
+/// which converges linearly where the secant alone converges more slowly.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Linearisation {
     /// g_e(‖ε^D(u_n)‖²) \[stress\].
@@ -164,8 +175,9 @@ impl Linearisation {
         Self { moduli, tangent: Vec::new() }
     }
 
-    /// The consistent tangent of Hencky's law at x (global vector), with the secant fallback.
-    pub fn tangent(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Self> {
+    /// The consistent tangent of Hencky's law at x (global vector): whole, or floored where
+    /// it is not positive along ε^D.
+    pub fn tangent(problem: &Problem, dofs: &DofMap, x: &[f64], beyond: Beyond) -> Result<Self> {
         let elasticity = problem.material.elasticity;
         let mut moduli = Vec::with_capacity(problem.mesh.n_cells());
         let mut tangent = Vec::with_capacity(problem.mesh.n_cells());
@@ -176,8 +188,8 @@ impl Linearisation {
             moduli.push(g);
             // Only the elements that use the tangent keep ε^D: an unchanged linearisation then
             // means unchanged moduli wherever the law is linear.
-            let coefficient =
-                if g + 2.0 * dg * t > 0.0 { 4.0 * dg } else { -2.0 * (1.0 - FLOOR) * g / t };
+            let floored = beyond == Beyond::Floored && g + 2.0 * dg * t <= 0.0;
+            let coefficient = if floored { -2.0 * (1.0 - FLOOR) * g / t } else { 4.0 * dg };
             tangent.push(if dg != 0.0 { (coefficient, deviator) } else { (0.0, [[0.0; 3]; 3]) });
         }
         Ok(Self { moduli, tangent })
@@ -287,16 +299,9 @@ mod tests {
         let (problem, model) = (&built.problem, built.model.as_ref().unwrap());
         let x = solve_contact(problem, model, &built.settings).unwrap().x;
         let dofs = DofMap::new(problem).unwrap();
-        let linearisation = Linearisation::tangent(problem, &dofs, &x).unwrap();
-        let used = linearisation.tangent.iter().filter(|(b, _)| *b != 0.0).count();
+        let whole = Linearisation::tangent(problem, &dofs, &x, Beyond::Whole).unwrap();
+        let used = whole.tangent.iter().filter(|(b, _)| *b != 0.0).count();
         assert!(used > problem.mesh.n_cells() / 10, "the law softens in {used} elements");
-        // The whole tangent, also where it is not positive (there the run keeps the secant).
-        let mut whole = linearisation.clone();
-        for (c, part) in whole.tangent.iter_mut().enumerate() {
-            let deviator = with_simplex!(2, deviator_tensor(problem, &dofs, &x, c)).unwrap();
-            let t: f64 = deviator.iter().flatten().map(|v| v * v).sum();
-            *part = (4.0 * problem.material.elasticity.dg(t), deviator);
-        }
         let assembler = Assembler::new(problem, dofs.clone(), &[], None).unwrap();
         let (matrix, _) = assembler.linearised_matrix(problem, &whole, &[]).unwrap();
         let force = |x: &[f64]| {

@@ -23,7 +23,7 @@ pub mod kernel;
 pub mod load;
 
 pub use fields::{
-    ElementFields, Linearisation, MassNorm, cell_gradients, element_fields, internal_force,
+    Beyond, ElementFields, Linearisation, MassNorm, cell_gradients, element_fields, internal_force,
     secant_moduli, x_norm_squared,
 };
 pub use load::load_vector;

@@ -10,7 +10,7 @@ use super::common::{
 use piezocontact::algorithm::condensed::Guess;
 use piezocontact::algorithm::newton::{self, Newton};
 use piezocontact::algorithm::{ContactSolution, Settings, solve_contact};
-use piezocontact::assembly::Linearisation;
+use piezocontact::assembly::{Beyond, Linearisation};
 use piezocontact::contact::ContactModel;
 use piezocontact::contact::law::Regularization;
 use piezocontact::dofs::DofMap;
@@ -194,7 +194,8 @@ fn hencky_s_law_by_newton_converges_quadratically() {
     {
         let solution = solve(&problem, &model, &newton(0.25));
         let dofs = &solution.dofs;
-        let linearisation = Linearisation::tangent(&problem, dofs, &solution.x).unwrap();
+        let linearisation =
+            Linearisation::tangent(&problem, dofs, &solution.x, Beyond::Floored).unwrap();
         let elasticity = problem.material.elasticity;
         let softened = linearisation.moduli.iter().filter(|g| **g < elasticity.mu1).count();
         let positive = linearisation.tangent.iter().filter(|(b, _)| *b != 0.0).all(|(b, d)| {
@@ -210,6 +211,61 @@ fn hencky_s_law_by_newton_converges_quadratically() {
         for pair in history[1..].windows(2).filter(|w| w[1] > 1e-11) {
             assert!(pair[1] <= 100.0 * pair[0] * pair[0], "not quadratic: {history:?}");
         }
+    }
+}
+
+/// The elements of a solution where Hencky's law is not positive along ε^D (t > e·t0).
+fn beyond_e_t0(problem: &Problem, solution: &ContactSolution) -> usize {
+    let whole = Linearisation::tangent(problem, &solution.dofs, &solution.x, Beyond::Whole);
+    let el = problem.material.elasticity;
+    let t = |d: &[[f64; 3]; 3]| d.iter().flatten().map(|v| v * v).sum::<f64>();
+    whole
+        .unwrap()
+        .tangent
+        .iter()
+        .map(|(_, d)| t(d))
+        .filter(|t| el.g(*t) + 2.0 * el.dg(*t) * t < 0.0)
+        .count()
+}
+
+/// Beyond t = e·t0 Hencky's law is not positive along ε^D; Newton's iteration keeps its whole
+/// tangent there (model §13). On the paper's bar with t0 = 1e−3 (PV1), where a part of the bar
+/// is beyond e·t0 at the solution, it converges superlinearly — the last criterion under 1e−2
+/// times the one before — in at most 12 factorisations; the floored tangent, used everywhere
+/// before, converged linearly in 89.
+#[test]
+fn hencky_s_whole_tangent_converges_beyond_e_t0() {
+    let problem = paper_problem(48, 8, PAPER_UNITS, ElasticLaw::Hencky { t0: 1e-3 });
+    let solution = solve(&problem, &paper_model(None, 0.0, PAPER_UNITS), &newton(0.25));
+    let (beyond, history) = (beyond_e_t0(&problem, &solution), &solution.outer_history);
+    let count = solution.timings.numeric_count;
+    println!("{beyond} elements beyond e·t0, {count} factorisations, criteria {history:?}");
+    assert!(beyond > 0 && solution.floored_from.is_none(), "{beyond}, {:?}", solution.floored_from);
+    assert!(count <= 12 && solution.kkt.max <= 1e-10, "{count}, {:?}", solution.kkt);
+    let last = &history[history.len() - 2..];
+    assert!(last[1] < 1e-2 * last[0], "not superlinear: {history:?}");
+}
+
+/// Where Newton's iteration on Hencky's law beyond e·t0 cycles (PV2 with µ = k_e = 0.6,
+/// t0 = 1e−3: its criterion grows again), or where its whole tangent takes B̌'s signs (PV1,
+/// t0 = 1e−4: a pivot of the wrong sign, factorised again with the floored tangent), the
+/// floored tangent takes over and the solve converges to the true equations.
+#[test]
+fn newton_on_hencky_s_law_falls_back_to_the_floored_tangent() {
+    for (t0, model, refactorised) in [
+        (1e-3, paper_model(Some((0.6, 0.6)), 0.0, PAPER_UNITS), 0),
+        (1e-4, paper_model(None, 0.0, PAPER_UNITS), 1),
+    ] {
+        let problem = paper_problem(48, 8, PAPER_UNITS, ElasticLaw::Hencky { t0 });
+        let solution = solve(&problem, &model, &newton(0.25));
+        let (outer, count) = (solution.outer_iterations, solution.timings.numeric_count);
+        println!(
+            "t0 = {t0}: floored from {:?}, {outer} steps, {count} factorisations",
+            solution.floored_from
+        );
+        assert!(solution.floored_from.is_some_and(|k| k > 1), "{:?}", solution.floored_from);
+        assert_eq!(count, outer + refactorised);
+        assert!(solution.kkt.max <= 1e-10, "{:?}", solution.kkt);
     }
 }
 
