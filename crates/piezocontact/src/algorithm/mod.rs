@@ -427,9 +427,9 @@ impl ContactSolver {
     }
 
     /// After outer step n: Hencky's law linearised at its solution for the next step, and its
-    /// criterion, pushed onto the history. When Newton's criterion (the whole tangent) grows,
-    /// it can cycle on a law that is not positive beyond e·t0: the floored tangent from step
-    /// n + 1 on.
+    /// criterion, pushed onto the history. When Newton's criterion (the whole tangent) grows
+    /// while some element is beyond e·t0, it can cycle on a law that is not positive there:
+    /// the floored tangent from step n + 1 on.
     fn relinearise(
         &mut self,
         problem: &Problem,
@@ -444,9 +444,11 @@ impl ContactSolver {
             self.fixed.outer_criterion(problem, &self.system, solution, x_previous, changed, lags);
         let grows = solution.outer_history.last().is_some_and(|last| criterion > *last);
         if !lags && self.beyond == Beyond::Whole && grows {
-            self.beyond = Beyond::Floored;
-            solution.floored_from = Some(n + 1);
-            next = linearise(problem, dofs, &solution.x, lags, Beyond::Floored)?;
+            let floored = linearise(problem, dofs, &solution.x, lags, Beyond::Floored)?;
+            if floored != next {
+                (self.beyond, next) = (Beyond::Floored, floored);
+                solution.floored_from = Some(n + 1);
+            }
         }
         self.changed = next != self.linearisation;
         solution.outer_history.push(criterion);

@@ -206,6 +206,7 @@ fn hencky_s_law_by_newton_converges_quadratically() {
         println!("{}: {softened} softened elements, criteria {history:?}", model.name());
         assert!(softened > 0 && positive, "{softened} softened, tangent positive: {positive}");
         assert!(solution.timings.numeric_count <= 6, "{}", solution.timings.numeric_count);
+        assert_eq!(solution.floored_from, None, "the tangent is not floored where it is positive");
         assert!(solution.kkt.max <= 1e-10, "{:?}", solution.kkt);
         // Past 1e−11 the criterion is round-off.
         for pair in history[1..].windows(2).filter(|w| w[1] > 1e-11) {
