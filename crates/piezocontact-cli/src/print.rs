@@ -34,7 +34,7 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         let n3 = solution.surface.len();
         say!("  condensed nodes    = {} of {n3} Γ3 nodes", solution.condensed_nodes);
     }
-    if solution.floored_from.is_some() {
+    if solution.floored_steps > 0 {
         let tangent = piezocontact::report::hencky_tangent(solution, !exact);
         say!("  Hencky tangent     = {tangent} beyond e·t0");
     }

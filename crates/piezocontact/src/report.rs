@@ -190,13 +190,13 @@ pub fn zone_measures(solution: &ContactSolution, rows: &[Row]) -> (f64, f64, f64
 /// How the outer loop linearised Hencky's law (model §7, §13): "secant" (the paper's fixed
 /// point, with the Uzawa method), "whole" (the exact solver's Newton iteration with the whole
 /// tangent, also beyond e·t0, where the law's modulus along ε^D is not positive; the word for
-/// a linear law too), or "floored from outer step k" when that iteration cycled or made a
-/// pivot of B̌ change sign there.
+/// a linear law too), or "floored in k of n outer steps" where that iteration cycled or made
+/// a pivot of B̌ change sign.
 pub fn hencky_tangent(solution: &ContactSolution, lags: bool) -> String {
-    match solution.floored_from {
+    match solution.floored_steps {
         _ if lags => "secant".into(),
-        None => "whole".into(),
-        Some(k) => format!("floored from outer step {k}"),
+        0 => "whole".into(),
+        k => format!("floored in {k} of {} outer steps", solution.outer_iterations),
     }
 }
 

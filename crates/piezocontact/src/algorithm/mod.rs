@@ -264,9 +264,9 @@ pub struct ContactSolution {
     pub balance: Balance,
     /// The state the slip is measured from (global), empty for the static law.
     pub slip_origin: Vec<f64>,
-    /// The outer step from which the exact solver floored Hencky's tangent beyond e·t0
-    /// (model §13), if it did.
-    pub floored_from: Option<usize>,
+    /// The outer steps in which the exact solver floored Hencky's tangent beyond e·t0
+    /// (model §13).
+    pub floored_steps: usize,
 }
 
 /// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it) with the
@@ -307,8 +307,11 @@ pub struct ContactSolver {
     linearisation: Linearisation,
     /// Whether B̌ must be factorised with `linearisation` before the next step.
     changed: bool,
-    /// What the tangent does beyond t = e·t0 in this solve: whole until it fails.
+    /// What the tangent does beyond t = e·t0 in the next step.
     beyond: Beyond,
+    /// How often Newton's whole tangent failed in this solve (its criterion grew, or B̌ lost
+    /// its signs): once, the floored tangent takes one step; twice, every step after.
+    whole_failures: usize,
     max_outer: usize,
     /// The load factor f̌ was assembled with.
     load_factor: f64,
@@ -345,6 +348,7 @@ impl ContactSolver {
             linearisation,
             changed: true,
             beyond: Beyond::Whole,
+            whole_failures: 0,
             max_outer,
             load_factor: problem.load_factor,
             last: None,
@@ -382,7 +386,7 @@ impl ContactSolver {
             self.load_factor = problem.load_factor;
         }
         let lags = self.method.lags_contact();
-        self.beyond = Beyond::Whole;
+        (self.beyond, self.whole_failures) = (Beyond::Whole, 0);
         for n in 1..=self.max_outer {
             if let Some(signal) = crate::interrupt::requested() {
                 solution.failure = Some(Error::Interrupted { signal });
@@ -395,12 +399,10 @@ impl ContactSolver {
                     solution.failure = Some(factorisation_failure(n, e));
                     break;
                 }
-                if self.beyond == Beyond::Floored && solution.floored_from.is_none() {
-                    solution.floored_from = Some(n);
-                }
             }
             self.changed = false;
             let s_n = solution.s.clone();
+            solution.floored_steps += usize::from(self.beyond == Beyond::Floored);
             let (fixed, linearisation) = (&self.fixed, &self.linearisation);
             let step = fixed.step(problem, model, &solution, &s_n, linearisation, progress);
             let inner = self.method.solve(&step, &mut self.system)?;
@@ -411,7 +413,7 @@ impl ContactSolver {
                 solution.failure = failure;
                 break;
             }
-            let criterion = self.relinearise(problem, &mut solution, &x_previous, n)?;
+            let criterion = self.relinearise(problem, &mut solution, &x_previous)?;
             if criterion < self.method.outer_tolerance() {
                 solution.converged = true;
                 break;
@@ -426,18 +428,20 @@ impl ContactSolver {
         Ok(solution)
     }
 
-    /// After outer step n: Hencky's law linearised at its solution for the next step, and its
-    /// criterion, pushed onto the history. When Newton's criterion (the whole tangent) grows
-    /// while some element is beyond e·t0, it can cycle on a law that is not positive there:
-    /// the floored tangent from step n + 1 on.
+    /// After an outer step: Hencky's law linearised at its solution for the next step, and its
+    /// criterion, pushed onto the history. Newton's whole tangent can cycle on a law that is
+    /// not positive beyond e·t0: when its criterion grows while some element is there, it
+    /// fails, and the floored tangent takes the next step (`whole_failures`).
     fn relinearise(
         &mut self,
         problem: &Problem,
         solution: &mut ContactSolution,
         x_previous: &[f64],
-        n: usize,
     ) -> Result<f64> {
         let (dofs, lags) = (self.system.dofs(), self.method.lags_contact());
+        if self.beyond == Beyond::Floored && self.whole_failures == 1 {
+            self.beyond = Beyond::Whole;
+        }
         let mut next = linearise(problem, dofs, &solution.x, lags, self.beyond)?;
         let changed = next != self.linearisation;
         let criterion =
@@ -446,8 +450,8 @@ impl ContactSolver {
         if !lags && self.beyond == Beyond::Whole && grows {
             let floored = linearise(problem, dofs, &solution.x, lags, Beyond::Floored)?;
             if floored != next {
-                (self.beyond, next) = (Beyond::Floored, floored);
-                solution.floored_from = Some(n + 1);
+                next = floored;
+                (self.beyond, self.whole_failures) = (Beyond::Floored, self.whole_failures + 1);
             }
         }
         self.changed = next != self.linearisation;
@@ -458,8 +462,8 @@ impl ContactSolver {
 
     /// Factorises B̌ with the linearisation made at `x` (x_n). When the whole tangent gives a
     /// pivot of the wrong sign (Hencky's law not positive beyond e·t0 in enough elements that
-    /// B̌ is no longer quasi-definite), the floored tangent at x is factorised instead, and
-    /// used for the rest of the solve.
+    /// B̌ is no longer quasi-definite), it fails (`whole_failures`) and the floored tangent at
+    /// x is factorised instead.
     fn factorise(&mut self, problem: &Problem, x: &[f64]) -> Result<()> {
         self.method.before_factorisation(&mut self.system)?;
         let blocks = self.method.blocks();
@@ -473,7 +477,8 @@ impl ContactSolver {
         if floored == self.linearisation {
             return factorised;
         }
-        (self.beyond, self.linearisation) = (Beyond::Floored, floored);
+        self.linearisation = floored;
+        (self.beyond, self.whole_failures) = (Beyond::Floored, self.whole_failures + 1);
         self.system.factorize_linearised(problem, &self.linearisation, blocks)
     }
 
@@ -721,7 +726,7 @@ impl ContactSolution {
             inner_history: Vec::new(),
             timings: Timings::default(),
             slip_origin: Vec::new(),
-            floored_from: None,
+            floored_steps: 0,
         }
     }
 

@@ -206,7 +206,7 @@ fn hencky_s_law_by_newton_converges_quadratically() {
         println!("{}: {softened} softened elements, criteria {history:?}", model.name());
         assert!(softened > 0 && positive, "{softened} softened, tangent positive: {positive}");
         assert!(solution.timings.numeric_count <= 6, "{}", solution.timings.numeric_count);
-        assert_eq!(solution.floored_from, None, "the tangent is not floored where it is positive");
+        assert_eq!(solution.floored_steps, 0, "the tangent is not floored where it is positive");
         assert!(solution.kkt.max <= 1e-10, "{:?}", solution.kkt);
         // Past 1e−11 the criterion is round-off.
         for pair in history[1..].windows(2).filter(|w| w[1] > 1e-11) {
@@ -241,31 +241,31 @@ fn hencky_s_whole_tangent_converges_beyond_e_t0() {
     let (beyond, history) = (beyond_e_t0(&problem, &solution), &solution.outer_history);
     let count = solution.timings.numeric_count;
     println!("{beyond} elements beyond e·t0, {count} factorisations, criteria {history:?}");
-    assert!(beyond > 0 && solution.floored_from.is_none(), "{beyond}, {:?}", solution.floored_from);
+    assert!(beyond > 0 && solution.floored_steps == 0, "{beyond}, {}", solution.floored_steps);
     assert!(count <= 12 && solution.kkt.max <= 1e-10, "{count}, {:?}", solution.kkt);
     let last = &history[history.len() - 2..];
     assert!(last[1] < 1e-2 * last[0], "not superlinear: {history:?}");
 }
 
-/// Where Newton's iteration on Hencky's law beyond e·t0 cycles (PV2 with µ = k_e = 0.6,
-/// t0 = 1e−3: its criterion grows again), or where its whole tangent takes B̌'s signs (PV1,
-/// t0 = 1e−4: a pivot of the wrong sign, factorised again with the floored tangent), the
-/// floored tangent takes over and the solve converges to the true equations.
+/// Where Newton's iteration on Hencky's law beyond e·t0 fails, the floored tangent takes a
+/// step. PV2 with µ = k_e = 0.6, t0 = 1e−3: the criterion grows at step 8; after one floored
+/// step Newton converges in at most 15 steps (the floored tangent kept to the end took 51).
+/// PV1, t0 = 1e−4: the whole tangent gives B̌ a pivot of the wrong sign, B̌ is factorised
+/// again with the floored one (a factorisation more than the steps), and after a second
+/// failure the floor stays. Both converge to the true equations.
 #[test]
 fn newton_on_hencky_s_law_falls_back_to_the_floored_tangent() {
-    for (t0, model, refactorised) in [
-        (1e-3, paper_model(Some((0.6, 0.6)), 0.0, PAPER_UNITS), 0),
-        (1e-4, paper_model(None, 0.0, PAPER_UNITS), 1),
+    for (t0, model, most_steps) in [
+        (1e-3, paper_model(Some((0.6, 0.6)), 0.0, PAPER_UNITS), 15),
+        (1e-4, paper_model(None, 0.0, PAPER_UNITS), 100),
     ] {
         let problem = paper_problem(48, 8, PAPER_UNITS, ElasticLaw::Hencky { t0 });
         let solution = solve(&problem, &model, &newton(0.25));
         let (outer, count) = (solution.outer_iterations, solution.timings.numeric_count);
-        println!(
-            "t0 = {t0}: floored from {:?}, {outer} steps, {count} factorisations",
-            solution.floored_from
-        );
-        assert!(solution.floored_from.is_some_and(|k| k > 1), "{:?}", solution.floored_from);
-        assert_eq!(count, outer + refactorised);
+        let floored = solution.floored_steps;
+        println!("t0 = {t0}: {outer} steps, {floored} floored, {count} factorisations");
+        assert!(floored > 0 && outer <= most_steps, "{floored} floored, {outer} steps");
+        assert!(t0 > 1e-4 || count > outer, "no factorisation refused: {count}, {outer}");
         assert!(solution.kkt.max <= 1e-10, "{:?}", solution.kkt);
     }
 }
