@@ -38,8 +38,8 @@ fn case_error(e: impl std::fmt::Display) -> PyErr {
 }
 
 /// A Python value as a TOML value: bool, int, float (numpy scalars and arrays through their
-/// `tolist()`), str, list or tuple, dict.
-fn toml_value(value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+/// `tolist()`), str, list or tuple, dict; `key` (dotted) names it in errors.
+fn toml_value(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
     let value = if value.hasattr("tolist")? && !value.is_instance_of::<PyString>() {
         value.call_method0("tolist")?
     } else {
@@ -48,27 +48,33 @@ fn toml_value(value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     if value.is_instance_of::<PyBool>() {
         Ok(toml::Value::Boolean(value.extract()?))
     } else if value.is_instance_of::<PyInt>() {
-        Ok(toml::Value::Integer(value.extract()?))
+        let integer = value.extract().map_err(|_| {
+            CaseError::new_err(format!(
+                "{key} = {value}: an integer of a case is at most 2⁶³ − 1 in magnitude"
+            ))
+        })?;
+        Ok(toml::Value::Integer(integer))
     } else if value.is_instance_of::<PyFloat>() {
         Ok(toml::Value::Float(value.extract()?))
     } else if value.is_instance_of::<PyString>() {
         Ok(toml::Value::String(value.extract()?))
     } else if value.is_instance_of::<PyDict>() {
-        Ok(toml::Value::Table(toml_table(value.cast::<PyDict>()?)?))
+        Ok(toml::Value::Table(toml_table(value.cast::<PyDict>()?, &format!("{key}."))?))
     } else if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
         let items: PyResult<Vec<toml::Value>> =
-            value.try_iter()?.map(|item| toml_value(&item?)).collect();
+            value.try_iter()?.map(|item| toml_value(&item?, key)).collect();
         Ok(toml::Value::Array(items?))
     } else {
         Err(CaseError::new_err(format!(
-            "a value of type {} cannot be a case value: give a bool, int, float, str, list or dict",
+            "{key}: a value of type {} cannot be a case value: give a bool, int, float, str, list or dict",
             value.get_type().name()?
         )))
     }
 }
 
-/// A dict with string keys as a TOML table.
-fn toml_table(dict: &Bound<'_, PyDict>) -> PyResult<toml::Table> {
+/// A dict with string keys as a TOML table; `prefix` (dotted, "" at the top) names its keys
+/// in errors.
+fn toml_table(dict: &Bound<'_, PyDict>, prefix: &str) -> PyResult<toml::Table> {
     let mut table = toml::Table::new();
     for (key, value) in dict.iter() {
         let key: String = key.extract().map_err(|_| {
@@ -77,7 +83,8 @@ fn toml_table(dict: &Bound<'_, PyDict>) -> PyResult<toml::Table> {
                 key.repr().map_or_else(|_| "?".into(), |r| r.to_string())
             ))
         })?;
-        table.insert(key, toml_value(&value)?);
+        let value = toml_value(&value, &format!("{prefix}{key}"))?;
+        table.insert(key, value);
     }
     Ok(table)
 }
@@ -85,7 +92,10 @@ fn toml_table(dict: &Bound<'_, PyDict>) -> PyResult<toml::Table> {
 /// `overrides` as `--set` strings "dotted.key=value".
 fn override_strings(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<String>> {
     let Some(overrides) = overrides else { return Ok(Vec::new()) };
-    toml_table(overrides)?.into_iter().map(|(key, value)| Ok(format!("{key}={value}"))).collect()
+    toml_table(overrides, "")?
+        .into_iter()
+        .map(|(key, value)| Ok(format!("{key}={value}")))
+        .collect()
 }
 
 /// A solved case: a contact run, a loading path, or a run without contact (no `[contact]`
@@ -238,7 +248,7 @@ impl Case {
     #[staticmethod]
     #[pyo3(signature = (data, base_dir = None))]
     fn from_dict(data: &Bound<'_, PyDict>, base_dir: Option<PathBuf>) -> PyResult<Self> {
-        let text = toml::to_string(&toml_table(data)?).map_err(case_error)?;
+        let text = toml::to_string(&toml_table(data, "")?).map_err(case_error)?;
         let path = base_dir.unwrap_or_else(|| PathBuf::from(".")).join("case-from-dict.toml");
         Ok(Self { case: CaseFile::from_text(&path, &text, &[]).map_err(case_error)? })
     }

@@ -122,8 +122,13 @@ def test_bad_input_raises_a_value_error_naming_the_key():
         piezocontact.solve(PAPER_71, {"material.youngs": 1.0})
     with pytest.raises(ValueError, match="conductivity.phi0 = 1e308 is out of range"):
         piezocontact.solve(PAPER_72, {"conductivity.phi0": 1e308})
-    with pytest.raises(ValueError, match="cannot be a case value"):
+    with pytest.raises(ValueError, match="^mesh.nx: a value of type object cannot be a case value"):
         piezocontact.solve(PAPER_71, {"mesh.nx": object()})
+    # An int beyond TOML's 64 bits names its key (an OverflowError without it before).
+    with pytest.raises(ValueError, match="^mesh.nx = 1180591620717411303424: an integer"):
+        piezocontact.solve(PAPER_71, {"mesh.nx": 2**70})
+    with pytest.raises(ValueError, match="^material.young: a value of type NoneType"):
+        piezocontact.Case.from_dict({"material": {"young": None}})
     with pytest.raises(ValueError, match="cannot read"):
         piezocontact.solve(ROOT / "cases" / "no-such-case.toml")
 
