@@ -127,12 +127,18 @@ fn internal_error(payload: Box<dyn std::any::Any + Send>) -> PyErr {
 /// The threads a solve may use (assembly, factorisation, solves): at most `threads`, else
 /// every core. Each solve has a pool of its own, so that solves in several Python threads
 /// keep to their own bounds.
-fn thread_pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
-    if threads == Some(0) {
-        return Err(PyValueError::new_err("threads must be at least 1 (or None: every core)"));
-    }
+fn thread_pool(threads: Option<i64>) -> PyResult<rayon::ThreadPool> {
+    let threads = match threads.map(usize::try_from) {
+        None => 0,
+        Some(Ok(n)) if n > 0 => n,
+        Some(_) => {
+            let given = threads.unwrap_or_default();
+            let message = format!("threads = {given}: give at least 1 (or None: every core)");
+            return Err(PyValueError::new_err(message));
+        }
+    };
     rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
+        .num_threads(threads)
         .build()
         .map_err(|e| PyRuntimeError::new_err(format!("cannot start the solve's threads: {e}")))
 }
@@ -144,7 +150,7 @@ fn thread_pool(threads: Option<usize>) -> PyResult<rayon::ThreadPool> {
 /// `RuntimeError`.
 fn watched<T: Send + 'static>(
     py: Python<'_>,
-    threads: Option<usize>,
+    threads: Option<i64>,
     work: impl FnOnce() -> T + Send + 'static,
 ) -> PyResult<T> {
     let pool = thread_pool(threads)?;
@@ -181,7 +187,7 @@ fn watched<T: Send + 'static>(
 /// `RuntimeError`, an unconverged run a `RuntimeWarning` (its results are there, marked
 /// `converged = False`), Ctrl-C during the solve a `KeyboardInterrupt` once the run has
 /// stopped.
-fn solve_case(py: Python<'_>, case: CaseFile, threads: Option<usize>) -> PyResult<Solution> {
+fn solve_case(py: Python<'_>, case: CaseFile, threads: Option<i64>) -> PyResult<Solution> {
     let (run, case) = watched(py, threads, move || {
         let run = if case.file.loading.is_some() {
             case.build()
@@ -221,7 +227,7 @@ fn solve(
     py: Python<'_>,
     case_path: PathBuf,
     overrides: Option<&Bound<'_, PyDict>>,
-    threads: Option<usize>,
+    threads: Option<i64>,
 ) -> PyResult<Solution> {
     let case = CaseFile::load(&case_path, &override_strings(overrides)?).map_err(case_error)?;
     solve_case(py, case, threads)
@@ -269,7 +275,7 @@ impl Case {
 
     /// Solves the case.
     #[pyo3(signature = (threads = None))]
-    fn solve(&self, py: Python<'_>, threads: Option<usize>) -> PyResult<Solution> {
+    fn solve(&self, py: Python<'_>, threads: Option<i64>) -> PyResult<Solution> {
         solve_case(py, self.case.clone(), threads)
     }
 }

@@ -299,5 +299,7 @@ def test_threads_bound_a_solve_and_solves_in_two_threads_keep_their_own_answers(
         assert np.array_equal(result.u, reference.u)
         assert np.array_equal(result.phi, reference.phi)
     assert not np.array_equal(alone[0].u, alone[1].u)
-    with pytest.raises(ValueError, match="threads"):
-        piezocontact.solve(PAPER_71, COARSE, threads=0)
+    for bad in (0, -1):
+        # A negative count was an OverflowError from the conversion, naming nothing.
+        with pytest.raises(ValueError, match=f"threads = {bad}: give at least 1"):
+            piezocontact.solve(PAPER_71, COARSE, threads=bad)
