@@ -17,7 +17,7 @@ use piezocontact::path::{Column, PathRun};
 use piezocontact::report::{contact_columns, row_values};
 use piezocontact::run::{ContactRun, StaticRun};
 use pyo3::create_exception;
-use pyo3::exceptions::{PyRuntimeError, PyRuntimeWarning, PyValueError};
+use pyo3::exceptions::{PyOSError, PyRuntimeError, PyRuntimeWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::ffi::CString;
@@ -424,23 +424,25 @@ impl Solution {
     /// files piezocontact did not write is refused unless `force`.
     #[pyo3(signature = (directory, force = false))]
     fn write(&self, py: Python<'_>, directory: PathBuf, force: bool) -> PyResult<()> {
-        guarded(py, || self.write_files(&directory, force))?.map_err(case_error)
+        guarded(py, || self.write_files(&directory, force))?.map_err(|e| match e {
+            // A file that cannot be made or written is the system's: an OSError.
+            piezocontact::Error::Io { .. } => PyOSError::new_err(e.to_string()),
+            piezocontact::Error::ForeignOutput { .. } => {
+                case_error(format!("{e}: choose another directory, or pass force=True"))
+            }
+            e => case_error(e),
+        })
     }
 }
 
 impl Solution {
     /// [`Solution::write`] without the GIL.
-    fn write_files(&self, directory: &Path, force: bool) -> anyhow::Result<()> {
-        let _claim = Claimed::new(directory, force).map_err(|e| match e {
-            piezocontact::Error::ForeignOutput { .. } => {
-                anyhow::anyhow!("{e}: choose another directory, or pass force=True")
-            }
-            e => e.into(),
-        })?;
+    fn write_files(&self, directory: &Path, force: bool) -> piezocontact::Result<()> {
+        let _claim = Claimed::new(directory, force)?;
         match &self.run {
-            Run::Contact(run) => Ok(run.write(&self.case, directory)?),
-            Run::Path(path) => Ok(path.write(&self.case, directory)?),
-            Run::Static(run) => Ok(run.write(&self.case, directory)?),
+            Run::Contact(run) => run.write(&self.case, directory),
+            Run::Path(path) => path.write(&self.case, directory),
+            Run::Static(run) => run.write(&self.case, directory),
         }
     }
 }

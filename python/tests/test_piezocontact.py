@@ -175,6 +175,11 @@ def test_write_writes_the_files_of_run(tmp_path):
         solution.write(foreign)
     solution.write(foreign, force=True)
     assert (foreign / "notes.txt").read_text() == "mine" and (foreign / "contact.csv").exists()
+    # A directory that cannot be made is the system's error: an OSError (a CaseError before).
+    (tmp_path / "a-file").write_text("")
+    with pytest.raises(OSError, match="cannot create the output directory") as error:
+        solution.write(tmp_path / "a-file" / "out")
+    assert not isinstance(error.value, ValueError)
 
 
 def test_3d_solutions_write_the_contact_map(tmp_path):
