@@ -54,7 +54,11 @@ pub enum Error {
     FacetNotOnBoundary { part: String, nodes: Vec<usize> },
 
     /// A case names a boundary part that the mesh does not have.
-    #[error("boundary part '{name}' is not in the mesh; the mesh has: {available}")]
+    #[error(
+        "boundary part '{name}' is not in the mesh (its boundary parts are its groups of facets: \
+         physical curves in 2D, surfaces in 3D, or a rectangle's segments); the mesh has: \
+         {available}"
+    )]
     UnknownBoundaryPart { name: String, available: String },
 
     /// A boundary role (Γ1, Γa, ...) has no facet although the model needs it.

@@ -382,6 +382,11 @@ fn error_messages() {
         &["check", missing.to_str().unwrap()],
         &["boundary.clamped", "'end' is not in the mesh", "contact, ends, load"],
     );
+    // A volume group is not a boundary part: the message says what parts are.
+    assert_error(
+        &["check", "cases/indentation-3d.toml", "--set", "boundary.contact=[\"body\"]"],
+        &["'body' is not in the mesh", "groups of facets", "surfaces in 3D"],
+    );
     let empty = variant(&dir, "clamped = [\"ends\"]", "clamped = []");
     assert_error(&["check", empty.to_str().unwrap()], &["Γ1 (clamped) is empty"]);
     let grounded = variant(&dir, "grounded = [\"load\"]", "grounded = []");
