@@ -307,10 +307,11 @@ pub struct ContactSolver {
     linearisation: Linearisation,
     /// Whether B̌ must be factorised with `linearisation` before the next step.
     changed: bool,
-    /// What the tangent does beyond t = e·t0 in the next step.
+    /// What the tangent of `linearisation` does beyond t = e·t0.
     beyond: Beyond,
     /// How often Newton's whole tangent failed in this solve (its criterion grew, or B̌ lost
-    /// its signs): once, the floored tangent takes one step; twice, every step after.
+    /// its signs): once (or floored by the last solve), the floored tangent takes one step;
+    /// twice, every step after.
     whole_failures: usize,
     max_outer: usize,
     /// The load factor f̌ was assembled with.
@@ -386,7 +387,8 @@ impl ContactSolver {
             self.load_factor = problem.load_factor;
         }
         let lags = self.method.lags_contact();
-        (self.beyond, self.whole_failures) = (Beyond::Whole, 0);
+        // The linearisation of the last solve is kept (floored or not), its failures are not.
+        self.whole_failures = 0;
         for n in 1..=self.max_outer {
             if let Some(signal) = crate::interrupt::requested() {
                 solution.failure = Some(Error::Interrupted { signal });
@@ -439,7 +441,7 @@ impl ContactSolver {
         x_previous: &[f64],
     ) -> Result<f64> {
         let (dofs, lags) = (self.system.dofs(), self.method.lags_contact());
-        if self.beyond == Beyond::Floored && self.whole_failures == 1 {
+        if self.beyond == Beyond::Floored && self.whole_failures < 2 {
             self.beyond = Beyond::Whole;
         }
         let mut next = linearise(problem, dofs, &solution.x, lags, self.beyond)?;
