@@ -24,7 +24,7 @@ pub mod uzawa;
 
 use crate::assembly::{Beyond, Linearisation, MassNorm, NodalBlock, secant_moduli};
 use crate::contact::law::FrictionPath;
-use crate::contact::model::{friction_bound, nodal_mu, normal_stress};
+use crate::contact::model::{nodal_mu, stress_and_bound};
 use crate::contact::{ContactModel, ContactState, ContactSurface, Mollifier, NodeStatus};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
@@ -747,11 +747,9 @@ impl ContactSolution {
         self.inner_history.push(inner.history);
         let x_previous = std::mem::replace(&mut self.x, inner.x);
         self.state = inner.state;
-        self.sigma_nu = normal_stress(system.dofs(), &self.surface, model, &self.x, &self.state);
-        self.s = match &model.pv2 {
-            Some(_) => friction_bound(&fixed.mu, &fixed.mollifier, &self.sigma_nu),
-            None => vec![0.0; self.surface.len()],
-        };
+        let friction = model.pv2.as_ref().map(|_| (&fixed.mu[..], &fixed.mollifier));
+        let at = (system.dofs(), &self.surface);
+        (self.sigma_nu, self.s) = stress_and_bound(at, model, friction, &self.x, &self.state);
         // A method that solves friction at the solution used s_{n+1} itself.
         self.s_used = if lags { s_n } else { self.s.clone() };
         x_previous

@@ -22,8 +22,8 @@ use super::condensed::{self, Condensed, Guess, Phi, SchurSource};
 use super::residual::KktResidual;
 use super::{InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
 use crate::assembly::NodalBlock;
-use crate::contact::model::{node_bound, normal_stress};
-use crate::contact::{self, ContactState};
+use crate::contact::ContactState;
+use crate::contact::model::{node_bound, stress_and_bound};
 use crate::error::{Error, Result};
 use crate::linalg::{DenseMatrix, LinearSolver, TransposedLu};
 use crate::solver::CoupledSystem;
@@ -313,17 +313,13 @@ impl Newton {
     }
 }
 
-/// The friction bound s = µ|Rσ_ν| per Γ3 node at `result` (0 without friction), from σ_ν of its
-/// multipliers, as the outer loop records it: 0 where the laws make it so (λ_c = 0 off the
-/// active set, no compliance at u_ν ≤ g_a, no force on a node left out), not the round-off of
-/// the condensed forces — so that a left-out node bears friction only from nodes that touch.
+/// The friction bound s = µ|Rσ_ν| per Γ3 node at `result` as the outer loop records it: 0
+/// where the laws make it so (λ_c = 0 off the active set, no compliance at u_ν ≤ g_a, no force
+/// on a node left out), not the round-off of the condensed forces — so that a left-out node
+/// bears friction only from nodes that touch.
 fn friction_bound(step: &Step, system: &CoupledSystem, result: &InnerResult) -> Vec<f64> {
-    let Some((mu, mollifier)) = step.friction() else {
-        return vec![0.0; step.surface.len()];
-    };
-    let (dofs, surface) = (system.dofs(), step.surface);
-    let sigma_nu = normal_stress(dofs, surface, step.model, &result.x, &result.state);
-    contact::model::friction_bound(mu, mollifier, &sigma_nu)
+    let at = (system.dofs(), step.surface);
+    stress_and_bound(at, step.model, step.friction(), &result.x, &result.state).1
 }
 
 /// One semismooth Newton solve of the condensed problem of an outer step.

@@ -117,6 +117,24 @@ pub fn normal_stress(
         .collect()
 }
 
+/// σ_ν at (x, λ) ([`normal_stress`]) and the friction bound s of `friction` (µ per node and
+/// R; [`friction_bound`]), 0 without friction, on the Γ3 nodes \[stress\]: what an outer step
+/// records, and what the exact solver's active-set check reads.
+pub fn stress_and_bound(
+    (dofs, surface): (&DofMap, &ContactSurface),
+    model: &ContactModel,
+    friction: Option<(&[f64], &Mollifier)>,
+    x: &[f64],
+    state: &ContactState,
+) -> (Vec<f64>, Vec<f64>) {
+    let sigma_nu = normal_stress(dofs, surface, model, x, state);
+    let s = match friction {
+        Some((mu, mollifier)) => friction_bound(mu, mollifier, &sigma_nu),
+        None => vec![0.0; surface.len()],
+    };
+    (sigma_nu, s)
+}
+
 /// The friction bound s = µ |R σ_ν| on the Γ3 nodes \[stress\], (2.7): `mu` per node and the
 /// regularisation R of σ_ν.
 pub fn friction_bound(mu: &[f64], mollifier: &Mollifier, sigma_nu: &[f64]) -> Vec<f64> {
