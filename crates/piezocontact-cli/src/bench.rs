@@ -291,14 +291,8 @@ fn contact_problems(target: &str) -> Result<Vec<(&'static str, Case)>> {
             let mut overrides = newton();
             overrides.extend(extra.iter().map(|s| s.to_string()));
             let case = Case::load(Path::new(file), &overrides)?;
-            if case.file.loading.is_some() {
-                bail!(
-                    "{}: the case has a [loading] path, which bench --contact does not follow: \
-                     time it with `bench --path --case {file}`, or remove [loading] to time one \
-                     position",
-                    case.locate("loading")
-                );
-            }
+            case.one_position()
+                .map_err(|e| anyhow!("{e}; `bench --path --case {file}` times the path"))?;
             Ok(case)
         };
         let pv2 = ["contact.problem=\"PV2\"", "friction.mu=0.3"];

@@ -126,7 +126,7 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
     } else {
         let overrides: Vec<String> = request.set.iter().chain(request.reference).cloned().collect();
         let case = Case::load(request.case, &overrides)?;
-        one_position(&case)?;
+        case.one_position()?;
         let out = request.out.join("reference");
         Some(run_jobs(vec![Job { label: "reference".into(), case, out: Some(out) }], 1)?.remove(0))
     };
@@ -135,7 +135,7 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
         let mut overrides = request.set.to_vec();
         overrides.extend(keys.iter().map(|k| format!("{k}={value}")));
         let case = Case::load(request.case, &overrides)?;
-        one_position(&case)?;
+        case.one_position()?;
         let label = format!("{}={value}", keys.join("="));
         jobs.push(Job { label, case, out: Some(request.out.join(format!("run-{i:02}"))) });
     }
@@ -187,14 +187,6 @@ fn units_line(units: &piezocontact::case::Units, dim: usize) -> String {
          ‖x − x_ref‖_X / ‖x_ref‖_X [-]; wall_seconds in s",
         units.stress, units.length
     )
-}
-
-/// Refuses a case with a loading path: one run per value would ignore it.
-fn one_position(case: &Case) -> Result<()> {
-    match case.file.loading {
-        Some(_) => Err(case.path_in_one_run().into()),
-        None => Ok(()),
-    }
 }
 
 /// The columns of sweep.csv after the swept values, for a run that ended.

@@ -95,6 +95,15 @@ impl Case {
         )
     }
 
+    /// [`Case::path_in_one_run`] when the case has a `[loading]` path, for a command that
+    /// solves one position per run.
+    pub fn one_position(&self) -> Result<()> {
+        match self.file.loading {
+            Some(_) => Err(self.path_in_one_run()),
+            None => Ok(()),
+        }
+    }
+
     /// Places an error in this case: at the line of the key it names, else in the file.
     pub fn context(&self, e: Error) -> Error {
         let location = match &e {
