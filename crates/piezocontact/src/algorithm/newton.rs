@@ -395,26 +395,32 @@ impl<'a> Local<'a> {
         let m = cond.len();
         // S ← Q S Qᵀ, node block by node block: columns, then rows.
         // A node that condenses u_ν alone has one slot, on the axis of its normal.
-        for (i, q) in frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
+        let rotate = |q: &[[f64; 3]; 3], axes: &[usize], old: &[f64; 3], a: usize| -> f64 {
+            axes.iter().enumerate().map(|(b, &axis)| q[a][axis] * old[b]).sum()
+        };
+        let kept: Vec<usize> = (0..frames.len()).filter(|&i| cond.kept[i]).collect();
+        for &i in &kept {
             let (idx, axes) = cond.slots(i);
-            let rotate = |old: &[f64; 3], a: usize| -> f64 {
-                axes.iter().enumerate().map(|(b, &axis)| q[a][axis] * old[b]).sum()
-            };
             let columns: Vec<Vec<f64>> = idx.iter().map(|&k| schur.col(k).to_vec()).collect();
             for (a, &k) in idx.iter().enumerate() {
                 for (r, out) in schur.col_mut(k).iter_mut().enumerate() {
                     let mut old = [0.0; 3];
                     columns.iter().zip(&mut old).for_each(|(c, o)| *o = c[r]);
-                    *out = rotate(&old, a);
+                    *out = rotate(&frames[i], axes, &old, a);
                 }
             }
-            for col in 0..m {
-                let column = schur.col_mut(col);
+        }
+        // Rows: every node block of each column, the columns in parallel.
+        schur.fill_columns(|_, column| {
+            for &i in &kept {
+                let (idx, axes) = cond.slots(i);
                 let mut old = [0.0; 3];
                 idx.iter().zip(&mut old).for_each(|(&k, o)| *o = column[k]);
-                idx.iter().enumerate().for_each(|(a, &k)| column[k] = rotate(&old, a));
+                idx.iter()
+                    .enumerate()
+                    .for_each(|(a, &k)| column[k] = rotate(&frames[i], axes, &old, a));
             }
-        }
+        });
         let mut this = Self {
             semismooth,
             schur,
