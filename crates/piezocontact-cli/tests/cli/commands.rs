@@ -382,10 +382,16 @@ fn error_messages() {
         &["check", missing.to_str().unwrap()],
         &["boundary.clamped", "'end' is not in the mesh", "contact, ends, load"],
     );
-    // A volume group is not a boundary part: the message says what parts are.
+    // A volume group is not a boundary part: the message says what parts are, and what
+    // 'body' is.
     assert_error(
         &["check", "cases/indentation-3d.toml", "--set", "boundary.contact=[\"body\"]"],
-        &["'body' is not in the mesh", "groups of facets", "surfaces in 3D"],
+        &[
+            "'body' is not in the mesh",
+            "groups of facets",
+            "surfaces in 3D",
+            "'body' is a physical group of volumes (dimension 3) in the mesh file",
+        ],
     );
     let empty = variant(&dir, "clamped = [\"ends\"]", "clamped = []");
     assert_error(&["check", empty.to_str().unwrap()], &["Γ1 (clamped) is empty"]);

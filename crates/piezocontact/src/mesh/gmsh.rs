@@ -129,7 +129,9 @@ pub fn read(bytes: &[u8]) -> Result<Mesh> {
         .into_iter()
         .map(|(tag, f)| BoundaryPart::new(group_name(&names, dim - 1, tag), f))
         .collect();
-    Mesh::new(dim as usize, coords, cells, parts)
+    let others = physical_groups(&msh, &names).into_iter().filter(|g| g.dim != dim - 1);
+    let others = others.map(|g| (g.name, g.dim)).collect();
+    Ok(Mesh::new(dim as usize, coords, cells, parts)?.with_other_groups(others))
 }
 
 /// A triangulated surface: points (3 coordinates) and triangles of point indices.

@@ -47,6 +47,9 @@ pub struct Mesh {
     coords: Vec<f64>,
     cells: Vec<usize>,
     parts: Vec<BoundaryPart>,
+    /// The names of the mesh file's groups that are not boundary parts, with the dimension
+    /// of each (a Gmsh physical volume, say), so that a case naming one is told what it is.
+    other_groups: Vec<(String, i32)>,
 }
 
 /// Sorted facet key (unused slots are `usize::MAX`).
@@ -86,7 +89,7 @@ impl Mesh {
                 requirement: "must be 2 (triangles) or 3 (tetrahedra)".into(),
             });
         }
-        let mut mesh = Self { dim, coords, cells, parts };
+        let mut mesh = Self { dim, coords, cells, parts, other_groups: Vec::new() };
         if mesh.n_cells() == 0 {
             return Err(Error::NoCells { dim, what: "the mesh is empty".into() });
         }
@@ -137,11 +140,31 @@ impl Mesh {
         &self.parts
     }
 
-    /// Index of the part called `name`, or an error listing the parts the mesh has.
+    /// The mesh with the names and dimensions of its file's groups that are not boundary
+    /// parts, for [`Mesh::part_index`]'s message.
+    pub fn with_other_groups(self, other_groups: Vec<(String, i32)>) -> Self {
+        Self { other_groups, ..self }
+    }
+
+    /// Index of the part called `name`, or an error listing the parts the mesh has, and
+    /// saying what `name` is when it names a group of another dimension.
     pub fn part_index(&self, name: &str) -> Result<usize> {
-        self.parts.iter().position(|p| p.name == name).ok_or_else(|| Error::UnknownBoundaryPart {
-            name: name.into(),
-            available: self.part_names(),
+        self.parts.iter().position(|p| p.name == name).ok_or_else(|| {
+            let kind = |dim: i32| match dim {
+                0 => "points",
+                1 => "curves",
+                2 => "surfaces",
+                _ => "volumes",
+            };
+            let other = self.other_groups.iter().find(|(other, _)| other == name);
+            let what = other.map_or(String::new(), |(_, dim)| {
+                format!(
+                    "; '{name}' is a physical group of {} (dimension {dim}) in the mesh file, not of \
+                     facets",
+                    kind(*dim)
+                )
+            });
+            Error::UnknownBoundaryPart { name: name.into(), available: self.part_names() + &what }
         })
     }
 
