@@ -284,6 +284,11 @@ gap = 0.1
         assert!(
             unused[0].contains("solver.max_condensed is not used by solver.method = \"uzawa\"")
         );
+        // Both keys of the other method in one warning.
+        let unused = case(MINIMAL, &["solver.eps=1e-6", "solver.eps_fp=1e-6"]).unwrap();
+        let unused = unused.setting_warnings();
+        assert_eq!(unused.len(), 1, "{unused:?}");
+        assert!(unused[0].contains("solver.eps, solver.eps_fp are not used by"), "{unused:?}");
     }
 
     /// Friction and conduction keys that the problem does not read are reported, each at its

@@ -174,15 +174,21 @@ impl Case {
                 [("tol", s.tol.is_some()), ("max_condensed", s.max_condensed.is_some())],
             ),
         };
-        let mut warnings: Vec<String> = unused
-            .iter()
-            .filter(|(_, set)| *set)
-            .map(|(key, _)| {
+        // One warning for all of them, at the first: a case written for one method and run
+        // with the other (`--set solver.method=...`) sets both of its keys.
+        let keys: Vec<String> =
+            unused.iter().filter(|(_, set)| *set).map(|(key, _)| format!("solver.{key}")).collect();
+        let mut warnings: Vec<String> = keys
+            .first()
+            .map(|first| {
+                let (is, it) = if keys.len() == 1 { ("is", "it") } else { ("are", "them") };
                 format!(
-                    "{}: solver.{key} is not used by solver.method = \"{method}\" (only {other} reads it; newton stops on solver.tol, uzawa on solver.eps and solver.eps_fp)",
-                    self.locate(&format!("solver.{key}"))
+                    "{}: {} {is} not used by solver.method = \"{method}\" (only {other} reads {it}; newton stops on solver.tol, uzawa on solver.eps and solver.eps_fp)",
+                    self.locate(first),
+                    keys.join(", ")
                 )
             })
+            .into_iter()
             .collect();
         if s.backend == Some(BackendKey::Petsc) && s.ordering.is_some() {
             warnings.push(format!(
