@@ -85,6 +85,19 @@ type Row = (f64, f64);
 /// faer's sparse LU. With AMD and nested dissection both measured, prints the ratios of
 /// nested dissection on the most threads to AMD on one thread.
 pub fn run(target: &Target, variants: &Variants, lu: bool) -> Result<()> {
+    let problems: Vec<(String, Problem)> = match target {
+        Target::Sizes(sizes) => sizes
+            .iter()
+            .map(|size| {
+                let (nx, ny) = parse_size(size)?;
+                Ok((size.clone(), paper_case(PAPER_CASE, nx, ny, &[])?.problem()?))
+            })
+            .collect::<Result<_>>()?,
+        Target::Mesh(path) => {
+            let name = path.file_name().map_or("mesh".into(), |n| n.to_string_lossy());
+            vec![(name.to_string(), mesh_case(path)?.problem()?)]
+        }
+    };
     say!(
         "{:>16} {:>5} {:>7} {:>9} {:>10} {:>11} {:>11} {:>11} {:>9} {:>10} {:>15} {:>13} {:>16} {:>20} {:>10} {:>11} {:>10}",
         "mesh",
@@ -105,19 +118,6 @@ pub fn run(target: &Target, variants: &Variants, lu: bool) -> Result<()> {
         "len(L)",
         "factor_MB"
     );
-    let problems: Vec<(String, Problem)> = match target {
-        Target::Sizes(sizes) => sizes
-            .iter()
-            .map(|size| {
-                let (nx, ny) = parse_size(size)?;
-                Ok((size.clone(), paper_case(PAPER_CASE, nx, ny, &[])?.problem()?))
-            })
-            .collect::<Result<_>>()?,
-        Target::Mesh(path) => {
-            let name = path.file_name().map_or("mesh".into(), |n| n.to_string_lossy());
-            vec![(name.to_string(), mesh_case(path)?.problem()?)]
-        }
-    };
     for (name, problem) in &problems {
         let mut rows = Vec::new();
         for ordering in &variants.orderings {

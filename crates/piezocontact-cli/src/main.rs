@@ -260,8 +260,13 @@ fn run(command: Command) -> Result<Outcome> {
                 let case = case.unwrap_or_else(|| PathBuf::from("cases/indentation-curve.toml"));
                 return bench::path(&case, mesh.as_deref()).map(|_| Outcome::Done);
             }
-            if case.is_some() && (!contact || mesh.is_some()) {
+            if case.is_some() && !contact {
                 anyhow::bail!("--case goes with --contact (a case's mesh) or --path (with --mesh)");
+            }
+            if case.is_some() && mesh.is_some() {
+                anyhow::bail!(
+                    "bench --contact takes its mesh from --case or from --mesh, not both: drop one"
+                );
             }
             if contact {
                 let targets = match (&mesh, sizes) {

@@ -423,6 +423,16 @@ fn error_messages() {
         &["bad.msh", "no $MeshFormat section"],
     );
     assert_error(&["bench", "--sizes", "12by3"], &["'12by3' is not NXxNY"]);
+    // A bad size is refused before the table's header is printed.
+    let o = piezocontact(&["bench", "--sizes", "12x2,4x"]);
+    let t = text(&o);
+    assert!(o.status.code() == Some(1) && t.contains("'4x' is not NXxNY"), "{t}");
+    assert!(!t.contains("numeric_s"), "{t}");
+    // Two meshes for bench --contact: the message names both ways, not only --contact.
+    assert_error(
+        &["bench", "--contact", "--mesh", "meshes/cube.msh", "--case", "cases/bar-3d.toml"],
+        &["from --case or from --mesh, not both"],
+    );
     // A loading path is not one contact problem: bench --contact would time the unloaded
     // state (one Newton step, no contact).
     let o = piezocontact(&["bench", "--contact", "--case", "cases/indentation-curve.toml"]);
