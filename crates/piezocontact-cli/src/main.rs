@@ -75,7 +75,7 @@ enum Command {
         reference: Vec<String>,
         /// Runs in parallel (default: the number of cores).
         #[arg(long)]
-        jobs: Option<usize>,
+        jobs: Option<std::num::NonZeroUsize>,
         /// Output directory.
         #[arg(long, default_value = "out/sweep")]
         out: PathBuf,
@@ -94,7 +94,7 @@ enum Command {
         mesh: (usize, usize),
         /// Runs in parallel (default: the number of cores).
         #[arg(long)]
-        jobs: Option<usize>,
+        jobs: Option<std::num::NonZeroUsize>,
         /// Write into an output directory that holds files piezocontact did not write.
         #[arg(long)]
         force: bool,

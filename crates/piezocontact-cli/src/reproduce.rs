@@ -13,6 +13,7 @@ use piezocontact::report::csv_number;
 use piezocontact::run::ContactRun;
 use plotters::prelude::SeriesLabelPosition;
 use std::fmt::Write;
+use std::num::NonZeroUsize;
 use std::path::{Path, PathBuf};
 
 const PAPER_71: &str = include_str!("../../../cases/paper-7.1.toml");
@@ -44,7 +45,7 @@ const LAYER: f64 = 0.05;
 pub struct Request {
     pub out: PathBuf,
     pub mesh: (usize, usize),
-    pub jobs: Option<usize>,
+    pub jobs: Option<NonZeroUsize>,
 }
 
 /// The paper's two cases.

@@ -11,6 +11,7 @@ use piezocontact::run::ContactRun;
 use rayon::prelude::*;
 use std::fmt::Write;
 use std::io::IsTerminal;
+use std::num::NonZeroUsize;
 use std::path::{Path, PathBuf};
 
 /// A run to do: a label for messages, the case, and where to write its files.
@@ -85,8 +86,8 @@ fn solve_job(job: &Job) -> Result<ContactRun> {
 }
 
 /// The number of threads: `--jobs`, or the machine's cores.
-pub fn threads(jobs: Option<usize>) -> usize {
-    jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+pub fn threads(jobs: Option<NonZeroUsize>) -> usize {
+    jobs.or_else(|| std::thread::available_parallelism().ok()).map_or(1, NonZeroUsize::get)
 }
 
 /// Parses `key1=key2=...=v1,v2,...`.
@@ -111,7 +112,7 @@ pub struct SweepRequest<'a> {
     pub set_list: &'a str,
     pub set: &'a [String],
     pub reference: &'a [String],
-    pub jobs: Option<usize>,
+    pub jobs: Option<NonZeroUsize>,
     pub out: &'a Path,
 }
 

@@ -423,6 +423,14 @@ fn error_messages() {
         &["bad.msh", "no $MeshFormat section"],
     );
     assert_error(&["bench", "--sizes", "12by3"], &["'12by3' is not NXxNY"]);
+    // No runs at a time is a usage error (--jobs 0 ran on every core), as --threads 0 is.
+    for command in
+        [&["sweep", "cases/paper-7.2.toml", "--set-list", "friction.mu=0.1"][..], &["reproduce"]]
+    {
+        let o = piezocontact(&[command, &["--jobs", "0", "--out", "unused"]].concat());
+        let t = text(&o);
+        assert!(o.status.code() == Some(2) && t.contains("invalid value '0' for '--jobs"), "{t}");
+    }
     // A bad size is refused before the table's header is printed.
     let o = piezocontact(&["bench", "--sizes", "12x2,4x"]);
     let t = text(&o);
