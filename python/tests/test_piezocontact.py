@@ -175,6 +175,9 @@ def test_write_writes_the_files_of_run(tmp_path):
         solution.write(foreign)
     solution.write(foreign, force=True)
     assert (foreign / "notes.txt").read_text() == "mine" and (foreign / "contact.csv").exists()
+    # An empty path names no directory: the caller's error (an OSError about reading '' before).
+    with pytest.raises(ValueError, match="the output directory is an empty path"):
+        solution.write("")
     # A directory that cannot be made is the system's error: an OSError (a CaseError before).
     (tmp_path / "a-file").write_text("")
     with pytest.raises(OSError, match="cannot create the output directory") as error:

@@ -39,6 +39,11 @@ fn io(what: String) -> impl FnOnce(std::io::Error) -> Error {
 /// piezocontact did not write (unless `force`), deletes the files of our earlier output
 /// listed in its marker, and prepares the staging directory beside it.
 fn claim(dir: &Path, force: bool) -> Result<()> {
+    if dir.as_os_str().is_empty() {
+        return Err(Error::Input(
+            "the output directory is an empty path: name a directory, e.g. out/run".into(),
+        ));
+    }
     std::fs::create_dir_all(dir)
         .map_err(io(format!("cannot create the output directory {}", dir.display())))?;
     let marker = dir.join(MARKER);
