@@ -226,15 +226,52 @@ impl Case {
             }
             _ => (reached(model), 1),
         };
-        if gamma3.is_empty() || any_reached {
+        if gamma3.is_empty() {
             return Ok(());
         }
-        let at = if steps > 1 { " at any step of the loading path" } else { "" };
-        Err(input!(
-            "{}: no normal of the {} Γ3 nodes meets the foundation{at}: {hint}",
-            self.locate(key),
-            gamma3.len()
-        ))
+        if !any_reached {
+            let at = if steps > 1 { " at any step of the loading path" } else { "" };
+            return Err(input!(
+                "{}: no normal of the {} Γ3 nodes meets the foundation{at}: {hint}",
+                self.locate(key),
+                gamma3.len()
+            ));
+        }
+        loading.map_or(Ok(()), |path| self.check_through(problem, &gamma3, model, path))
+    }
+
+    /// Refuses a loading path that carries the foundation through Γ3: a step where no Γ3
+    /// normal meets it but a reversed one does, so that it lies behind the contact face,
+    /// inside or beyond the body, where the gaps along the outward normals cannot see it and
+    /// the step would end without contact (depths of millimetres given in metres, say). A
+    /// step that neither meets, beside Γ3, is a path that carries the foundation away
+    /// sideways, and passes.
+    fn check_through(
+        &self,
+        problem: &Problem,
+        gamma3: &ContactSurface,
+        model: &ContactModel,
+        path: &Loading,
+    ) -> Result<()> {
+        let meets = |foundation: &Foundation, sign: f64| {
+            (0..gamma3.len()).any(|i| {
+                let nu = gamma3.normal[i].map(|v| sign * v);
+                foundation.distance_along(gamma3.position3(problem, i), nu).is_finite()
+            })
+        };
+        for (k, step) in path.steps.iter().enumerate() {
+            let foundation = path.model_at(model, step).foundation;
+            if !meets(&foundation, 1.0) && meets(&foundation, -1.0) {
+                return Err(input!(
+                    "{}: loading.depths: at step {} (depth {} {}) the foundation has passed through Γ3: no Γ3 normal meets it and the reversed normals do, so it lies behind the contact face, where no gap can see it; keep the depths within the foundation's reach, in the case's unit of length ([units] length)",
+                    self.locate("loading.depths"),
+                    k + 1,
+                    step.depth,
+                    self.file.units.length
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The loading path of `[loading]` for a d-dimensional body, `None` without the table.

@@ -450,7 +450,7 @@ fn a_surface_out_of_reach_is_refused() {
 
 /// A punch whose axis points toward the body, and a ball beside the patch, are refused when
 /// the case is built, with the key to check; the same ball on a path that carries it over
-/// the patch is not.
+/// the patch is not; a path that carries the ball through the contact face is.
 #[test]
 fn a_foundation_no_normal_meets_is_refused() {
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/indentation-curve.toml");
@@ -476,6 +476,13 @@ fn a_foundation_no_normal_meets_is_refused() {
     let e = build(&[&beside[..], &["loading.depths=[0.0, 1.0]"]].concat()).unwrap();
     assert!(e.contains("no normal of the") && e.contains("foundation.center"), "{e}");
     assert_eq!(build(&[&beside[..], &["loading.depths=[0.0, 3.0]"]].concat()), None);
+    // A ball pressed through the contact face (depths of millimetres in metres, say): at 2.5
+    // its centre is 1.5 below the face, out of every normal's reach but behind the face, and
+    // the step ended without contact; at 1.5 the face is inside the ball, its gaps negative.
+    let e = build(&["loading.depths=[0.002, 2.5]"]).unwrap();
+    assert!(e.contains("at step 2 (depth 2.5 m) the foundation has passed through Γ3"), "{e}");
+    assert!(e.contains("loading.depths"), "{e}");
+    assert_eq!(build(&["loading.depths=[0.002, 1.5]"]), None);
 }
 
 /// A path of load factors (the paper's bar, its load halved then whole) gives at each step the
