@@ -5,7 +5,7 @@
 
 use crate::algorithm::{ContactSolution, ContactSolver, Progress};
 use crate::case::{Built, Case};
-use crate::contact::{ContactModel, NodeStatus};
+use crate::contact::{ContactModel, Foundation, NodeStatus};
 use crate::error::{Error, Result};
 use crate::linalg::LinearSolver;
 use crate::output::files;
@@ -40,8 +40,12 @@ pub struct LoadStep {
 impl Loading {
     /// `model` with its foundation where `step` moves it: rigidly, by depth · direction.
     pub fn model_at(&self, model: &ContactModel, step: &LoadStep) -> ContactModel {
-        let shift = self.direction.map(|v| v * step.depth);
-        ContactModel { foundation: model.foundation.translated(shift), ..model.clone() }
+        ContactModel { foundation: self.foundation_at(&model.foundation, step), ..model.clone() }
+    }
+
+    /// `foundation` where `step` moves it: rigidly, by depth · direction.
+    pub fn foundation_at(&self, foundation: &Foundation, step: &LoadStep) -> Foundation {
+        foundation.translated(self.direction.map(|v| v * step.depth))
     }
 
     /// `model` at the first step (as given without steps): where the solver is set up, the

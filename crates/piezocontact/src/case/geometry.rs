@@ -205,7 +205,12 @@ impl Case {
 
     /// Refuses a foundation that no Γ3 normal meets — where the case puts it, or at any step
     /// of its loading path: nothing could touch it, and the run would end with no contact
-    /// (mostly an axis or a normal the wrong way round).
+    /// (mostly an axis or a normal the wrong way round). Refuses too a path that carries the
+    /// foundation through Γ3: a step where no Γ3 normal meets it but a reversed one does, so
+    /// that it lies behind the contact face, inside or beyond the body, where no gap along
+    /// the outward normals sees it and the step would end without contact (depths of
+    /// millimetres given in metres, say). A step that neither meets, beside Γ3, is a path
+    /// that carries the foundation away sideways, and passes.
     pub(super) fn check_reach(
         &self,
         problem: &Problem,
@@ -215,63 +220,42 @@ impl Case {
         let Some((key, hint)) = reach_hint(&model.foundation) else { return Ok(()) };
         let dofs = DofMap::new(problem)?;
         let gamma3 = ContactSurface::new(problem, &dofs)?;
-        let reached = |m: &ContactModel| {
-            let gaps = gamma3.clone().with_gaps(problem, &m.foundation, 0.0).gap;
-            gaps.iter().any(|g| g.is_finite())
-        };
-        let (any_reached, steps) = match loading {
-            Some(path) if !path.steps.is_empty() => {
-                let mut positions = path.steps.iter().map(|step| path.model_at(model, step));
-                (positions.any(|m| reached(&m)), path.steps.len())
-            }
-            _ => (reached(model), 1),
-        };
         if gamma3.is_empty() {
             return Ok(());
         }
-        if !any_reached {
-            let at = if steps > 1 { " at any step of the loading path" } else { "" };
-            return Err(input!(
-                "{}: no normal of the {} Γ3 nodes meets the foundation{at}: {hint}",
-                self.locate(key),
-                gamma3.len()
-            ));
-        }
-        loading.map_or(Ok(()), |path| self.check_through(problem, &gamma3, model, path))
-    }
-
-    /// Refuses a loading path that carries the foundation through Γ3: a step where no Γ3
-    /// normal meets it but a reversed one does, so that it lies behind the contact face,
-    /// inside or beyond the body, where the gaps along the outward normals cannot see it and
-    /// the step would end without contact (depths of millimetres given in metres, say). A
-    /// step that neither meets, beside Γ3, is a path that carries the foundation away
-    /// sideways, and passes.
-    fn check_through(
-        &self,
-        problem: &Problem,
-        gamma3: &ContactSurface,
-        model: &ContactModel,
-        path: &Loading,
-    ) -> Result<()> {
+        // Whether some Γ3 normal (sign 1) or reversed normal (sign −1) meets the foundation.
         let meets = |foundation: &Foundation, sign: f64| {
             (0..gamma3.len()).any(|i| {
                 let nu = gamma3.normal[i].map(|v| sign * v);
                 foundation.distance_along(gamma3.position3(problem, i), nu).is_finite()
             })
         };
-        for (k, step) in path.steps.iter().enumerate() {
-            let foundation = path.model_at(model, step).foundation;
-            if !meets(&foundation, 1.0) && meets(&foundation, -1.0) {
-                return Err(input!(
-                    "{}: loading.depths: at step {} (depth {} {}) the foundation has passed through Γ3: no Γ3 normal meets it and the reversed normals do, so it lies behind the contact face, where no gap can see it; keep the depths within the foundation's reach, in the case's unit of length ([units] length)",
-                    self.locate("loading.depths"),
-                    k + 1,
-                    step.depth,
-                    self.file.units.length
-                ));
+        let steps = loading.map_or(&[][..], |path| &path.steps[..]);
+        let positions: Vec<Foundation> = match loading {
+            Some(path) if !steps.is_empty() => {
+                steps.iter().map(|step| path.foundation_at(&model.foundation, step)).collect()
             }
+            _ => vec![model.foundation.clone()],
+        };
+        let reached: Vec<bool> = positions.iter().map(|f| meets(f, 1.0)).collect();
+        if !reached.contains(&true) {
+            let at = if positions.len() > 1 { " at any step of the loading path" } else { "" };
+            return Err(input!(
+                "{}: no normal of the {} Γ3 nodes meets the foundation{at}: {hint}",
+                self.locate(key),
+                gamma3.len()
+            ));
         }
-        Ok(())
+        let through = (0..positions.len()).find(|&k| !reached[k] && meets(&positions[k], -1.0));
+        through.map_or(Ok(()), |k| {
+            Err(input!(
+                "{}: loading.depths: at step {} (depth {} {}) the foundation has passed through Γ3: no Γ3 normal meets it and the reversed normals do, so it lies behind the contact face, where no gap can see it; keep the depths within the foundation's reach, in the case's unit of length ([units] length)",
+                self.locate("loading.depths"),
+                k + 1,
+                steps[k].depth,
+                self.file.units.length
+            ))
+        })
     }
 
     /// The loading path of `[loading]` for a d-dimensional body, `None` without the table.
