@@ -57,9 +57,15 @@ pub enum Error {
     #[error(
         "boundary part '{name}' is not in the mesh (its boundary parts are its groups of facets: \
          physical curves in 2D, surfaces in 3D, or a rectangle's segments); the mesh has: \
-         {available}"
+         {available}{what}"
     )]
-    UnknownBoundaryPart { name: String, available: String },
+    UnknownBoundaryPart {
+        name: String,
+        available: String,
+        /// What `name` is when the mesh file has it as a group of another dimension, as
+        /// "; 'body' is a physical group of volumes …"; else empty.
+        what: String,
+    },
 
     /// A boundary role (Γ1, Γa, ...) has no facet although the model needs it.
     #[error("{role} is empty: {why}")]

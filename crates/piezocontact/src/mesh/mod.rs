@@ -164,7 +164,7 @@ impl Mesh {
                     kind(*dim)
                 )
             });
-            Error::UnknownBoundaryPart { name: name.into(), available: self.part_names() + &what }
+            Error::UnknownBoundaryPart { name: name.into(), available: self.part_names(), what }
         })
     }
 
