@@ -178,18 +178,15 @@ impl Case {
         // with the other (`--set solver.method=...`) sets both of its keys.
         let keys: Vec<String> =
             unused.iter().filter(|(_, set)| *set).map(|(key, _)| format!("solver.{key}")).collect();
-        let mut warnings: Vec<String> = keys
-            .first()
-            .map(|first| {
-                let (is, it) = if keys.len() == 1 { ("is", "it") } else { ("are", "them") };
-                format!(
-                    "{}: {} {is} not used by solver.method = \"{method}\" (only {other} reads {it}; newton stops on solver.tol, uzawa on solver.eps and solver.eps_fp)",
-                    self.locate(first),
-                    keys.join(", ")
-                )
-            })
-            .into_iter()
-            .collect();
+        let mut warnings = Vec::new();
+        if let Some(first) = keys.first() {
+            let (is, it) = if keys.len() == 1 { ("is", "it") } else { ("are", "them") };
+            warnings.push(format!(
+                "{}: {} {is} not used by solver.method = \"{method}\" (only {other} reads {it}; newton stops on solver.tol, uzawa on solver.eps and solver.eps_fp)",
+                self.locate(first),
+                keys.join(", ")
+            ));
+        }
         if s.backend == Some(BackendKey::Petsc) && s.ordering.is_some() {
             warnings.push(format!(
                 "{}: solver.ordering is faer's; with solver.backend = \"petsc\" MUMPS chooses its own ordering (PETSc option -mat_mumps_icntl_7)",
