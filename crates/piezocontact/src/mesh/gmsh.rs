@@ -278,6 +278,23 @@ fn physical_groups(msh: &MshFile, names: &PhysicalNames) -> Vec<PhysicalGroup> {
         .collect()
 }
 
+/// The error for a node of a mesh without tetrahedra off the plane z = 0: a 2D mesh that is
+/// not plane, or — when the file has volumes — a 3D body whose Physical Volume is missing,
+/// so that Gmsh saved only the triangles of its physical surfaces.
+fn off_plane(msh: &MshFile, tag: u64, z: f64) -> Error {
+    let volumes = msh.data.entities.as_ref().is_some_and(|e| !e.volumes.is_empty());
+    let fix = if volumes {
+        "; the file has volumes, not meshed in it: add a Physical Volume for the body (Gmsh \
+         saves only the elements of physical groups once any is defined)"
+    } else {
+        ""
+    };
+    Error::GmshUnsupported(format!(
+        "node {tag} has z = {z} in a mesh without tetrahedra: a 2D mesh must lie in the plane \
+         z = 0{fix}"
+    ))
+}
+
 /// Node coordinates (`dim` per node) and the map from node tag to index.
 fn nodes(msh: &MshFile, dim: usize) -> Result<(Vec<f64>, HashMap<u64, usize>)> {
     let nodes = msh
@@ -298,10 +315,7 @@ fn nodes(msh: &MshFile, dim: usize) -> Result<(Vec<f64>, HashMap<u64, usize>)> {
         for (tag, i) in tags {
             let n = &block.nodes[i];
             if dim == 2 && n.z != 0.0 {
-                return Err(Error::GmshUnsupported(format!(
-                    "node {tag} has z = {}: a 2D mesh must lie in the plane z = 0",
-                    n.z
-                )));
+                return Err(off_plane(msh, tag, n.z));
             }
             if index.insert(tag, coords.len() / dim).is_some() {
                 return Err(Error::Gmsh(format!("node tag {tag} is defined twice")));

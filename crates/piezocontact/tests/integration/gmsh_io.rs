@@ -65,6 +65,7 @@ fn malformed_and_unsupported_files_are_errors() {
         (good.replacen("\n2 1 2 250\n", "\n2 1 2 251\n", 1), "cannot read the Gmsh file"),
         (data("quads.msh"), "Qua4 elements of dimension 2"),
         (data("msh22.msh"), "MSH version 2.2"),
+        (data("no-volume.msh"), "add a Physical Volume for the body"),
     ];
     for (text, needle) in cases {
         let e = error_of(text.as_bytes());
