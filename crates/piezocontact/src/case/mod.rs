@@ -354,6 +354,11 @@ gap = 0.1
         for (overrides, pieces) in [
             (vec!["solver.r=-1"], vec!["case.toml:", "solver.r = -1 is not allowed: r > 0"]),
             (vec!["solver.max_inner=0"], vec!["solver.max_inner = 0", "at least 1"]),
+            // The default r = 0.25 E: a zero E is named, at its line, not r.
+            (
+                vec!["material.young=0"],
+                vec![&format!("case.toml:{}: material.young = 0", line("young")), "E > 0"],
+            ),
             (vec!["solver.method=\"simplex\""], vec!["unknown variant `simplex`", "uzawa"]),
             (vec!["solver.tol=0"], vec!["solver.tol = 0 is not allowed: a tolerance > 0"]),
             (vec!["solver.max_condensed=0"], vec!["solver.max_condensed = 0", "at least 1"]),

@@ -101,16 +101,21 @@ impl Case {
             ]);
         }
         let at_least_one = |v: f64| v >= 1.0;
+        // Without the key, r is a multiple of E: a bad r is then a bad material.young.
+        let r = |r: f64| match f.solver.r {
+            Some(_) => Rule("solver.r", r, positive, "r > 0"),
+            None => Rule("material.young", f.material.young, positive, "Young's modulus E > 0"),
+        };
         match self.method_parameters() {
             MethodParameters::Uzawa(p) => rules.extend([
-                Rule("solver.r", p.r, positive, "r > 0"),
+                r(p.r),
                 Rule("solver.eps", p.eps, positive, "ε > 0"),
                 Rule("solver.eps_fp", p.eps_fp, positive, "ε_fp > 0"),
                 Rule("solver.max_inner", p.max_inner as f64, at_least_one, "at least 1"),
             ]),
             MethodParameters::Newton(p) => {
                 rules.extend([
-                    Rule("solver.r", p.r, positive, "r > 0"),
+                    r(p.r),
                     Rule("solver.tol", p.tol, positive, "a tolerance > 0"),
                     Rule("solver.max_inner", p.max_inner as f64, at_least_one, "at least 1"),
                 ]);
