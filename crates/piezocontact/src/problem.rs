@@ -125,6 +125,27 @@ impl Problem {
         for (i, j) in [(0, 1), (2, 0), (2, 1), (2, 3), (2, 4), (3, 4)] {
             self.check_disjoint(roles[i], roles[j])?;
         }
+        self.check_contact_parts_apart()
+    }
+
+    /// Checks that no two parts of Γ3 (nor one part named twice) share a facet: the facet
+    /// would count twice in the nodes' weights, and every contact stress would be halved.
+    fn check_contact_parts_apart(&self) -> Result<()> {
+        let contact = &self.boundary.contact;
+        for (k, &p) in contact.iter().enumerate() {
+            for &q in &contact[k + 1..] {
+                let role = "Γ3 (contact)";
+                if let Err(Error::RoleConflict { first, second, nodes, .. }) =
+                    self.check_disjoint((role, &[p]), (role, &[q]))
+                {
+                    return Err(Error::Input(format!(
+                        "boundary parts '{first}' and '{second}' of Γ3 (contact) share the facet \
+                         with nodes {nodes:?}: a facet of Γ3 must belong to one contact part \
+                         (it would count twice); name each facet in one part only"
+                    )));
+                }
+            }
+        }
         Ok(())
     }
 

@@ -247,6 +247,15 @@ impl Case {
         let material = self.material(dim)?;
         let b = &self.file.boundary;
         let parts = |key: &str, names: &[String]| -> Result<Vec<usize>> {
+            if let Some(name) =
+                names.iter().enumerate().find_map(|(k, n)| names[..k].contains(n).then_some(n))
+            {
+                return Err(input!(
+                    "{}: {key} names '{name}' twice: name each part once (its facets would \
+                     count twice)",
+                    self.locate(key)
+                ));
+            }
             names
                 .iter()
                 .map(|n| mesh.part_index(n).map_err(|e| input!("{}: {key}: {e}", self.locate(key))))

@@ -371,6 +371,18 @@ gap = 0.1
                 vec!["boundary.contact=[\"nowhere\"]"],
                 vec!["'nowhere' is not in the mesh", "bottom"],
             ),
+            (vec!["boundary.contact=[\"bottom\", \"bottom\"]"], vec!["names 'bottom' twice"]),
+            (
+                vec!["boundary.clamped=[\"left\", \"bottom\"]"],
+                vec!["'bottom' (Γ3 (contact)) and 'bottom' (Γ1 (clamped))", "must be disjoint"],
+            ),
+            (
+                vec![
+                    "mesh.segments.half=[\"[0,2]x{0}\"]",
+                    "boundary.contact=[\"bottom\", \"half\"]",
+                ],
+                vec!["'bottom' and 'half' of Γ3 (contact) share the facet", "count twice"],
+            ),
             (
                 vec!["friction.mu_parts.left=0.2"],
                 vec!["friction.mu_parts.left", "not a contact part"],
