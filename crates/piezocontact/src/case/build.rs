@@ -114,12 +114,18 @@ impl Case {
         };
         let elasticity =
             Elasticity::from_young_poisson(m.young, m.poisson, law).map_err(|e| self.context(e))?;
-        if !(m.eps0.is_finite() && m.eps0 > 0.0) {
-            return Err(input!(
-                "{}: material.eps0 = {} must be > 0",
-                self.locate("material.eps0"),
-                m.eps0
-            ));
+        for (key, value) in [
+            ("material.eps0", m.eps0),
+            ("material.beta11_rel", m.beta11_rel),
+            ("material.beta33_rel", m.beta33_rel),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(input!(
+                    "{}: {key} = {value} must be > 0 (the permittivity β = β_rel ε0 is \
+                     positive definite)",
+                    self.locate(key)
+                ));
+            }
         }
         Material::new(
             dim,

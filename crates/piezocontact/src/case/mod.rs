@@ -371,6 +371,10 @@ gap = 0.1
                 vec!["boundary.contact=[\"nowhere\"]"],
                 vec!["'nowhere' is not in the mesh", "bottom"],
             ),
+            (
+                vec!["material.beta33_rel=0"],
+                vec![&format!("case.toml:{}: material.beta33_rel = 0", line("beta33_rel"))],
+            ),
             (vec!["boundary.contact=[\"bottom\", \"bottom\"]"], vec!["names 'bottom' twice"]),
             (
                 vec!["boundary.clamped=[\"left\", \"bottom\"]"],
