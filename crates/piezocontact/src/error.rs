@@ -53,6 +53,13 @@ pub enum Error {
     )]
     FacetNotOnBoundary { part: String, nodes: Vec<usize> },
 
+    /// A boundary part holds a facet twice.
+    #[error(
+        "boundary part '{part}' holds the facet with nodes {nodes:?} twice: it would count twice \
+         in every integral over the part; remove the duplicate from the mesh"
+    )]
+    DuplicateFacet { part: String, nodes: Vec<usize> },
+
     /// A case names a boundary part that the mesh does not have.
     #[error(
         "boundary part '{name}' is not in the mesh (its boundary parts are its groups of facets: \

@@ -15,7 +15,7 @@ pub mod rectangle;
 
 use crate::element::{Simplex, facet_measure_normal};
 use crate::error::{Error, Result};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// A named set of boundary facets.
 #[derive(Clone, Debug)]
@@ -363,6 +363,7 @@ impl Mesh {
         for part in &mut parts {
             part.cells.clear();
             let mut oriented = Vec::with_capacity(part.facets.len());
+            let mut seen = HashSet::new();
             for facet in part.facets.chunks_exact(dim) {
                 let Some(&(cell, ref nodes)) = boundary.get(&facet_key(facet)) else {
                     return Err(Error::FacetNotOnBoundary {
@@ -370,6 +371,12 @@ impl Mesh {
                         nodes: facet.to_vec(),
                     });
                 };
+                if !seen.insert(facet_key(facet)) {
+                    return Err(Error::DuplicateFacet {
+                        part: part.name.clone(),
+                        nodes: facet.to_vec(),
+                    });
+                }
                 part.cells.push(cell);
                 oriented.extend_from_slice(nodes);
             }
@@ -463,6 +470,8 @@ mod tests {
         );
         let e = err(vec![0, 1, 9, 0, 2, 3], vec![]);
         assert!(e.to_string().contains("refers to node 9"), "{e}");
+        let e = err(vec![0, 1, 2, 0, 2, 3], vec![BoundaryPart::new("twice", vec![0, 1, 1, 0])]);
+        assert!(e.to_string().contains("'twice' holds the facet with nodes [1, 0] twice"), "{e}");
         let e = err(vec![0, 1, 2, 0, 2, 3], vec![BoundaryPart::new("diag", vec![0, 2])]);
         assert!(e.to_string().contains("'diag'") && e.to_string().contains("not on the boundary"));
         let degenerate = vec![0.0, 0.0, 1.0, 0.0, 2.0, 0.0];

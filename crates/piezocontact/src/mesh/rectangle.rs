@@ -116,6 +116,7 @@ impl Rectangle {
         let mut named = Vec::with_capacity(parts.len());
         for (name, segments) in parts {
             let mut facets = Vec::new();
+            let mut taken = vec![false; boundary.len()];
             for segment in segments {
                 if segment.ranges.len() != 2 {
                     return Err(Error::Segment {
@@ -123,13 +124,17 @@ impl Rectangle {
                         why: "a segment of a rectangle has two factors, as [0,2]x{0}".into(),
                     });
                 }
-                let before = facets.len();
-                for f in &boundary {
+                let mut holds_any = false;
+                for (f, taken) in boundary.iter().zip(&mut taken) {
                     if f.iter().all(|&n| segment.contains(node(n), tol)) {
-                        facets.extend_from_slice(f);
+                        holds_any = true;
+                        // A part is the union of its segments: a facet counts once.
+                        if !std::mem::replace(taken, true) {
+                            facets.extend_from_slice(f);
+                        }
                     }
                 }
-                if facets.len() == before {
+                if !holds_any {
                     return Err(Error::Segment {
                         spec: segment.spec.clone(),
                         why: format!(
@@ -173,7 +178,8 @@ mod tests {
         let seg = |s: &str| s.parse::<Segment>().unwrap();
         let parts = vec![
             ("sides".to_string(), vec![seg("{0}x[0,2]"), seg("{12}×[0,2]")]),
-            ("contact".to_string(), vec![seg("[2,10]x{0}")]),
+            // Overlapping segments: their union, each facet once.
+            ("contact".to_string(), vec![seg("[2,10]x{0}"), seg("[4,6]x{0}")]),
         ];
         Rectangle { x: [0.0, 12.0], y: [0.0, 2.0], nx: 24, ny: 4, diagonal }.mesh(&parts).unwrap()
     }
