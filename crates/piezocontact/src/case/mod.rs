@@ -322,6 +322,22 @@ gap = 0.1
         for text in [PAPER_71, PAPER_72] {
             assert!(case(text, &[]).unwrap().setting_warnings().is_empty());
         }
+        // A segment's end between two nodes (cells of 0.5 along x): the part stops short.
+        let short = warned(&["mesh.segments.bottom=[\"[0,1.2]x{0}\", \"{4}x[0,1]\"]"]);
+        assert!(
+            short.len() == 1
+                && short[0].contains(
+                    "'[0,1.2]x{0}' ends between two nodes at x = 1.2 (nodes at 1 and 1.5)"
+                ),
+            "{short:?}"
+        );
+        let paper = case(PAPER_71, &["mesh.nx=100"]).unwrap().setting_warnings();
+        assert!(
+            paper.iter().any(|w| w.contains(
+                "at x = 2 (nodes at 1.92 and 2.04) and x = 10 (nodes at 9.96 and 10.08)"
+            )),
+            "{paper:?}"
+        );
     }
 
     #[test]

@@ -150,6 +150,24 @@ impl Rectangle {
         Mesh::new(2, coords, cells, named)
     }
 
+    /// The ends of the segment's intervals that lie inside the rectangle between two node
+    /// coordinates: the part holds only the facets wholly inside the segment, so it stops
+    /// short of them. Each as (axis, end, the nodes' coordinates on either side).
+    pub fn ends_between_nodes(&self, segment: &Segment) -> Vec<(usize, f64, [f64; 2])> {
+        let mut found = Vec::new();
+        let axes = [(self.x, self.nx), (self.y, self.ny)];
+        for (axis, (&(a, b), ([lo, hi], n))) in segment.ranges.iter().zip(axes).enumerate() {
+            let h = (hi - lo) / n as f64;
+            for end in [a, b].into_iter().filter(|&e| a < b && e > lo && e < hi) {
+                let t = (end - lo) / h;
+                if (t - t.round()).abs() > 1e-9 {
+                    found.push((axis, end, [lo + t.floor() * h, lo + t.ceil() * h]));
+                }
+            }
+        }
+        found
+    }
+
     fn check(&self) -> Result<()> {
         let invalid = |name: &str, value: String, requirement: &str| Error::InvalidParameter {
             name: name.into(),
