@@ -246,27 +246,45 @@ impl Case {
         self.file.solver.max_outer.unwrap_or(DEFAULTS.max_outer)
     }
 
+    /// The indices in `mesh` of the boundary parts `names` that the list at `key` gives,
+    /// each named once (a facet named twice would count twice); the parts of a load (`load`)
+    /// not none, for a load on no part would be dropped without a word.
+    fn part_indices(
+        &self,
+        mesh: &Mesh,
+        key: &str,
+        names: &[String],
+        load: bool,
+    ) -> Result<Vec<usize>> {
+        if load && names.is_empty() {
+            return Err(input!(
+                "{}: {key} is empty: name the boundary parts the load acts on, or remove the table",
+                self.locate(key)
+            ));
+        }
+        if let Some(name) =
+            names.iter().enumerate().find_map(|(k, n)| names[..k].contains(n).then_some(n))
+        {
+            return Err(input!(
+                "{}: {key} names '{name}' twice: name each part once (its facets would count \
+                 twice)",
+                self.locate(key)
+            ));
+        }
+        names
+            .iter()
+            .map(|n| mesh.part_index(n).map_err(|e| input!("{}: {key}: {e}", self.locate(key))))
+            .collect()
+    }
+
     /// The problem, after [`Case::contact_settings`] has checked the ranges.
     pub(super) fn problem_checked(&self) -> Result<Problem> {
         let mesh = self.mesh()?;
         let dim = mesh.dim();
         let material = self.material(dim)?;
         let b = &self.file.boundary;
-        let parts = |key: &str, names: &[String]| -> Result<Vec<usize>> {
-            if let Some(name) =
-                names.iter().enumerate().find_map(|(k, n)| names[..k].contains(n).then_some(n))
-            {
-                return Err(input!(
-                    "{}: {key} names '{name}' twice: name each part once (its facets would \
-                     count twice)",
-                    self.locate(key)
-                ));
-            }
-            names
-                .iter()
-                .map(|n| mesh.part_index(n).map_err(|e| input!("{}: {key}: {e}", self.locate(key))))
-                .collect()
-        };
+        let parts = |key: &str, names: &[String]| self.part_indices(&mesh, key, names, false);
+        let load_parts = |key: &str, names: &[String]| self.part_indices(&mesh, key, names, true);
         let vector = |key: &str, v: &[f64]| -> Result<Vec<f64>> {
             if v.len() != dim || v.iter().any(|x| !x.is_finite()) {
                 return Err(input!(
@@ -279,7 +297,7 @@ impl Case {
         let mut traction = Vec::new();
         for t in &b.traction {
             let f2 = vector("boundary.traction.f2", &t.f2)?;
-            for p in parts("boundary.traction.parts", &t.parts)? {
+            for p in load_parts("boundary.traction.parts", &t.parts)? {
                 traction.push((p, constant_vector(f2.clone())));
             }
         }
@@ -292,7 +310,7 @@ impl Case {
                     c.q2
                 ));
             }
-            for p in parts("boundary.charge.parts", &c.parts)? {
+            for p in load_parts("boundary.charge.parts", &c.parts)? {
                 charge.push((p, constant_scalar(c.q2)));
             }
         }

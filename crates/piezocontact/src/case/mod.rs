@@ -393,6 +393,11 @@ gap = 0.1
             ),
             (vec!["boundary.contact=[\"bottom\", \"bottom\"]"], vec!["names 'bottom' twice"]),
             (
+                vec!["boundary.traction=[{parts=[], f2=[0.0, -1.0]}]"],
+                vec!["boundary.traction.parts is empty: name the boundary parts"],
+            ),
+            (vec!["boundary.charge=[{parts=[], q2=1.0}]"], vec!["boundary.charge.parts is empty"]),
+            (
                 vec!["boundary.clamped=[\"left\", \"bottom\"]"],
                 vec!["'bottom' (Γ3 (contact)) and 'bottom' (Γ1 (clamped))", "must be disjoint"],
             ),

@@ -62,6 +62,7 @@ impl Case {
     /// Checks the ranges of the contact, friction, conductivity and solver keys, and returns
     /// them as `(key, value)` lines for reports. The contact algorithms use them.
     pub fn contact_settings(&self) -> Result<Vec<(String, f64)>> {
+        self.check_young_for_r()?;
         let f = &self.file;
         let mut rules: Vec<Rule> = Vec::new();
         if let Some(c) = &f.contact {
@@ -102,21 +103,16 @@ impl Case {
             ]);
         }
         let at_least_one = |v: f64| v >= 1.0;
-        // Without the key, r is a multiple of E: a bad r is then a bad material.young.
-        let r = |r: f64| match f.solver.r {
-            Some(_) => Rule("solver.r", r, positive, "r > 0"),
-            None => Rule("material.young", f.material.young, positive, "Young's modulus E > 0"),
-        };
         match self.method_parameters() {
             MethodParameters::Uzawa(p) => rules.extend([
-                r(p.r),
+                Rule("solver.r", p.r, positive, "r > 0"),
                 Rule("solver.eps", p.eps, positive, "ε > 0"),
                 Rule("solver.eps_fp", p.eps_fp, positive, "ε_fp > 0"),
                 Rule("solver.max_inner", p.max_inner as f64, at_least_one, "at least 1"),
             ]),
             MethodParameters::Newton(p) => {
                 rules.extend([
-                    r(p.r),
+                    Rule("solver.r", p.r, positive, "r > 0"),
                     Rule("solver.tol", p.tol, positive, "a tolerance > 0"),
                     Rule("solver.max_inner", p.max_inner as f64, at_least_one, "at least 1"),
                 ]);
@@ -239,6 +235,19 @@ impl Case {
             }
         }
         warnings
+    }
+
+    /// Without solver.r, r is a multiple of E: a bad r is then a bad material.young, and
+    /// the error names it (material checks come later).
+    fn check_young_for_r(&self) -> Result<()> {
+        let young = self.file.material.young;
+        if self.file.solver.r.is_none() && !positive(young) {
+            return Err(input!(
+                "{}: material.young = {young} is not allowed: Young's modulus E > 0",
+                self.locate("material.young")
+            ));
+        }
+        Ok(())
     }
 
     /// Keys of `[friction]` and `[conductivity]` that the problem does not read, as warnings:
