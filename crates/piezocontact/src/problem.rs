@@ -4,7 +4,6 @@
 use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::mesh::Mesh;
-use std::collections::HashMap;
 use std::sync::Arc;
 
 /// A vector field x ↦ v(x) with d components (loads, prescribed displacements).
@@ -134,7 +133,7 @@ impl Problem {
         let contact = &self.boundary.contact;
         for (k, &p) in contact.iter().enumerate() {
             for &q in &contact[k + 1..] {
-                if let Some((first, second, nodes)) = self.shared_facet(&[p], &[q]) {
+                if let Some((first, second, nodes)) = self.mesh.shared_facet(&[p], &[q]) {
                     return Err(Error::Input(format!(
                         "boundary parts '{first}' and '{second}' of Γ3 (contact) share the facet \
                          with nodes {nodes:?}: a facet of Γ3 must belong to one contact part \
@@ -187,36 +186,12 @@ impl Problem {
         (first_role, first): (&'static str, &[usize]),
         (second_role, second): (&'static str, &[usize]),
     ) -> Result<()> {
-        match self.shared_facet(first, second) {
+        match self.mesh.shared_facet(first, second) {
             Some((first, second, nodes)) => {
                 Err(Error::RoleConflict { first, first_role, second, second_role, nodes })
             }
             None => Ok(()),
         }
-    }
-
-    /// A facet that a part of `first` and a part of `second` share: the two parts' names and
-    /// the facet's nodes.
-    fn shared_facet(
-        &self,
-        first: &[usize],
-        second: &[usize],
-    ) -> Option<(String, String, Vec<usize>)> {
-        let key = |f: &[usize]| {
-            let mut k = f.to_vec();
-            k.sort_unstable();
-            k
-        };
-        let mut owner: HashMap<Vec<usize>, usize> = HashMap::new();
-        for &p in first {
-            owner.extend(self.mesh.part_facets(p).map(|f| (key(f), p)));
-        }
-        let parts = self.mesh.parts();
-        second.iter().find_map(|&q| {
-            let f = self.mesh.part_facets(q).find(|f| owner.contains_key(&key(f)))?;
-            let p = owner[&key(f)];
-            Some((parts[p].name.clone(), parts[q].name.clone(), f.to_vec()))
-        })
     }
 
     /// Nodes of the facets of the given parts, sorted and without repetition.

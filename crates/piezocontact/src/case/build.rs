@@ -248,7 +248,8 @@ impl Case {
 
     /// The indices in `mesh` of the boundary parts `names` that the list at `key` gives,
     /// each named once (a facet named twice would count twice); the parts of a load (`load`)
-    /// not none, for a load on no part would be dropped without a word.
+    /// not none, for a load on no part would be dropped without a word, and sharing no facet,
+    /// on which it would act twice.
     fn part_indices(
         &self,
         mesh: &Mesh,
@@ -271,10 +272,20 @@ impl Case {
                 self.locate(key)
             ));
         }
-        names
+        let indices: Vec<usize> = names
             .iter()
             .map(|n| mesh.part_index(n).map_err(|e| input!("{}: {key}: {e}", self.locate(key))))
-            .collect()
+            .collect::<Result<_>>()?;
+        for (k, &p) in indices.iter().enumerate().filter(|_| load) {
+            if let Some((first, second, nodes)) = mesh.shared_facet(&[p], &indices[k + 1..]) {
+                return Err(input!(
+                    "{}: {key}: parts '{first}' and '{second}' share the facet with nodes \
+                     {nodes:?}, on which the load would act twice; name each facet in one part",
+                    self.locate(key)
+                ));
+            }
+        }
+        Ok(indices)
     }
 
     /// The problem, after [`Case::contact_settings`] has checked the ranges.

@@ -398,6 +398,14 @@ gap = 0.1
             ),
             (vec!["boundary.charge=[{parts=[], q2=1.0}]"], vec!["boundary.charge.parts is empty"]),
             (
+                vec![
+                    "mesh.segments.a=[\"[0,2]x{1}\"]",
+                    "mesh.segments.b=[\"[1,3]x{1}\"]",
+                    "boundary.traction=[{parts=[\"a\", \"b\"], f2=[0.0, -1.0]}]",
+                ],
+                vec!["parts 'a' and 'b' share the facet", "act twice"],
+            ),
+            (
                 vec!["boundary.clamped=[\"left\", \"bottom\"]"],
                 vec!["'bottom' (Γ3 (contact)) and 'bottom' (Γ1 (clamped))", "must be disjoint"],
             ),

@@ -177,6 +177,25 @@ impl Mesh {
         names.join(", ")
     }
 
+    /// A facet that a part of `first` and a part of `second` share: the two parts' names and
+    /// the facet's nodes (as the part of `second` holds them).
+    pub fn shared_facet(
+        &self,
+        first: &[usize],
+        second: &[usize],
+    ) -> Option<(String, String, Vec<usize>)> {
+        let mut owner: HashMap<FacetKey, usize> = HashMap::new();
+        for &p in first {
+            owner.extend(self.part_facets(p).map(|f| (facet_key(f), p)));
+        }
+        let parts = self.parts();
+        second.iter().find_map(|&q| {
+            let f = self.part_facets(q).find(|f| owner.contains_key(&facet_key(f)))?;
+            let p = owner[&facet_key(f)];
+            Some((parts[p].name.clone(), parts[q].name.clone(), f.to_vec()))
+        })
+    }
+
     /// The facets of part `p`: node slices in outward order.
     pub fn part_facets(&self, p: usize) -> impl Iterator<Item = &[usize]> + '_ {
         self.parts[p].facets.chunks_exact(self.dim)
