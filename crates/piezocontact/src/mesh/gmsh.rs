@@ -56,6 +56,17 @@ pub fn inspect(bytes: &[u8]) -> Result<GmshInfo> {
     })
 }
 
+/// What a physical group of dimension `dim` is when a case names it as a boundary part.
+fn other_group(dim: i32) -> String {
+    let kind = match dim {
+        0 => "points",
+        1 => "curves",
+        2 => "surfaces",
+        _ => "volumes",
+    };
+    format!("a physical group of {kind} (dimension {dim}) in the mesh file, not of facets")
+}
+
 /// Reads a Gmsh MSH 4.1 file into a checked [`Mesh`].
 pub fn read(bytes: &[u8]) -> Result<Mesh> {
     let (msh, names) = parse(bytes)?;
@@ -130,7 +141,7 @@ pub fn read(bytes: &[u8]) -> Result<Mesh> {
         .map(|(tag, f)| BoundaryPart::new(group_name(&names, dim - 1, tag), f))
         .collect();
     let others = physical_groups(&msh, &names).into_iter().filter(|g| g.dim != dim - 1);
-    let others = others.map(|g| (g.name, g.dim)).collect();
+    let others = others.map(|g| (g.name, other_group(g.dim))).collect();
     Ok(Mesh::new(dim as usize, coords, cells, parts)?.with_other_groups(others))
 }
 

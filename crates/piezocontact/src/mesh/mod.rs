@@ -47,9 +47,10 @@ pub struct Mesh {
     coords: Vec<f64>,
     cells: Vec<usize>,
     parts: Vec<BoundaryPart>,
-    /// The names of the mesh file's groups that are not boundary parts, with the dimension
-    /// of each (a Gmsh physical volume, say), so that a case naming one is told what it is.
-    other_groups: Vec<(String, i32)>,
+    /// The names of groups that are not boundary parts, each with what it is (a physical
+    /// group of volumes in the mesh file, a group of facets inside the body), so that a case
+    /// naming one is told.
+    other_groups: Vec<(String, String)>,
 }
 
 /// Sorted facet key (unused slots are `usize::MAX`).
@@ -140,30 +141,19 @@ impl Mesh {
         &self.parts
     }
 
-    /// The mesh with the names and dimensions of its file's groups that are not boundary
-    /// parts, for [`Mesh::part_index`]'s message.
-    pub fn with_other_groups(self, other_groups: Vec<(String, i32)>) -> Self {
-        Self { other_groups, ..self }
+    /// The mesh with more groups that are not boundary parts, each with what it is (its
+    /// file's groups of other dimensions), for [`Mesh::part_index`]'s message.
+    pub fn with_other_groups(mut self, other_groups: Vec<(String, String)>) -> Self {
+        self.other_groups.extend(other_groups);
+        self
     }
 
     /// Index of the part called `name`, or an error listing the parts the mesh has, and
-    /// saying what `name` is when it names a group of another dimension.
+    /// saying what `name` is when it names a group that is not a boundary part.
     pub fn part_index(&self, name: &str) -> Result<usize> {
         self.parts.iter().position(|p| p.name == name).ok_or_else(|| {
-            let kind = |dim: i32| match dim {
-                0 => "points",
-                1 => "curves",
-                2 => "surfaces",
-                _ => "volumes",
-            };
             let other = self.other_groups.iter().find(|(other, _)| other == name);
-            let what = other.map_or(String::new(), |(_, dim)| {
-                format!(
-                    "; '{name}' is a physical group of {} (dimension {dim}) in the mesh file, not of \
-                     facets",
-                    kind(*dim)
-                )
-            });
+            let what = other.map_or(String::new(), |(_, what)| format!("; '{name}' is {what}"));
             Error::UnknownBoundaryPart { name: name.into(), available: self.part_names(), what }
         })
     }
@@ -378,7 +368,18 @@ impl Mesh {
     fn attach_parts(&mut self) -> Result<()> {
         let boundary = self.boundary_facets();
         let dim = self.dim;
-        let mut parts = std::mem::take(&mut self.parts);
+        // A group of facets wholly inside the body (an interface of a fragmented geometry)
+        // is not a boundary part: set aside, and named in the message of a case that gives
+        // it a role. A part partly inside is an error below.
+        let inside = |part: &BoundaryPart| {
+            !part.facets.is_empty()
+                && part.facets.chunks_exact(dim).all(|f| !boundary.contains_key(&facet_key(f)))
+        };
+        let (inner, mut parts): (Vec<_>, Vec<_>) =
+            std::mem::take(&mut self.parts).into_iter().partition(inside);
+        let what = "a group of facets inside the body (each a face of two elements), not on its \
+                    boundary";
+        self.other_groups.extend(inner.into_iter().map(|p| (p.name, what.to_string())));
         for part in &mut parts {
             part.cells.clear();
             let mut oriented = Vec::with_capacity(part.facets.len());
@@ -491,8 +492,13 @@ mod tests {
         assert!(e.to_string().contains("refers to node 9"), "{e}");
         let e = err(vec![0, 1, 2, 0, 2, 3], vec![BoundaryPart::new("twice", vec![0, 1, 1, 0])]);
         assert!(e.to_string().contains("'twice' holds the facet with nodes [1, 0] twice"), "{e}");
-        let e = err(vec![0, 1, 2, 0, 2, 3], vec![BoundaryPart::new("diag", vec![0, 2])]);
+        let part = |facets| vec![BoundaryPart::new("diag", facets)];
+        let e = err(vec![0, 1, 2, 0, 2, 3], part(vec![0, 1, 0, 2]));
         assert!(e.to_string().contains("'diag'") && e.to_string().contains("not on the boundary"));
+        // A group wholly inside the body is set aside, and named when a case uses it.
+        let inside = Mesh::new(2, x.clone(), vec![0, 1, 2, 0, 2, 3], part(vec![0, 2])).unwrap();
+        let e = inside.part_index("diag").unwrap_err().to_string();
+        assert!(e.contains("'diag' is a group of facets inside the body"), "{e}");
         let degenerate = vec![0.0, 0.0, 1.0, 0.0, 2.0, 0.0];
         let e = Mesh::new(2, degenerate, vec![0, 1, 2], vec![]).unwrap_err();
         assert!(e.to_string().contains("degenerate"), "{e}");
