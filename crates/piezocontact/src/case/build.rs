@@ -247,9 +247,9 @@ impl Case {
     }
 
     /// The indices in `mesh` of the boundary parts `names` that the list at `key` gives,
-    /// each named once (a facet named twice would count twice); the parts of a load (`load`)
-    /// not none, for a load on no part would be dropped without a word, and sharing no facet,
-    /// on which it would act twice.
+    /// each named once (a facet named twice would count twice). A load's list (`load`: a
+    /// traction's or a charge's) holds at least one part, for a load on no part would be
+    /// dropped without a word, and its parts share no facet, on which it would act twice.
     fn part_indices(
         &self,
         mesh: &Mesh,
