@@ -62,9 +62,9 @@ pub enum Error {
 
     /// A case names a boundary part that the mesh does not have.
     #[error(
-        "boundary part '{name}' is not in the mesh (its boundary parts are its groups of facets: \
-         physical curves in 2D, surfaces in 3D, or a rectangle's segments); the mesh has: \
-         {available}{what}"
+        "'{name}' is not a boundary part of the mesh (its boundary parts are its groups of \
+         facets on the boundary: physical curves in 2D, surfaces in 3D, or a rectangle's \
+         segments); the mesh has: {available}{what}"
     )]
     UnknownBoundaryPart {
         name: String,

@@ -380,14 +380,14 @@ fn error_messages() {
     let missing = variant(&dir, "clamped = [\"ends\"]", "clamped = [\"end\"]");
     assert_error(
         &["check", missing.to_str().unwrap()],
-        &["boundary.clamped", "'end' is not in the mesh", "contact, ends, load"],
+        &["boundary.clamped", "'end' is not a boundary part of the mesh", "contact, ends, load"],
     );
     // A volume group is not a boundary part: the message says what parts are, and what
     // 'body' is.
     assert_error(
         &["check", "cases/indentation-3d.toml", "--set", "boundary.contact=[\"body\"]"],
         &[
-            "'body' is not in the mesh",
+            "'body' is not a boundary part of the mesh",
             "groups of facets",
             "surfaces in 3D",
             "'body' is a physical group of volumes (dimension 3) in the mesh file",

@@ -385,7 +385,7 @@ gap = 0.1
             ),
             (
                 vec!["boundary.contact=[\"nowhere\"]"],
-                vec!["'nowhere' is not in the mesh", "bottom"],
+                vec!["'nowhere' is not a boundary part of the mesh", "bottom"],
             ),
             (
                 vec!["material.beta33_rel=0"],
