@@ -13,7 +13,7 @@ use crate::contact::ContactModel;
 use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
 use crate::error::{Error, Result};
 use crate::material::{ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants};
-use crate::mesh::rectangle::{Diagonal, Rectangle, Segment};
+use crate::mesh::rectangle::{Diagonal, Rectangle, Segment, SegmentParts};
 use crate::mesh::{Mesh, gmsh};
 use crate::problem::{BodyLoads, Boundary, Problem, constant_scalar, constant_vector};
 use std::path::Path;
@@ -57,6 +57,14 @@ impl Case {
             })?;
             return gmsh::read(&bytes).map_err(|e| input!("{}: {e}", full.display()));
         }
+        let (rectangle, parts) = self.rectangle()?;
+        self.check_memory(rectangle.nx, rectangle.ny)?;
+        rectangle.mesh(&parts).map_err(|e| self.context(e))
+    }
+
+    /// The built-in rectangle of `[mesh]` and its parts' segments.
+    pub(super) fn rectangle(&self) -> Result<(Rectangle, SegmentParts)> {
+        let m = &self.file.mesh;
         let need = |key: &str| {
             input!(
                 "{}: {key} is missing: give the rectangle (mesh.x, mesh.y, mesh.nx, mesh.ny) or mesh.file",
@@ -73,7 +81,6 @@ impl Case {
                 _ => Diagonal::Right,
             },
         };
-        self.check_memory(rectangle.nx, rectangle.ny)?;
         let mut parts = Vec::new();
         for (name, specs) in &m.segments {
             let segments: Result<Vec<Segment>, _> = specs.iter().map(|s| s.parse()).collect();
@@ -84,7 +91,7 @@ impl Case {
                 })?,
             ));
         }
-        rectangle.mesh(&parts).map_err(|e| self.context(e))
+        Ok((rectangle, parts))
     }
 
     /// Refuses a rectangle whose solve would not fit in memory, before allocating anything.
@@ -105,15 +112,20 @@ impl Case {
         )
     }
 
-    /// The material in dimension `dim`.
-    pub fn material(&self, dim: usize) -> Result<Material> {
+    /// The elastic law of `[material]`, its constants checked.
+    pub(super) fn elasticity(&self) -> Result<Elasticity> {
         let m = &self.file.material;
         let law = match m.law {
             LawKey::Hencky => ElasticLaw::Hencky { t0: m.t0 },
             LawKey::Linear => ElasticLaw::Linear,
         };
-        let elasticity =
-            Elasticity::from_young_poisson(m.young, m.poisson, law).map_err(|e| self.context(e))?;
+        Elasticity::from_young_poisson(m.young, m.poisson, law).map_err(|e| self.context(e))
+    }
+
+    /// The material in dimension `dim`.
+    pub fn material(&self, dim: usize) -> Result<Material> {
+        let m = &self.file.material;
+        let elasticity = self.elasticity()?;
         for (key, value) in [
             ("material.eps0", m.eps0),
             ("material.beta11_rel", m.beta11_rel),

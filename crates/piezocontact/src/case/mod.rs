@@ -373,7 +373,7 @@ gap = 0.1
             // The default r = 0.25 E: a zero E is named, at its line, not r.
             (
                 vec!["material.young=0"],
-                vec![&format!("case.toml:{}: material.young = 0", line("young")), "E > 0"],
+                vec![&format!("case.toml:{}: material.young = 0", line("young")), "E must be > 0"],
             ),
             (vec!["solver.method=\"simplex\""], vec!["unknown variant `simplex`", "uzawa"]),
             (vec!["solver.tol=0"], vec!["solver.tol = 0 is not allowed: a tolerance > 0"]),

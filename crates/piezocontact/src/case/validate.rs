@@ -7,7 +7,6 @@ use super::build::MethodParameters;
 use super::schema::{BackendKey, FrictionPathKey, MethodKey, ProblemKey, RegularizationKey};
 use crate::error::{Error, Result};
 use crate::material::{ElasticLaw, Material};
-use crate::mesh::rectangle::{Diagonal, Rectangle, Segment};
 
 /// The largest magnitude of a number in a case file, and the smallest nonzero one: the model
 /// multiplies and squares its inputs, and beyond these bounds double precision overflows or
@@ -62,7 +61,8 @@ impl Case {
     /// Checks the ranges of the contact, friction, conductivity and solver keys, and returns
     /// them as `(key, value)` lines for reports. The contact algorithms use them.
     pub fn contact_settings(&self) -> Result<Vec<(String, f64)>> {
-        self.check_young_for_r()?;
+        // The default r is a multiple of E: the elastic constants first, by their own check.
+        self.elasticity()?;
         let f = &self.file;
         let mut rules: Vec<Rule> = Vec::new();
         if let Some(c) = &f.contact {
@@ -204,20 +204,15 @@ impl Case {
     /// the part holds only the facets wholly inside the segment and stops short of the end
     /// (`[2,10]x{0}` with 100 cells over 12 m holds 7.92 m).
     fn segment_warnings(&self) -> Vec<String> {
-        let m = &self.file.mesh;
-        let (Some(x), Some(y), Some(nx), Some(ny)) = (m.x, m.y, m.nx, m.ny) else {
-            return Vec::new();
-        };
-        let rectangle = Rectangle { x, y, nx, ny, diagonal: Diagonal::Right };
+        // A Gmsh mesh (no rectangle), or a rectangle the checks refuse: nothing to warn of.
+        let Ok((rectangle, parts)) = self.rectangle() else { return Vec::new() };
         // Coordinates to 12 significant digits: 1.92, not 1.9200000000000002.
         let tidy = |v: f64| format!("{v:.11e}").parse::<f64>().unwrap_or(v);
         let mut warnings = Vec::new();
-        for (name, specs) in &m.segments {
+        for (name, segments) in &parts {
             let key = format!("mesh.segments.{name}");
-            for (spec, segment) in
-                specs.iter().filter_map(|s| Some((s, s.parse::<Segment>().ok()?)))
-            {
-                let ends = rectangle.ends_between_nodes(&segment);
+            for (spec, segment) in self.file.mesh.segments[name].iter().zip(segments) {
+                let ends = rectangle.ends_between_nodes(segment);
                 let Some(&(axis, _, _)) = ends.first() else { continue };
                 let between: Vec<String> = ends
                     .iter()
@@ -235,19 +230,6 @@ impl Case {
             }
         }
         warnings
-    }
-
-    /// Without solver.r, r is a multiple of E: a bad r is then a bad material.young, and
-    /// the error names it (material checks come later).
-    fn check_young_for_r(&self) -> Result<()> {
-        let young = self.file.material.young;
-        if self.file.solver.r.is_none() && !positive(young) {
-            return Err(input!(
-                "{}: material.young = {young} is not allowed: Young's modulus E > 0",
-                self.locate("material.young")
-            ));
-        }
-        Ok(())
     }
 
     /// Keys of `[friction]` and `[conductivity]` that the problem does not read, as warnings:

@@ -31,6 +31,9 @@ pub struct Rectangle {
     pub diagonal: Diagonal,
 }
 
+/// Boundary parts by name, each the union of the facets its segments hold.
+pub type SegmentParts = Vec<(String, Vec<Segment>)>;
+
 /// An axis-aligned box: per axis either an interval `[a,b]` or a point `{a}`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Segment {
