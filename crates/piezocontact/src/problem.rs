@@ -130,19 +130,14 @@ impl Problem {
     /// Checks that no two parts of Γ3 (nor one part named twice) share a facet: the facet
     /// would count twice in the nodes' weights, and every contact stress would be halved.
     fn check_contact_parts_apart(&self) -> Result<()> {
-        let contact = &self.boundary.contact;
-        for (k, &p) in contact.iter().enumerate() {
-            for &q in &contact[k + 1..] {
-                if let Some((first, second, nodes)) = self.mesh.shared_facet(&[p], &[q]) {
-                    return Err(Error::Input(format!(
-                        "boundary parts '{first}' and '{second}' of Γ3 (contact) share the facet \
-                         with nodes {nodes:?}: a facet of Γ3 must belong to one contact part \
-                         (it would count twice); name each facet in one part only"
-                    )));
-                }
-            }
+        match self.mesh.facet_shared_within(&self.boundary.contact) {
+            Some((first, second, nodes)) => Err(Error::Input(format!(
+                "boundary parts '{first}' and '{second}' of Γ3 (contact) share the facet with \
+                 nodes {nodes:?}: a facet of Γ3 must belong to one contact part (it would count \
+                 twice); name each facet in one part only"
+            ))),
+            None => Ok(()),
         }
-        Ok(())
     }
 
     /// Checks that every connected piece of the body touches Γ1 and Γa: a piece that does

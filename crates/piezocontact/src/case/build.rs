@@ -288,14 +288,13 @@ impl Case {
             .iter()
             .map(|n| mesh.part_index(n).map_err(|e| input!("{}: {key}: {e}", self.locate(key))))
             .collect::<Result<_>>()?;
-        for (k, &p) in indices.iter().enumerate().filter(|_| load) {
-            if let Some((first, second, nodes)) = mesh.shared_facet(&[p], &indices[k + 1..]) {
-                return Err(input!(
-                    "{}: {key}: parts '{first}' and '{second}' share the facet with nodes \
-                     {nodes:?}, on which the load would act twice; name each facet in one part",
-                    self.locate(key)
-                ));
-            }
+        let shared = if load { mesh.facet_shared_within(&indices) } else { None };
+        if let Some((first, second, nodes)) = shared {
+            return Err(input!(
+                "{}: {key}: parts '{first}' and '{second}' share the facet with nodes {nodes:?}, \
+                 on which the load would act twice; name each facet in one part",
+                self.locate(key)
+            ));
         }
         Ok(indices)
     }

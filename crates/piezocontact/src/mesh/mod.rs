@@ -186,6 +186,18 @@ impl Mesh {
         })
     }
 
+    /// A facet that two entries of `parts` share (the same part named twice shares all of
+    /// its own): their names and the facet's nodes, found in one pass over their facets.
+    pub fn facet_shared_within(&self, parts: &[usize]) -> Option<(String, String, Vec<usize>)> {
+        let mut owner: HashMap<FacetKey, usize> = HashMap::new();
+        let names = self.parts();
+        parts.iter().find_map(|&q| {
+            let mut facets = self.part_facets(q);
+            let (p, f) = facets.find_map(|f| Some((owner.insert(facet_key(f), q)?, f)))?;
+            Some((names[p].name.clone(), names[q].name.clone(), f.to_vec()))
+        })
+    }
+
     /// The facets of part `p`: node slices in outward order.
     pub fn part_facets(&self, p: usize) -> impl Iterator<Item = &[usize]> + '_ {
         self.parts[p].facets.chunks_exact(self.dim)
