@@ -8,7 +8,8 @@
 //!   `points`, `u`, `phi`, `converged`, and `write(directory)` (the files `run` writes).
 //!
 //! Bad input raises `CaseError`, a `ValueError` with the command line's message (file, line,
-//! key). The solve runs without the GIL, and a panic inside it becomes a `RuntimeError`.
+//! key); what `run` warns of a case, a `CaseWarning` (a `UserWarning`). In `overrides`, a dict
+//! sets the keys it names and keeps the table's others. The solve runs without the GIL, and a panic inside it becomes a `RuntimeError`.
 
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use piezocontact::case::Case as CaseFile;
@@ -30,6 +31,14 @@ create_exception!(
     PyValueError,
     "Bad input — a case file, a key, a value, a mesh — with the message the command line gives \
      (file, line, key and the fix)."
+);
+
+create_exception!(
+    piezocontact,
+    CaseWarning,
+    pyo3::exceptions::PyUserWarning,
+    "What the command line warns of a case before it runs it: a key nothing reads, a \
+     segment end between two nodes."
 );
 
 /// A library error as the Python exception that carries its message.
@@ -183,11 +192,16 @@ fn watched<T: Send + 'static>(
     }
 }
 
-/// Solves `case` on at most `threads` threads without the GIL; a panic becomes a
+/// Solves `case` on at most `threads` threads without the GIL; its warnings (those `run`
+/// prints) are `CaseWarning`s, a panic becomes a
 /// `RuntimeError`, an unconverged run a `RuntimeWarning` (its results are there, marked
 /// `converged = False`), Ctrl-C during the solve a `KeyboardInterrupt` once the run has
 /// stopped.
 fn solve_case(py: Python<'_>, case: CaseFile, threads: Option<i64>) -> PyResult<Solution> {
+    for warning in case.setting_warnings() {
+        let message = CString::new(warning).unwrap_or_default();
+        PyErr::warn(py, &py.get_type::<CaseWarning>(), &message, 1)?;
+    }
     let (run, case) = watched(py, threads, move || {
         let run = if case.file.loading.is_some() {
             case.build()
@@ -455,6 +469,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Case>()?;
     m.add_class::<Solution>()?;
     m.add("CaseError", m.py().get_type::<CaseError>())?;
+    m.add("CaseWarning", m.py().get_type::<CaseWarning>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

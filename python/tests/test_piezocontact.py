@@ -100,11 +100,37 @@ def test_overrides_take_python_and_numpy_scalars():
     np.testing.assert_array_equal(plain.contact["sigma_nu"], numpy.contact["sigma_nu"])
     assert not np.array_equal(plain.contact["sigma_tau"], default.contact["sigma_tau"])
     # numpy booleans, strings and arrays too.
-    pv1 = piezocontact.solve(
-        PAPER_72, {**COARSE, "contact.problem": "PV1", "solver.method": np.str_("newton")}
-    )
+    with pytest.warns(piezocontact.CaseWarning) as caught:
+        pv1 = piezocontact.solve(
+            PAPER_72, {**COARSE, "contact.problem": "PV1", "solver.method": np.str_("newton")}
+        )
+    assert any("friction is not used" in str(w.message) for w in caught)
     assert pv1.summary["problem"] == "PV1" and pv1.summary["method"] == "newton"
     assert np.all(pv1.contact["sigma_tau"] == 0)
+
+
+def test_a_dict_override_sets_its_keys_and_keeps_the_table_s_others():
+    nested = piezocontact.solve(PAPER_71, {"mesh": {"nx": 24, "ny": 4}, "solver": {"eps": 1e-5}})
+    dotted = piezocontact.solve(PAPER_71, {**COARSE, "solver.eps": 1e-5})
+    # The file's method (uzawa) and its other solver keys stay; eps takes the new value.
+    assert nested.summary["method"] == "uzawa"
+    assert nested.summary["inner_iterations"] == dotted.summary["inner_iterations"]
+    np.testing.assert_array_equal(nested.contact["sigma_nu"], dotted.contact["sigma_nu"])
+
+
+def test_the_case_s_warnings_are_python_warnings(tmp_path):
+    # Under PV1 (frictionless) the file's µ and k_e are read by nothing: `run` says so on
+    # stderr, and the Python package with the same words.
+    overrides = {**COARSE, "contact.problem": '"PV1"'}
+    sets = [a for k, v in overrides.items() for a in ("--set", f"{k}={v}")]
+    command = [cli(), "run", PAPER_72, "-q", "--out", tmp_path, *sets]
+    stderr = subprocess.run(command, check=True, capture_output=True, text=True).stderr
+    printed = [line.removeprefix("warning: ") for line in stderr.splitlines()]
+    assert len(printed) == 2 and "friction is not used" in printed[0]
+    with pytest.warns(piezocontact.CaseWarning) as caught:
+        piezocontact.solve(PAPER_72, {**COARSE, "contact.problem": "PV1"})
+    assert issubclass(piezocontact.CaseWarning, UserWarning)
+    assert [str(w.message) for w in caught] == printed
 
 
 def test_bad_input_raises_a_value_error_naming_the_key():

@@ -377,6 +377,11 @@ fn failed(failure: &piezocontact::Error) -> Outcome {
 
 fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Result<Outcome> {
     let case = Case::load(path, set)?;
+    // The keys nothing reads, segment ends between nodes; the paper's hypotheses are check's
+    // and summary.json's.
+    for warning in case.setting_warnings() {
+        say_err!("warning: {warning}");
+    }
     if case.file.contact.is_some() {
         return run_contact(&case, out, interval);
     }
@@ -395,10 +400,6 @@ fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Resu
 
 fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
     let built = case.build()?;
-    // The keys nothing reads; the paper's hypotheses are check's and summary.json's.
-    for warning in case.setting_warnings() {
-        say_err!("warning: {warning}");
-    }
     // What summary.json says of a run the solver refuses after validation (memory, a
     // capability), taken before the solve consumes the problem.
     let header = run::common_summary(case, &built.problem, &DofMap::new(&built.problem)?);

@@ -246,3 +246,26 @@ fn run_and_check_warn_of_keys_nothing_reads() {
     let o = piezocontact(&[&["check"][..], &case, &sets].concat());
     assert!(String::from_utf8_lossy(&o.stdout).contains(line), "{}", text(&o));
 }
+
+/// `run` of a case without `[contact]` warns of its case as a contact run does (here a
+/// segment's end between two nodes; before, only `check` said it).
+#[test]
+fn a_run_without_contact_warns_of_its_segments() {
+    let dir = temp_dir("static-warnings");
+    let case = dir.join("case.toml");
+    let material = "[material]\nyoung = 100.0\npoisson = 0.25\ne31 = -5.4\ne33 = 15.8\n\
+                    e15 = 12.3\neps0 = 8.885e-3\nbeta11_rel = 916.0\nbeta33_rel = 830.0\n";
+    let text = format!(
+        "[mesh]\nx = [0.0, 4.0]\ny = [0.0, 1.0]\nnx = 8\nny = 2\n[mesh.segments]\n\
+         left = [\"{{0}}x[0,1]\"]\ntop = [\"[0,1.1]x{{1}}\"]\n{material}[boundary]\n\
+         clamped = [\"left\"]\ngrounded = [\"left\"]\n[[boundary.traction]]\nparts = [\"top\"]\n\
+         f2 = [0.0, -1.0]\n"
+    );
+    std::fs::write(&case, text).unwrap();
+    let out = dir.join("out");
+    let o = piezocontact(&["-q", "run", case.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    let warning = "mesh.segments.top: '[0,1.1]x{1}' ends between two nodes at x = 1.1";
+    assert!(stderr.contains(warning), "{stderr}");
+}

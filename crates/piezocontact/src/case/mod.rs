@@ -602,6 +602,30 @@ gap = 0.1
     }
 
     #[test]
+    fn a_table_override_sets_its_keys_and_keeps_the_others() {
+        // The paper's case runs Uzawa with its own eps_fp: a table naming eps alone keeps them.
+        let c = case(PAPER_71, &["solver={eps=1e-7}"]).unwrap();
+        let solver = &c.file.solver;
+        assert_eq!((solver.eps, solver.eps_fp), (Some(1e-7), Some(1e-4)));
+        assert!(matches!(solver.method, Some(MethodKey::Uzawa)));
+        // Nested tables, a table the file lacks, and a key under its other spelling.
+        let c = case(PAPER_71, &["material={e32=-1.5}", "mesh={segments={extra=[\"[0,1]x{1}\"]}}"])
+            .unwrap();
+        assert_eq!((c.file.material.e31, c.file.material.young), (-1.5, 58.7102));
+        assert!(c.source.contains("extra"), "{}", c.source);
+        let c = case(MINIMAL, &["friction={mu=0.3}"]).unwrap();
+        assert_eq!(c.file.friction.map(|f| f.mu), Some(0.3));
+        // Into a table the file writes inline.
+        let inline = format!("solver = {{ eps = 1e-3 }}\n{}", MINIMAL.replace("[solver]\n", ""));
+        let c = case(&inline, &["solver.eps_fp=1e-5", "solver={eps=1e-6}"]);
+        let c = c.map_err(|e| e.to_string());
+        let solver = c.as_ref().map(|c| (c.file.solver.eps, c.file.solver.eps_fp));
+        assert_eq!(solver, Ok((Some(1e-6), Some(1e-5))));
+        let e = case(PAPER_71, &["mesh.nx={a=1}"]).unwrap_err().to_string();
+        assert!(e.contains("'mesh.nx' is not a table"), "{e}");
+    }
+
+    #[test]
     fn the_hypotheses_are_reported_with_their_numbers() {
         let c = case(MINIMAL, &["material.poisson=0.05"]).unwrap();
         let problem = c.problem().unwrap();

@@ -4,33 +4,70 @@
 use crate::error::{Error, Result};
 
 /// Applies one `dotted.key=value` override to the document; the value is read as TOML
-/// (numbers, booleans, quoted strings, arrays) or else taken as a bare string.
+/// (numbers, booleans, quoted strings, arrays, tables) or else taken as a bare string. A table
+/// given as the value sets the keys it names and keeps the others: `solver={eps=1e-6}` is
+/// `solver.eps=1e-6`, not a `[solver]` table emptied of its other keys.
 pub(super) fn apply_override(doc: &mut toml_edit::DocumentMut, setting: &str) -> Result<()> {
     let (key, value) = setting.split_once('=').ok_or_else(|| {
         input!("--set {setting}: expected dotted.key=value, e.g. --set mesh.nx=192")
     })?;
-    let path: Vec<&str> = key.trim().split('.').collect();
+    let path: Vec<String> = key.trim().split('.').map(str::to_string).collect();
     if path.iter().any(|k| k.is_empty()) {
         return Err(input!("--set {setting}: '{key}' is not a dotted key such as solver.r"));
     }
     let value: toml_edit::Value =
         value.trim().parse().unwrap_or_else(|_| toml_edit::Value::from(value.trim()));
-    let mut table = doc.as_table_mut();
-    for (depth, k) in path[..path.len() - 1].iter().enumerate() {
-        let entry = table.entry(k).or_insert_with(toml_edit::table);
-        table = entry.as_table_mut().ok_or_else(|| {
-            input!("--set {setting}: '{}' is not a table", path[..=depth].join("."))
-        })?;
+    set(doc, &path, value, setting)
+}
+
+/// Sets `value` at `path`; a table sets each of its keys in the table at `path`.
+fn set(
+    doc: &mut toml_edit::DocumentMut,
+    path: &[String],
+    mut value: toml_edit::Value,
+    setting: &str,
+) -> Result<()> {
+    value.decor_mut().clear();
+    if let toml_edit::Value::InlineTable(inline) = value {
+        table_at(doc, path, setting)?;
+        for (key, value) in inline {
+            set(doc, &[path, &[key]].concat(), value, setting)?;
+        }
+        return Ok(());
     }
-    let last = path[path.len() - 1];
+    let (last, parents) = path.split_last().expect("a dotted key is not empty");
+    let table = table_at(doc, parents, setting)?;
     // An override replaces the key under whichever of its spellings the file uses.
     for &(section, a, b) in ALIASES {
-        if path[..path.len() - 1] == [section] && (last == a || last == b) {
+        if parents == [section] && (last == a || last == b) {
             table.remove(if last == a { b } else { a });
         }
     }
-    table[last] = toml_edit::value(value);
+    table.insert(last, toml_edit::value(value));
     Ok(())
+}
+
+/// The table at `path`, made where missing (inline inside an inline table).
+fn table_at<'d>(
+    doc: &'d mut toml_edit::DocumentMut,
+    path: &[String],
+    setting: &str,
+) -> Result<&'d mut dyn toml_edit::TableLike> {
+    let mut item = doc.as_item_mut();
+    for (depth, key) in path.iter().enumerate() {
+        let made = if item.is_inline_table() {
+            toml_edit::Item::Value(toml_edit::InlineTable::new().into())
+        } else {
+            toml_edit::table()
+        };
+        let table = item.as_table_like_mut().expect("checked below when made or met");
+        item = table.entry(key).or_insert(made);
+        if !item.is_table_like() {
+            let key = path[..=depth].join(".");
+            return Err(input!("--set {setting}: '{key}' is not a table"));
+        }
+    }
+    Ok(item.as_table_like_mut().expect("the root, or checked in the loop"))
 }
 
 /// Keys with two spellings (serde aliases): (table, key, alias).
