@@ -238,7 +238,11 @@ impl Case {
             _ => vec![model.foundation.clone()],
         };
         let reached: Vec<bool> = positions.iter().map(|f| meets(f, 1.0)).collect();
-        if !reached.contains(&true) {
+        let through = (0..positions.len()).find(|&k| !reached[k] && meets(&positions[k], -1.0));
+        // A foundation in reach where the case puts it that every step carries through Γ3
+        // is a path too deep, not a foundation misplaced.
+        let deep = through.is_some() && loading.is_some() && meets(&model.foundation, 1.0);
+        if !reached.contains(&true) && !deep {
             let at = if positions.len() > 1 { " at any step of the loading path" } else { "" };
             return Err(input!(
                 "{}: no normal of the {} Γ3 nodes meets the foundation{at}: {hint}",
@@ -246,7 +250,6 @@ impl Case {
                 gamma3.len()
             ));
         }
-        let through = (0..positions.len()).find(|&k| !reached[k] && meets(&positions[k], -1.0));
         through.map_or(Ok(()), |k| {
             Err(input!(
                 "{}: loading.depths: at step {} (depth {} {}) the foundation has passed through Γ3: no Γ3 normal meets it and the reversed normals do, so it lies behind the contact face, where no gap can see it; keep the depths within the foundation's reach, in the case's unit of length ([units] length)",

@@ -483,6 +483,9 @@ fn a_foundation_no_normal_meets_is_refused() {
     assert!(e.contains("at step 2 (depth 2.5 m) the foundation has passed through Γ3"), "{e}");
     assert!(e.contains("loading.depths"), "{e}");
     assert_eq!(build(&["loading.depths=[0.002, 1.5]"]), None);
+    // Every step through the face: still the depths, not the ball's place, are at fault.
+    let e = build(&["loading.depths=[2.5]"]).unwrap();
+    assert!(e.contains("at step 1 (depth 2.5 m) the foundation has passed through Γ3"), "{e}");
 }
 
 /// A path of load factors (the paper's bar, its load halved then whole) gives at each step the
