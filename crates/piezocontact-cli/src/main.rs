@@ -63,7 +63,8 @@ enum Command {
         /// The case file (TOML).
         case: PathBuf,
         /// Keys and values: KEY[=KEY...]=V1,V2,... (every key takes each value), e.g.
-        /// friction.mu=conductivity.ke=0.6,0.2,6.8e-2.
+        /// friction.mu=conductivity.ke=0.6,0.2,6.8e-2; a value may be an array or a table,
+        /// loads.f0=[0.0,0.0],[0.0,-1.0].
         #[arg(long = "set-list", value_name = "KEYS=VALUES")]
         set_list: String,
         /// Override a case key in every run (repeatable).

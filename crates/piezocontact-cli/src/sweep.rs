@@ -90,20 +90,56 @@ pub fn threads(jobs: Option<NonZeroUsize>) -> usize {
     jobs.or_else(|| std::thread::available_parallelism().ok()).map_or(1, NonZeroUsize::get)
 }
 
-/// Parses `key1=key2=...=v1,v2,...`.
+/// Parses `key1=key2=...=v1,v2,...`. The `=` and `,` inside a value — an array
+/// `[0.0,-1.0]`, a table `{eps=1e-6}`, a quoted string — do not split it.
 pub fn parse_set_list(spec: &str) -> Result<(Vec<String>, Vec<String>)> {
-    let (keys, values) = spec
-        .rsplit_once('=')
-        .ok_or_else(|| anyhow!("--set-list {spec}: expected KEY[=KEY...]=V1,V2,..., e.g. friction.mu=conductivity.ke=0.6,0.2"))?;
-    let keys: Vec<String> = keys.split('=').map(|k| k.trim().to_string()).collect();
-    let values: Vec<String> =
-        values.split(',').map(|v| v.trim().to_string()).filter(|v| !v.is_empty()).collect();
-    if keys.iter().any(|k| k.is_empty()) || values.is_empty() {
-        bail!(
+    let usage = || {
+        anyhow!(
             "--set-list {spec}: expected KEY[=KEY...]=V1,V2,..., e.g. friction.mu=conductivity.ke=0.6,0.2"
-        );
+        )
+    };
+    let mut keys = split_top_level(spec, '=');
+    let values = keys.pop().filter(|_| !keys.is_empty()).ok_or_else(usage)?;
+    let keys: Vec<String> = keys.iter().map(|k| k.trim().to_string()).collect();
+    let values: Vec<String> = split_top_level(values, ',')
+        .into_iter()
+        .map(|v| v.trim().to_string())
+        .filter(|v| !v.is_empty())
+        .collect();
+    if keys.iter().any(|k| k.is_empty()) || values.is_empty() {
+        return Err(usage());
     }
     Ok((keys, values))
+}
+
+/// `text` split at each `separator` outside brackets, braces and quoted strings.
+fn split_top_level(text: &str, separator: char) -> Vec<&str> {
+    let (mut parts, mut start, mut depth, mut quote) = (Vec::new(), 0, 0_i32, None);
+    for (k, c) in text.char_indices() {
+        match (quote, c) {
+            (Some(q), c) if c == q => quote = None,
+            (Some(_), _) => {}
+            (None, '"' | '\'') => quote = Some(c),
+            (None, '[' | '{') => depth += 1,
+            (None, ']' | '}') => depth -= 1,
+            (None, c) if c == separator && depth == 0 => {
+                parts.push(&text[start..k]);
+                start = k + c.len_utf8();
+            }
+            _ => {}
+        }
+    }
+    parts.push(&text[start..]);
+    parts
+}
+
+/// A CSV field: quoted, its quotes doubled, when it holds a comma, a quote or a line break.
+fn csv_field(value: &str) -> String {
+    if value.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", value.replace('"', "\"\""))
+    } else {
+        value.to_string()
+    }
 }
 
 /// What `sweep` was asked to do.
@@ -146,7 +182,7 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
     csv.push_str(",outer_iterations,inner_iterations,converged,max_abs_sigma_nu,max_abs_sigma_tau,contact_length,stick_length,slip_length,distance_to_reference,wall_seconds\n");
     let (mut converged, mut failed) = (true, 0);
     for (value, run) in values.iter().zip(&runs) {
-        let values = vec![value.as_str(); keys.len()].join(",");
+        let values = vec![csv_field(value); keys.len()].join(",");
         match run {
             Ok(run) => {
                 let distance = match &reference {

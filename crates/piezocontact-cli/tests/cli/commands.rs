@@ -564,6 +564,41 @@ fn table2_trend() {
     assert!(distance[0] > distance[3] && distance[3] > distance[7], "{distance:?}");
 }
 
+/// Values of --set-list that hold commas or `=` — arrays, tables — are whole values: each
+/// run takes its own (its max |σ_ν| that of `run` with the same value), and sweep.csv quotes
+/// them. Before, `loads.f0=[0.0,0.0],[0.0,-1.0]` was split into "[0.0" and "0.0]" and refused.
+#[test]
+fn a_sweep_takes_arrays_and_tables_as_values() {
+    let out = temp_dir("sweep-arrays");
+    let coarse = ["cases/paper-7.2.toml", "--set", "mesh.nx=24", "--set", "mesh.ny=4"];
+    let values = ["loads.f0=[0.0,0.0],[0.0,-1.0]", "solver={eps=1e-3, eps_fp=1e-3},{eps=1e-6}"];
+    let mut rows = Vec::new();
+    for (k, list) in values.iter().enumerate() {
+        let dir = out.join(format!("sweep-{k}"));
+        let args = [&["sweep"][..], &coarse, &["--set-list", list, "--out", dir.to_str().unwrap()]];
+        let o = piezocontact(&args.concat());
+        assert!(o.status.success(), "{}", text(&o));
+        let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+        rows.extend(csv.lines().skip(1).map(str::to_string));
+    }
+    let quoted =
+        ["\"[0.0,0.0]\",", "\"[0.0,-1.0]\",", "\"{eps=1e-3, eps_fp=1e-3}\",", "{eps=1e-6},"];
+    assert_eq!(rows.len(), 4, "{rows:?}");
+    for (row, start) in rows.iter().zip(quoted) {
+        assert!(row.starts_with(start), "{row} does not start with {start}");
+    }
+    // The second value's run: the same max |σ_ν| as `run` with it, and not the first's.
+    let run = out.join("run");
+    let set = ["--set", "loads.f0=[0.0,-1.0]", "--out", run.to_str().unwrap()];
+    let o = piezocontact(&[&["-q", "run"][..], &coarse, &set].concat());
+    assert!(o.status.success(), "{}", text(&o));
+    let summary = std::fs::read_to_string(run.join("summary.json")).unwrap();
+    let summary: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let sigma = |row: &str| row.rsplit(',').nth(6).unwrap().parse::<f64>().unwrap();
+    assert_eq!(sigma(&rows[1]), summary["gamma3"]["max_abs_sigma_nu"].as_f64().unwrap());
+    assert_ne!(sigma(&rows[0]), sigma(&rows[1]));
+}
+
 /// A sweep of a 3D case says that its zone measures are areas, in the case's length unit
 /// squared; their columns keep the names of the 2D lengths.
 #[test]
