@@ -83,13 +83,15 @@ impl Case {
         };
         let mut parts = Vec::new();
         for (name, specs) in &m.segments {
+            let key = format!("mesh.segments.{name}");
+            if specs.is_empty() {
+                return Err(input!(
+                    "{}: {key} is empty: give the part its segments, e.g. [\"[0,1]x{{0}}\"], or remove it",
+                    self.locate(&key)
+                ));
+            }
             let segments: Result<Vec<Segment>, _> = specs.iter().map(|s| s.parse()).collect();
-            parts.push((
-                name.clone(),
-                segments.map_err(|e| {
-                    input!("{}: {e}", self.locate(&format!("mesh.segments.{name}")))
-                })?,
-            ));
+            parts.push((name.clone(), segments.map_err(|e| input!("{}: {e}", self.locate(&key)))?));
         }
         Ok((rectangle, parts))
     }

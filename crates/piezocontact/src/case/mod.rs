@@ -420,6 +420,11 @@ gap = 0.1
                 vec!["friction.mu_parts.left=0.2"],
                 vec!["friction.mu_parts.left", "not a contact part"],
             ),
+            // An empty list of segments made an empty Γ3: the run ended without contact.
+            (
+                vec!["mesh.segments.bottom=[]"],
+                vec![&format!("case.toml:{}: mesh.segments.bottom is empty", line("bottom"))],
+            ),
             (vec!["mesh.file=\"x.msh\""], vec!["mesh.x describes the built-in rectangle"]),
             (vec!["solver.nonsense=1"], vec!["unknown field `nonsense`"]),
             (vec!["solver"], vec!["--set solver: expected dotted.key=value"]),
