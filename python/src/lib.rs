@@ -2,7 +2,7 @@
 //! that the `piezocontact` command uses, and get its results as numpy arrays.
 //!
 //! - `solve(case_path, overrides=None)` runs what `piezocontact run` runs; `overrides` maps
-//!   dotted keys to values, as `--set` does.
+//!   dotted keys to values, applied in the dict's order as `--set`s are.
 //! - `Case.from_dict(...)`, `Case.from_file(...)` and `Case.solve()`.
 //! - `Solution`: `summary` (summary.json as a dict), `contact` (the contact.csv columns),
 //!   `points`, `u`, `phi`, `converged`, and `write(directory)` (the files `run` writes).
@@ -86,24 +86,29 @@ fn toml_value(value: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
 fn toml_table(dict: &Bound<'_, PyDict>, prefix: &str) -> PyResult<toml::Table> {
     let mut table = toml::Table::new();
     for (key, value) in dict.iter() {
-        let key: String = key.extract().map_err(|_| {
-            CaseError::new_err(format!(
-                "case keys are strings, not {}",
-                key.repr().map_or_else(|_| "?".into(), |r| r.to_string())
-            ))
-        })?;
+        let key: String = key.extract().map_err(|_| key_error(&key))?;
         let value = toml_value(&value, &format!("{prefix}{key}"))?;
         table.insert(key, value);
     }
     Ok(table)
 }
 
-/// `overrides` as `--set` strings "dotted.key=value".
+/// The error of a dict key that is not a string.
+fn key_error(key: &Bound<'_, PyAny>) -> PyErr {
+    let shown = key.repr().map_or_else(|_| "?".into(), |r| r.to_string());
+    CaseError::new_err(format!("case keys are strings, not {shown}"))
+}
+
+/// `overrides` as `--set` strings "dotted.key=value", in the dict's order (a later key
+/// overrides an earlier one, as a later `--set` does).
 fn override_strings(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<String>> {
     let Some(overrides) = overrides else { return Ok(Vec::new()) };
-    toml_table(overrides, "")?
-        .into_iter()
-        .map(|(key, value)| Ok(format!("{key}={value}")))
+    overrides
+        .iter()
+        .map(|(key, value)| {
+            let key: String = key.extract().map_err(|_| key_error(&key))?;
+            Ok(format!("{key}={}", toml_value(&value, &key)?))
+        })
         .collect()
 }
 

@@ -116,6 +116,12 @@ def test_a_dict_override_sets_its_keys_and_keeps_the_table_s_others():
     assert nested.summary["method"] == "uzawa"
     assert nested.summary["inner_iterations"] == dotted.summary["inner_iterations"]
     np.testing.assert_array_equal(nested.contact["sigma_nu"], dotted.contact["sigma_nu"])
+    # A later key overrides an earlier one, in the dict's order, as a later --set does.
+    nodes = lambda overrides: len(piezocontact.solve(PAPER_71, overrides).points)  # noqa: E731
+    assert nodes({"mesh": {"nx": 24, "ny": 4}, "mesh.nx": 12}) == 13 * 5
+    assert nodes({"mesh.nx": 12, "mesh": {"nx": 24, "ny": 4}}) == 25 * 5
+    with pytest.raises(piezocontact.CaseError, match="case keys are strings, not 1"):
+        piezocontact.solve(PAPER_71, {1: 2})
 
 
 def test_the_case_s_warnings_are_python_warnings(tmp_path):
