@@ -594,7 +594,11 @@ fn print_memory_prediction(
 
 fn mesh_info(path: &Path) -> Result<()> {
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let info = gmsh::inspect(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let info = gmsh::inspect(&bytes).map_err(|e| {
+        let case = path.extension().is_some_and(|x| x == "toml");
+        let hint = if case { " (a case file: `piezocontact check` prints its mesh)" } else { "" };
+        anyhow::anyhow!("{}: {e}{hint}", path.display())
+    })?;
     say!("{}: MSH 4.1 {}", path.display(), if info.binary { "binary" } else { "ASCII" });
     say!("nodes: {}", info.nodes);
     say!("elements:");

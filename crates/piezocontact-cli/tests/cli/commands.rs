@@ -422,6 +422,11 @@ fn error_messages() {
         &["mesh-info", dir.join("bad.msh").to_str().unwrap()],
         &["bad.msh", "no $MeshFormat section"],
     );
+    // A case file given to mesh-info: the command that reads it is named.
+    assert_error(
+        &["mesh-info", "cases/paper-7.1.toml"],
+        &["no $MeshFormat section", "a case file: `piezocontact check"],
+    );
     assert_error(&["bench", "--sizes", "12by3"], &["'12by3' is not NXxNY"]);
     // No runs at a time is a usage error (--jobs 0 ran on every core), as --threads 0 is.
     for command in
