@@ -627,6 +627,10 @@ fn outer_loop_name(model: &ContactModel) -> String {
     format!("the fixed-point loop (Algorithm {})", if model.pv2.is_some() { 1 } else { 3 })
 }
 
+/// The way out of a fixed point that the lagged contact terms defeat.
+const NOT_LAGGED: &str = "solver.method = \"newton\" (the exact solver) solves the same problem \
+                          without lagging them";
+
 /// The error of a fixed-point loop that reached solver.max_outer.
 fn outer_cap(
     model: &ContactModel,
@@ -640,10 +644,18 @@ fn outer_cap(
         criterion: solution.outer_history.last().copied().unwrap_or(f64::NAN),
         tolerance: method.outer_tolerance(),
         history: tail(&solution.outer_history),
-        hint: format!(
-            "raise solver.max_outer (now {max_outer}); a criterion that stalls means the lagged \
-             contact terms (h_ν, ψ) are too strong for the fixed point"
-        ),
+        hint: if method.lags_contact() {
+            format!(
+                "raise solver.max_outer (now {max_outer}); a criterion that stalls means the \
+                 lagged contact terms (h_ν, ψ, the friction bound) are too strong for the fixed \
+                 point: {NOT_LAGGED}"
+            )
+        } else {
+            format!(
+                "raise solver.max_outer (now {max_outer}); the loop iterates on Hencky's law \
+                 alone (summary.json's hencky_tangent says where its tangent was floored)"
+            )
+        },
     }
 }
 
@@ -683,18 +695,20 @@ fn outer_failure(model: &ContactModel, solution: &ContactSolution) -> Option<Err
     let n = solution.outer_iterations;
     let what = outer_loop_name(model);
     let last = *solution.outer_history.last()?;
-    let hint = "the lagged contact terms are too strong for the fixed point: reduce \
-                conductivity.ke, contact.c_nu or contact.penetration";
+    let hint = format!(
+        "the lagged contact terms are too strong for the fixed point: reduce conductivity.ke, \
+         contact.c_nu or contact.penetration, or {NOT_LAGGED}"
+    );
     if !last.is_finite() || solution.s.iter().any(|v| !v.is_finite()) {
         let cause = "the criterion or the friction bound s is not finite".into();
-        return Some(Error::NumericalFailure { what, iteration: n, cause, hint: hint.into() });
+        return Some(Error::NumericalFailure { what, iteration: n, cause, hint });
     }
     let smallest = solution.outer_history.iter().copied().fold(f64::INFINITY, f64::min);
     (n >= 3 && last > DIVERGENCE * smallest).then(|| Error::Diverged {
         what,
         iteration: n,
         history: tail(&solution.outer_history),
-        hint: hint.into(),
+        hint,
     })
 }
 

@@ -404,3 +404,31 @@ fn a_nan_in_an_iterate_is_a_numerical_failure() {
     );
     assert!(solution.x.iter().all(|v| v.is_finite()));
 }
+
+/// A mollifier as wide as Γ3 (radius 12 m on the paper's 12 m bar) couples every friction
+/// bound to every σ_ν: the paper's fixed point, which lags them, stalls above ε_fp; its
+/// message names the exact solver, which solves the same problem to its KKT conditions.
+#[test]
+fn a_fixed_point_that_stalls_names_the_exact_solver() {
+    use piezocontact::case::Case;
+    use piezocontact::run::ContactRun;
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/paper-7.2.toml");
+    let run = |method: &str| {
+        let sets = [
+            "mesh.nx=24",
+            "mesh.ny=4",
+            "friction.regularization=\"mollifier\"",
+            "friction.radius=12.0",
+            &format!("solver.method=\"{method}\""),
+        ];
+        let overrides: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        ContactRun::solve(&Case::load(&file, &overrides).unwrap()).unwrap()
+    };
+    let uzawa = run("uzawa");
+    let failure = uzawa.solution.failure.map(|e| e.to_string()).unwrap_or_default();
+    assert!(failure.contains("solver.method = \"newton\" (the exact solver)"), "{failure}");
+    let newton = run("newton");
+    assert!(newton.solution.converged, "{:?}", newton.solution.failure);
+    let (problem, model, settings) = (&newton.problem, &newton.model, &newton.settings);
+    assert_kkt(problem, model, settings, &newton.solution);
+}
