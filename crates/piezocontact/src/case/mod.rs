@@ -425,6 +425,10 @@ gap = 0.1
                 vec!["mesh.segments.bottom=[]"],
                 vec![&format!("case.toml:{}: mesh.segments.bottom is empty", line("bottom"))],
             ),
+            (
+                vec!["friction.regularization=\"mollifier\""],
+                vec!["regularization = \"mollifier\" needs its radius a > 0"],
+            ),
             (vec!["mesh.file=\"x.msh\""], vec!["mesh.x describes the built-in rectangle"]),
             (vec!["solver.nonsense=1"], vec!["unknown field `nonsense`"]),
             (vec!["solver"], vec!["--set solver: expected dotted.key=value"]),

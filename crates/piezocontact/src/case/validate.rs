@@ -82,7 +82,7 @@ impl Case {
                     "friction.radius",
                     fr.radius,
                     positive,
-                    "a mollifier radius a > 0",
+                    "friction.regularization = \"mollifier\" needs its radius a > 0",
                 ));
             }
             for (name, &mu) in &fr.mu_parts {
