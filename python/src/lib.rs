@@ -8,8 +8,9 @@
 //!   `points`, `u`, `phi`, `converged`, and `write(directory)` (the files `run` writes).
 //!
 //! Bad input raises `CaseError`, a `ValueError` with the command line's message (file, line,
-//! key); what `run` warns of a case, a `CaseWarning` (a `UserWarning`). In `overrides`, a dict
-//! sets the keys it names and keeps the table's others. The solve runs without the GIL, and a panic inside it becomes a `RuntimeError`.
+//! key); what `run` warns of a case, a `CaseWarning` (a `UserWarning`). In `overrides`, a
+//! dict sets the keys it names and keeps the table's others. The solve runs without the GIL,
+//! and a panic inside it becomes a `RuntimeError`.
 
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use piezocontact::case::Case as CaseFile;
@@ -198,10 +199,9 @@ fn watched<T: Send + 'static>(
 }
 
 /// Solves `case` on at most `threads` threads without the GIL; its warnings (those `run`
-/// prints) are `CaseWarning`s, a panic becomes a
-/// `RuntimeError`, an unconverged run a `RuntimeWarning` (its results are there, marked
-/// `converged = False`), Ctrl-C during the solve a `KeyboardInterrupt` once the run has
-/// stopped.
+/// prints) are `CaseWarning`s, a panic becomes a `RuntimeError`, an unconverged run a
+/// `RuntimeWarning` (its results are there, marked `converged = False`), Ctrl-C during the
+/// solve a `KeyboardInterrupt` once the run has stopped.
 fn solve_case(py: Python<'_>, case: CaseFile, threads: Option<i64>) -> PyResult<Solution> {
     for warning in case.setting_warnings() {
         let message = CString::new(warning).unwrap_or_default();
