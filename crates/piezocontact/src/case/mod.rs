@@ -420,15 +420,32 @@ gap = 0.1
                 vec!["friction.mu_parts.left=0.2"],
                 vec!["friction.mu_parts.left", "not a contact part"],
             ),
-            // An empty list of segments made an empty Γ3: the run ended without contact.
-            (
-                vec!["mesh.segments.bottom=[]"],
-                vec![&format!("case.toml:{}: mesh.segments.bottom is empty", line("bottom"))],
-            ),
             (
                 vec!["friction.regularization=\"mollifier\""],
                 vec!["regularization = \"mollifier\" needs its radius a > 0"],
             ),
+        ] {
+            assert_error_names(&overrides, &pieces);
+        }
+    }
+
+    /// The error of MINIMAL with `overrides` holds each of `pieces`.
+    fn assert_error_names(overrides: &[&str], pieces: &[&str]) {
+        let e = error(MINIMAL, overrides);
+        for piece in pieces {
+            assert!(e.contains(piece), "{overrides:?}: '{e}' lacks '{piece}'");
+        }
+    }
+
+    #[test]
+    fn errors_of_the_mesh_and_of_the_syntax_name_the_key_and_the_fix() {
+        let line = |key: &str| {
+            MINIMAL.lines().position(|l| l.starts_with(key)).map(|k| k + 1).unwrap_or(0)
+        };
+        // An empty list of segments made an empty Γ3: the run ended without contact.
+        let empty = format!("case.toml:{}: mesh.segments.bottom is empty", line("bottom"));
+        for (overrides, pieces) in [
+            (vec!["mesh.segments.bottom=[]"], vec![empty.as_str()]),
             (vec!["mesh.file=\"x.msh\""], vec!["mesh.x describes the built-in rectangle"]),
             (vec!["solver.nonsense=1"], vec!["unknown field `nonsense`"]),
             (vec!["solver"], vec!["--set solver: expected dotted.key=value"]),
@@ -438,10 +455,7 @@ gap = 0.1
                 vec!["would need about", "reduce mesh.nx"],
             ),
         ] {
-            let e = error(MINIMAL, &overrides);
-            for piece in pieces {
-                assert!(e.contains(piece), "{overrides:?}: '{e}' lacks '{piece}'");
-            }
+            assert_error_names(&overrides, &pieces);
         }
         let e = error("[mesh]\nnx = 'a'\n", &[]);
         assert!(e.starts_with("case.toml: TOML parse error at line 2"), "{e}");
