@@ -191,12 +191,18 @@ pub fn zone_measures(solution: &ContactSolution, rows: &[Row]) -> (f64, f64, f64
 /// point, with the Uzawa method), "whole" (the exact solver's Newton iteration with the whole
 /// tangent, also beyond e·t0, where the law's modulus along ε^D is not positive; the word for
 /// a linear law too), or "floored in k of n outer steps" where that iteration cycled or made
-/// a pivot of B̌ change sign.
+/// a pivot of B̌ change sign, with ", c of them chord steps on a kept factorisation" when
+/// the floor stayed.
 pub fn hencky_tangent(solution: &ContactSolution, lags: bool) -> String {
-    match solution.floored_steps {
+    let floored = format!(
+        "floored in {} of {} outer steps",
+        solution.floored_steps, solution.outer_iterations
+    );
+    match (solution.floored_steps, solution.chord_steps) {
         _ if lags => "secant".into(),
-        0 => "whole".into(),
-        k => format!("floored in {k} of {} outer steps", solution.outer_iterations),
+        (0, _) => "whole".into(),
+        (_, 0) => floored,
+        (_, c) => format!("{floored}, {c} of them chord steps on a kept factorisation"),
     }
 }
 

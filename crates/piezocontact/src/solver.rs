@@ -190,6 +190,34 @@ impl CoupledSystem {
         Ok(())
     }
 
+    /// Keeps the factorisation of B̌ (made with an earlier linearisation, matrix M) and sets
+    /// the right-hand side of a chord step at x: that of `linearisation` (made at x, matrix
+    /// K) plus (M − K) x on the free DOFs. The step M x_{n+1} = f̌ + (M − K_sec(x)) x +
+    /// contact forces then has the same fixed point as Newton's, the true equations, at the
+    /// cost of solves (model §13).
+    pub fn chord(
+        &mut self,
+        problem: &Problem,
+        linearisation: &Linearisation,
+        blocks: &[NodalBlock],
+        x: &[f64],
+    ) -> Result<()> {
+        let t = Instant::now();
+        let frozen = self
+            .matrix
+            .as_ref()
+            .ok_or_else(|| Error::LinearAlgebra("a chord step needs a factorised matrix".into()))?;
+        let (matrix, lifting) = self.assembler.linearised_matrix(problem, linearisation, blocks)?;
+        let x_free = self.assembler.restrict(x);
+        let (m_x, k_x) = (frozen.mul(&x_free), matrix.mul(&x_free));
+        self.lifting =
+            lifting.iter().zip(m_x.iter().zip(&k_x)).map(|(l, (m, k))| l + m - k).collect();
+        self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
+        self.unloaded = None;
+        self.assembly_seconds += t.elapsed().as_secs_f64();
+        Ok(())
+    }
+
     /// Assembles f̌ again from `problem` — the same mesh and boundary with other loads (a
     /// step of a loading path) — keeping the matrix and its factorisation.
     pub fn reload(&mut self, problem: &Problem) {

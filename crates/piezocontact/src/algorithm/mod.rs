@@ -267,6 +267,9 @@ pub struct ContactSolution {
     /// The outer steps in which the exact solver floored Hencky's tangent beyond e·t0
     /// (model §13).
     pub floored_steps: usize,
+    /// The outer steps that were chord steps on a kept factorisation of the floored tangent
+    /// instead of a factorisation (model §13).
+    pub chord_steps: usize,
 }
 
 /// Solves PV1 (Algorithm 3 around the inner method) or PV2 (Algorithm 1 around it) with the
@@ -313,6 +316,9 @@ pub struct ContactSolver {
     /// its signs): once (or floored by the last solve), the floored tangent takes one step;
     /// twice, every step after.
     whole_failures: usize,
+    /// Whether the factorisation holds B̌ with the floored tangent: once the floor stays,
+    /// the steps are chord steps on it while they contract (model §13).
+    floored_factor: bool,
     max_outer: usize,
     /// The load factor f̌ was assembled with.
     load_factor: f64,
@@ -350,6 +356,7 @@ impl ContactSolver {
             changed: true,
             beyond: Beyond::Whole,
             whole_failures: 0,
+            floored_factor: false,
             max_outer,
             load_factor: problem.load_factor,
             last: None,
@@ -389,13 +396,25 @@ impl ContactSolver {
         let lags = self.method.lags_contact();
         // The linearisation of the last solve is kept (floored or not), its failures are not.
         self.whole_failures = 0;
+        // Chord steps since the last factorisation.
+        let mut chords = 0;
         for n in 1..=self.max_outer {
             if let Some(signal) = crate::interrupt::requested() {
                 solution.failure = Some(Error::Interrupted { signal });
                 break;
             }
             progress(Progress::Outer { step: n, max: self.max_outer });
-            if self.changed {
+            if self.changed && self.chord_contracts(&solution.outer_history, chords) {
+                let blocks = self.method.blocks();
+                if let Err(e) = self.system.chord(problem, &self.linearisation, blocks, &solution.x)
+                {
+                    solution.failure = Some(factorisation_failure(n, e));
+                    break;
+                }
+                solution.chord_steps += 1;
+                chords += 1;
+            } else if self.changed {
+                chords = 0;
                 progress(Progress::Factorising { unknowns: self.system.dofs().n_free() });
                 if let Err(e) = self.factorise(problem, &solution.x) {
                     solution.failure = Some(factorisation_failure(n, e));
@@ -462,6 +481,26 @@ impl ContactSolver {
         Ok(criterion)
     }
 
+    /// Whether the next step is a chord step on the factorisation held: once the floor stays
+    /// (Newton's whole tangent failed twice) and B̌ was factorised with it, when the last
+    /// step's criterion fell and, after a chord step, by a ratio at most the square root of
+    /// the last fresh factorisation's (half its digits or more). The floored tangent
+    /// converges linearly, and so does the chord on it, at the cost of solves instead of a
+    /// factorisation per step.
+    fn chord_contracts(&self, history: &[f64], chords: usize) -> bool {
+        let ratio = |k: usize| history[k] / history[k - 1];
+        let n = history.len();
+        // The ratio of the last step on a fresh factorisation, and of the last step.
+        let fresh = n.checked_sub(chords + 1).filter(|&k| k >= 1).map(ratio);
+        let last = (n >= 2).then(|| ratio(n - 1));
+        let contracts = match (fresh, last) {
+            (Some(fresh), Some(last)) if chords > 0 => last <= fresh.sqrt(),
+            (_, Some(last)) => last < 1.0,
+            _ => false,
+        };
+        self.floored_factor && self.whole_failures >= 2 && contracts
+    }
+
     /// Factorises B̌ with the linearisation made at `x` (x_n). When the whole tangent gives a
     /// pivot of the wrong sign (Hencky's law not positive beyond e·t0 in enough elements that
     /// B̌ is no longer quasi-definite), it fails (`whole_failures`) and the floored tangent at
@@ -471,6 +510,7 @@ impl ContactSolver {
         let blocks = self.method.blocks();
         let factorised = self.system.factorize_linearised(problem, &self.linearisation, blocks);
         let lags = self.method.lags_contact();
+        self.floored_factor = self.beyond == Beyond::Floored && factorised.is_ok();
         if !matches!(factorised, Err(Error::SingularSystem { .. })) || self.beyond != Beyond::Whole
         {
             return factorised;
@@ -481,7 +521,9 @@ impl ContactSolver {
         }
         self.linearisation = floored;
         (self.beyond, self.whole_failures) = (Beyond::Floored, self.whole_failures + 1);
-        self.system.factorize_linearised(problem, &self.linearisation, blocks)
+        let factorised = self.system.factorize_linearised(problem, &self.linearisation, blocks);
+        self.floored_factor = factorised.is_ok();
+        factorised
     }
 
     /// The end of a solve: the cap's error if no other stop, timings, the residuals, and the
@@ -743,6 +785,7 @@ impl ContactSolution {
             timings: Timings::default(),
             slip_origin: Vec::new(),
             floored_steps: 0,
+            chord_steps: 0,
         }
     }
 
