@@ -36,7 +36,7 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
     }
     if solution.floored_steps > 0 {
         let tangent = piezocontact::report::hencky_tangent(solution, !exact);
-        say!("  Hencky tangent     = {tangent} beyond e·t0");
+        say!("  Hencky tangent     = {tangent} (beyond e·t0)");
     }
     say!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
     say!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
