@@ -364,9 +364,6 @@ gap = 0.1
 
     #[test]
     fn errors_name_the_file_the_line_the_key_and_the_fix() {
-        let line = |key: &str| {
-            MINIMAL.lines().position(|l| l.starts_with(key)).map(|k| k + 1).unwrap_or(0)
-        };
         for (overrides, pieces) in [
             (vec!["solver.r=-1"], vec!["case.toml:", "solver.r = -1 is not allowed: r > 0"]),
             (vec!["solver.max_inner=0"], vec!["solver.max_inner = 0", "at least 1"]),
@@ -429,6 +426,11 @@ gap = 0.1
         }
     }
 
+    /// The line (1-based) of MINIMAL that starts with `key`.
+    fn line(key: &str) -> usize {
+        MINIMAL.lines().position(|l| l.starts_with(key)).map_or(0, |k| k + 1)
+    }
+
     /// The error of MINIMAL with `overrides` holds each of `pieces`.
     fn assert_error_names(overrides: &[&str], pieces: &[&str]) {
         let e = error(MINIMAL, overrides);
@@ -439,9 +441,6 @@ gap = 0.1
 
     #[test]
     fn errors_of_the_mesh_and_of_the_syntax_name_the_key_and_the_fix() {
-        let line = |key: &str| {
-            MINIMAL.lines().position(|l| l.starts_with(key)).map(|k| k + 1).unwrap_or(0)
-        };
         // An empty list of segments made an empty Γ3: the run ended without contact.
         let empty = format!("case.toml:{}: mesh.segments.bottom is empty", line("bottom"));
         for (overrides, pieces) in [
