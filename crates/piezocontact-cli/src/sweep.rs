@@ -35,7 +35,9 @@ pub fn run_each(jobs: Vec<Job>, threads: usize) -> Vec<Result<ContactRun>> {
         Err(e) => return jobs.iter().map(|_| Err(anyhow!("thread pool: {e}"))).collect(),
     };
     let total = jobs.len();
-    let bar = std::io::stderr().is_terminal().then(|| {
+    // Progress: a bar on a terminal, else a line per run; nothing with --quiet.
+    let shown = !crate::say::quiet();
+    let bar = (shown && std::io::stderr().is_terminal()).then(|| {
         let bar = ProgressBar::new(total as u64);
         bar.set_style(
             ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} {msg}")
@@ -64,7 +66,8 @@ pub fn run_each(jobs: Vec<Job>, threads: usize) -> Vec<Result<ContactRun>> {
                         bar.inc(1);
                         bar.set_message(line);
                     }
-                    None => say_err!("[{k}/{total}] {line}"),
+                    None if shown => say_err!("[{k}/{total}] {line}"),
+                    None => {}
                 }
                 run
             })
@@ -174,14 +177,15 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
         let case = Case::load(request.case, &overrides)?;
         case.one_position()?;
         let label = format!("{}={value}", keys.join("="));
-        jobs.push(Job { label, case, out: Some(request.out.join(format!("run-{i:02}"))) });
+        jobs.push(Job { label, case, out: Some(request.out.join(run_directory(i))) });
     }
     let units = jobs[0].case.file.units.clone();
     let runs = run_each(jobs, threads(request.jobs));
     let mut csv = keys.join(",");
     csv.push_str(",outer_iterations,inner_iterations,converged,max_abs_sigma_nu,max_abs_sigma_tau,contact_length,stick_length,slip_length,distance_to_reference,wall_seconds\n");
-    let (mut converged, mut failed) = (true, 0);
-    for (value, run) in values.iter().zip(&runs) {
+    let (mut unconverged, mut failed) = (Vec::new(), 0);
+    let label = keys.join("=");
+    for (i, (value, run)) in values.iter().zip(&runs).enumerate() {
         let values = vec![csv_field(value); keys.len()].join(",");
         match run {
             Ok(run) => {
@@ -190,7 +194,14 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
                     None => String::new(),
                 };
                 let _ = writeln!(csv, "{values},{}", row(run, &distance));
-                converged &= run.solution.converged;
+                if let Some(failure) = &run.solution.failure {
+                    let out = request.out.join(run_directory(i));
+                    unconverged.push(format!(
+                        "run {label}={value}: {failure}; its partial result is in {} (marked \
+                         \"converged\": false, as its row of sweep.csv)",
+                        out.display()
+                    ));
+                }
             }
             Err(e) => {
                 say_err!("error: {e:#}");
@@ -205,6 +216,9 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
         say!("{}", units_line(&units, run.problem.mesh.dim()));
     }
     say!("wrote {} and one directory per run", request.out.join("sweep.csv").display());
+    for run in &unconverged {
+        say_err!("error: {run}");
+    }
     if failed > 0 {
         bail!(
             "{failed} of {} runs failed (the errors above); their rows in sweep.csv are marked \
@@ -212,7 +226,12 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
             runs.len()
         );
     }
-    Ok(converged)
+    Ok(unconverged.is_empty())
+}
+
+/// The directory of run i of a sweep, in its output directory.
+fn run_directory(i: usize) -> String {
+    format!("run-{i:02}")
 }
 
 /// What the columns of sweep.csv measure, in the case's units, for a `dim`-D body.

@@ -380,6 +380,39 @@ fn a_sweep_keeps_the_rows_of_the_runs_that_fail() {
     assert!(out.join("run-01/summary.json").exists() && !out.join("run-00").exists());
 }
 
+/// A sweep whose run stops at its cap exits 3 and names that run, why it stopped and where
+/// its partial result is; with --quiet that error is all it prints (no progress line).
+#[test]
+fn a_quiet_sweep_names_the_run_that_did_not_converge() {
+    let out = temp_dir("sweep-unconverged");
+    let o = piezocontact(&[
+        "-q",
+        "sweep",
+        "cases/paper-7.1.toml",
+        "--set",
+        "mesh.nx=24",
+        "--set",
+        "mesh.ny=4",
+        "--set",
+        "solver.method=\"uzawa\"",
+        "--set-list",
+        "solver.max_inner=1,5000",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(3), "{}", text(&o));
+    assert!(o.stdout.is_empty(), "{}", text(&o));
+    let run_00 = out.join("run-00");
+    let lines: Vec<&str> = stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "{stderr}");
+    assert!(lines[0].starts_with("error: run solver.max_inner=1: "), "{stderr}");
+    assert!(lines[0].contains("did not converge in 1 iteration"), "{stderr}");
+    assert!(lines[0].contains(&format!("in {} (marked", run_00.display())), "{stderr}");
+    let summary = std::fs::read_to_string(run_00.join("summary.json")).unwrap();
+    assert!(summary.contains("\"converged\": false"), "{summary}");
+}
+
 /// A case with a loading path is refused by sweep before any run, at the line of its
 /// [loading] table: one run per value would solve the foundation's first position alone.
 #[test]
