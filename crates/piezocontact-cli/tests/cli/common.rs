@@ -99,16 +99,21 @@ pub fn temp_dir(name: &str) -> PathBuf {
 
 /// `piezocontact run CASE --out OUT` on the coarse 24 × 4 mesh, with more `--set`s.
 pub fn run_coarse(case: &str, out: &Path, sets: &[&str]) -> Output {
-    let mut args = vec![
-        "run",
-        case,
-        "--out",
-        out.to_str().unwrap(),
-        "--set",
-        "mesh.nx=24",
-        "--set",
-        "mesh.ny=4",
-    ];
+    coarse(&["run", case], out, sets)
+}
+
+/// `piezocontact sweep CASE --set-list LIST --out OUT` (and `extra` arguments) on the coarse
+/// 24 × 4 mesh, with more `--set`s.
+pub fn sweep_coarse(case: &str, list: &str, extra: &[&str], out: &Path, sets: &[&str]) -> Output {
+    let head: Vec<&str> =
+        ["sweep", case, "--set-list", list].iter().chain(extra).copied().collect();
+    coarse(&head, out, sets)
+}
+
+/// The command `head` with `--out OUT` on the coarse 24 × 4 mesh and more `--set`s.
+fn coarse(head: &[&str], out: &Path, sets: &[&str]) -> Output {
+    let mut args = head.to_vec();
+    args.extend(["--out", out.to_str().unwrap(), "--set", "mesh.nx=24", "--set", "mesh.ny=4"]);
     for set in sets {
         args.extend(["--set", set]);
     }

@@ -2,7 +2,7 @@
 //! unconverged and exit with their documented code; output directories are never clobbered;
 //! a killed run leaves only complete files.
 
-use super::common::{command, null_paths, piezocontact, root, run_coarse, text};
+use super::common::{command, null_paths, piezocontact, root, run_coarse, sweep_coarse, text};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Duration;
@@ -353,20 +353,9 @@ fn a_stale_staging_directory_is_removed_by_the_next_run() {
 #[test]
 fn a_sweep_keeps_the_rows_of_the_runs_that_fail() {
     let out = temp_dir("sweep-failed-run");
-    let o = piezocontact(&[
-        "sweep",
-        "cases/paper-7.1.toml",
-        "--set",
-        "mesh.nx=24",
-        "--set",
-        "mesh.ny=4",
-        "--set",
-        "solver.method=\"newton\"",
-        "--set-list",
-        "solver.max_condensed=1,100",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let newton = "solver.method=\"newton\"";
+    let o =
+        sweep_coarse("cases/paper-7.1.toml", "solver.max_condensed=1,100", &[], &out, &[newton]);
     let t = text(&o);
     assert_eq!(o.status.code(), Some(1), "{t}");
     assert!(t.contains("run solver.max_condensed=1: ") && t.contains("1 of 2 runs failed"), "{t}");
@@ -385,21 +374,8 @@ fn a_sweep_keeps_the_rows_of_the_runs_that_fail() {
 #[test]
 fn a_quiet_sweep_names_the_run_that_did_not_converge() {
     let out = temp_dir("sweep-unconverged");
-    let o = piezocontact(&[
-        "-q",
-        "sweep",
-        "cases/paper-7.1.toml",
-        "--set",
-        "mesh.nx=24",
-        "--set",
-        "mesh.ny=4",
-        "--set",
-        "solver.method=\"uzawa\"",
-        "--set-list",
-        "solver.max_inner=1,5000",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let (uzawa, list) = ("solver.method=\"uzawa\"", "solver.max_inner=1,5000");
+    let o = sweep_coarse("cases/paper-7.1.toml", list, &["-q"], &out, &[uzawa]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(3), "{}", text(&o));
     assert!(o.stdout.is_empty(), "{}", text(&o));
