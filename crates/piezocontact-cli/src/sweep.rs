@@ -155,10 +155,11 @@ pub struct SweepRequest<'a> {
     pub out: &'a Path,
 }
 
-/// Runs a sweep; returns whether every run converged. A run that fails (the solver refused
-/// its case) keeps its row, marked unconverged with its measures empty, its error goes to
-/// stderr, and the sweep fails once sweep.csv is written; a case with a loading path is
-/// refused before any run.
+/// Runs a sweep; returns whether every run converged. A run that stops at a cap keeps its
+/// row and files, marked unconverged, and an error line on stderr names it, why it stopped
+/// and its directory. A run that fails (the solver refused its case) keeps its row, marked
+/// unconverged with its measures empty, its error goes to stderr, and the sweep fails once
+/// sweep.csv is written; a case with a loading path is refused before any run.
 pub fn sweep(request: &SweepRequest) -> Result<bool> {
     let (keys, values) = parse_set_list(request.set_list)?;
     let reference = if request.reference.is_empty() {
