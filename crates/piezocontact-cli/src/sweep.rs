@@ -171,21 +171,24 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
         let out = request.out.join("reference");
         Some(run_jobs(vec![Job { label: "reference".into(), case, out: Some(out) }], 1)?.remove(0))
     };
+    let labels: Vec<String> = values.iter().map(|v| format!("{}={v}", keys.join("="))).collect();
     let mut jobs = Vec::new();
-    for (i, value) in values.iter().enumerate() {
+    for (i, (value, label)) in values.iter().zip(&labels).enumerate() {
         let mut overrides = request.set.to_vec();
         overrides.extend(keys.iter().map(|k| format!("{k}={value}")));
         let case = Case::load(request.case, &overrides)?;
         case.one_position()?;
-        let label = format!("{}={value}", keys.join("="));
-        jobs.push(Job { label, case, out: Some(request.out.join(run_directory(i))) });
+        jobs.push(Job {
+            label: label.clone(),
+            case,
+            out: Some(request.out.join(run_directory(i))),
+        });
     }
     let units = jobs[0].case.file.units.clone();
     let runs = run_each(jobs, threads(request.jobs));
     let mut csv = keys.join(",");
     csv.push_str(",outer_iterations,inner_iterations,converged,max_abs_sigma_nu,max_abs_sigma_tau,contact_length,stick_length,slip_length,distance_to_reference,wall_seconds\n");
     let (mut unconverged, mut failed) = (Vec::new(), 0);
-    let label = keys.join("=");
     for (i, (value, run)) in values.iter().zip(&runs).enumerate() {
         let values = vec![csv_field(value); keys.len()].join(",");
         match run {
@@ -198,8 +201,9 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
                 if let Some(failure) = &run.solution.failure {
                     let out = request.out.join(run_directory(i));
                     unconverged.push(format!(
-                        "run {label}={value}: {failure}; its partial result is in {} (marked \
+                        "run {}: {failure}; its partial result is in {} (marked \
                          \"converged\": false, as its row of sweep.csv)",
+                        labels[i],
                         out.display()
                     ));
                 }

@@ -101,20 +101,26 @@ fn assert_agree(problem: &Problem, model: &ContactModel, what: &str) {
     assert!(d.iter().all(|v| *v < 1e-7), "{what}: {d:?}");
 }
 
-/// PV1; PV2 with R = identity and the mollifier; an active compliance and conduction layer;
-/// µ per part.
-fn agree_on_the_bar(nx: usize, ny: usize) {
+/// PV1 and an active compliance and conduction layer on the nx × ny bar: its problem.
+fn agree_on_pv1_and_the_layer(nx: usize, ny: usize) -> Problem {
     let problem = paper_problem(nx, ny, PAPER_UNITS, ElasticLaw::Linear);
     let mesh = format!("{nx}x{ny}");
     assert_agree(&problem, &paper_model(None, 0.0, PAPER_UNITS), &format!("{mesh} PV1"));
+    // An active compliance and conduction layer: p_ν, h_ν and ψ φ_L act at the solution.
+    let layer = paper_model(Some((0.2, 0.2)), 0.05, PAPER_UNITS);
+    assert_agree(&problem, &layer, &format!("{mesh} PV2, g_p = 0.05"));
+    problem
+}
+
+/// PV1 and the layer; PV2 with R = identity and the mollifier; µ per part.
+fn agree_on_the_bar(nx: usize, ny: usize) {
+    let problem = agree_on_pv1_and_the_layer(nx, ny);
+    let mesh = format!("{nx}x{ny}");
     let pv2 = paper_model(Some((0.6, 1.0)), 0.0, PAPER_UNITS);
     assert_agree(&problem, &pv2, &format!("{mesh} PV2, R = identity"));
     let mut mollified = pv2.clone();
     mollified.pv2.as_mut().unwrap().0.regularization = Regularization::Mollifier { radius: 1.0 };
     assert_agree(&problem, &mollified, &format!("{mesh} PV2, R = mollifier"));
-    // An active compliance and conduction layer: p_ν, h_ν and ψ φ_L act at the solution.
-    let layer = paper_model(Some((0.2, 0.2)), 0.05, PAPER_UNITS);
-    assert_agree(&problem, &layer, &format!("{mesh} PV2, g_p = 0.05"));
     // µ per part: 0.6 on [2,6]×{0}, 0.1 on [6,10]×{0}.
     let split = paper_problem_with_contact(
         nx,
@@ -140,10 +146,7 @@ fn newton_agrees_with_tight_uzawa_on_the_paper_bar_48x8() {
 /// which the 48 × 8 bar checks and which took 185 of this test's 220 s).
 #[test]
 fn newton_agrees_with_tight_uzawa_on_the_paper_bar_96x16() {
-    let problem = paper_problem(96, 16, PAPER_UNITS, ElasticLaw::Linear);
-    assert_agree(&problem, &paper_model(None, 0.0, PAPER_UNITS), "96x16 PV1");
-    let layer = paper_model(Some((0.2, 0.2)), 0.05, PAPER_UNITS);
-    assert_agree(&problem, &layer, "96x16 PV2, g_p = 0.05");
+    agree_on_pv1_and_the_layer(96, 16);
 }
 
 #[test]
