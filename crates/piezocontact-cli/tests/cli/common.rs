@@ -89,11 +89,52 @@ pub fn text(o: &Output) -> String {
     format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
 }
 
+/// A temporary directory of one test: removed when the test passes, kept (its path printed)
+/// when it fails, for a look at what the command wrote.
+pub struct TempDir(PathBuf);
+
+impl TempDir {
+    /// The path for test `name`, with nothing there yet (as `--out` wants it).
+    pub fn unmade(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("piezocontact-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        TempDir(dir)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("the failed test's files are in {}", self.0.display());
+        } else {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+impl std::ops::Deref for TempDir {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for TempDir {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<std::ffi::OsStr> for TempDir {
+    fn as_ref(&self) -> &std::ffi::OsStr {
+        self.0.as_os_str()
+    }
+}
+
 /// A fresh, empty temporary directory for test `name`.
-pub fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("piezocontact-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+pub fn temp_dir(name: &str) -> TempDir {
+    let dir = TempDir::unmade(&format!("cli-{name}"));
+    std::fs::create_dir_all(&*dir).unwrap();
     dir
 }
 

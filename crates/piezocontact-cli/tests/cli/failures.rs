@@ -2,16 +2,16 @@
 //! unconverged and exit with their documented code; output directories are never clobbered;
 //! a killed run leaves only complete files.
 
-use super::common::{command, null_paths, piezocontact, root, run_coarse, sweep_coarse, text};
-use std::path::{Path, PathBuf};
+use super::common::{
+    TempDir, command, null_paths, piezocontact, root, run_coarse, sweep_coarse, text,
+};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
 /// A temporary directory that does not exist yet.
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = super::common::temp_dir(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
+fn temp_dir(name: &str) -> TempDir {
+    TempDir::unmade(&format!("cli-{name}"))
 }
 
 /// The exact solver's cap on Newton steps exits 3 with the last iterate written, marked
@@ -110,7 +110,8 @@ fn output_directories_are_never_clobbered() {
     let o = run(args(&["--set", "contact.problem=PV1"]));
     assert!(o.status.success(), "{}", text(&o));
     let case = std::fs::read_to_string(root().join("cases/paper-7.1.toml")).unwrap();
-    let without_contact = out.with_extension("case.toml");
+    let cases = super::common::temp_dir("clobber-case");
+    let without_contact = cases.join("case.toml");
     let stripped: String = case.split("\n[contact]").next().unwrap().to_string();
     std::fs::write(&without_contact, stripped).unwrap();
     let o = run(case_args(without_contact.to_str().unwrap(), &[]));
@@ -330,8 +331,8 @@ fn a_signal_stops_a_run_at_a_safe_point_with_what_it_has() {
 /// the same place; one of a process that still runs is left alone.
 #[test]
 fn a_stale_staging_directory_is_removed_by_the_next_run() {
-    let out = temp_dir("stale").join("run");
-    let parent = out.parent().unwrap();
+    let parent = temp_dir("stale");
+    let out = parent.join("run");
     // A pid above Linux's largest (2²²) belongs to no process.
     let dead = parent.join(".run.piezocontact-staging-4194305");
     let alive = parent.join(format!(".run.piezocontact-staging-{}", std::process::id()));

@@ -29,7 +29,8 @@ fn a_reader_that_stops_reading_ends_the_output_quietly() {
         assert!(stderr.is_empty(), "{args:?} wrote to stderr: {stderr}");
     }
     // The exit code is the command's own: an unusable mesh still exits 1.
-    let bad = temp_dir("closed-pipe").join("bad.msh");
+    let dir = temp_dir("closed-pipe");
+    let bad = dir.join("bad.msh");
     std::fs::write(&bad, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n").unwrap();
     let (code, stderr) = with_closed_stdout(&["mesh-info", bad.to_str().unwrap()]);
     assert_eq!(code, Some(1), "{stderr}");

@@ -731,5 +731,6 @@ mod tests {
         let png = std::fs::read(dir.join("loglog.png")).unwrap();
         assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
         assert!(png.len() > 5000);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
