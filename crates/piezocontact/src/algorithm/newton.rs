@@ -214,11 +214,19 @@ impl InnerMethod for Newton {
         result
     }
 
-    fn stop_context(&self, outer_step: usize, _pv2: bool) -> StopContext {
-        let hint = "the active set cycles or the Jacobian is singular: check that Γ3 can touch \
-                    the foundation only where the body is held, and report the case if it \
-                    persists"
+    fn stop_context(&self, outer_step: usize, pv2: bool) -> StopContext {
+        let mut hint = "the active set cycles or the Jacobian is singular: check that Γ3 can \
+                        touch the foundation only where the body is held"
             .to_string();
+        if pv2 {
+            // Measured: the cube pressed onto a plane with k_e = 1 and ϕ0 = 220 GV cycles here
+            // and converges by Uzawa (tests/cli/failures.rs).
+            hint += "; with PV2, a strong conduction (k_e |ϕ − ϕ0| large beside the contact \
+                     stresses) can hold nodes where its flux switches on (u_ν = g_a, the kink \
+                     of ψ), around which the iteration may cycle: solver.method = \"uzawa\" \
+                     may converge there";
+        }
+        hint += "; report the case if it persists";
         StopContext {
             what: format!("the semismooth Newton method of outer step {outer_step}"),
             tolerance: STEP_TOLERANCE,
