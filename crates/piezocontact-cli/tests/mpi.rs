@@ -109,8 +109,8 @@ fn a_process_that_fails_ends_every_process_with_one_message() {
     // Process 1 reads a case that does not exist, process 0 a good one (Open MPI's
     // colon syntax gives each its own arguments).
     let exe = env!("CARGO_BIN_EXE_piezocontact");
-    let out = out_dir("failing");
-    let out = out.to_str().unwrap();
+    let dir = out_dir("failing");
+    let out = dir.to_str().unwrap();
     let backend = "solver.backend=\"petsc\"";
     let start = Instant::now();
     let result = Command::new("mpirun")
@@ -128,6 +128,7 @@ fn a_process_that_fails_ends_every_process_with_one_message() {
         stderr.contains("cases/missing.toml") && stderr.contains("(process 1 of 2)"),
         "{stderr}"
     );
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

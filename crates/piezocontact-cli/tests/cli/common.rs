@@ -96,7 +96,8 @@ pub struct TempDir(PathBuf);
 impl TempDir {
     /// The path for test `name`, with nothing there yet (as `--out` wants it).
     pub fn unmade(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("piezocontact-{name}-{}", std::process::id()));
+        let dir =
+            std::env::temp_dir().join(format!("piezocontact-cli-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         TempDir(dir)
     }
@@ -133,7 +134,7 @@ impl AsRef<std::ffi::OsStr> for TempDir {
 
 /// A fresh, empty temporary directory for test `name`.
 pub fn temp_dir(name: &str) -> TempDir {
-    let dir = TempDir::unmade(&format!("cli-{name}"));
+    let dir = TempDir::unmade(name);
     std::fs::create_dir_all(&*dir).unwrap();
     dir
 }

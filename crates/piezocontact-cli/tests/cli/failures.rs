@@ -3,16 +3,11 @@
 //! a killed run leaves only complete files.
 
 use super::common::{
-    TempDir, command, null_paths, piezocontact, root, run_coarse, sweep_coarse, text,
+    TempDir, command, null_paths, piezocontact, root, run_coarse, sweep_coarse, temp_dir, text,
 };
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
-
-/// A temporary directory that does not exist yet.
-fn temp_dir(name: &str) -> TempDir {
-    TempDir::unmade(&format!("cli-{name}"))
-}
 
 /// PV2 with a strong conduction — cases/block-3d.toml on the unit cube, k_e = 1, g_p = 0.01,
 /// ϕ0 = 220 GV — where nodes settle at the kink of ψ: Newton cycles there and exits 3, and
@@ -20,7 +15,7 @@ fn temp_dir(name: &str) -> TempDir {
 /// half of this test is to change with it.)
 #[test]
 fn a_newton_cycle_at_the_conduction_s_kink_points_to_uzawa_which_converges() {
-    let out = temp_dir("strong-conduction");
+    let out = TempDir::unmade("strong-conduction");
     let sets = [
         "mesh.file=\"../meshes/cube.msh\"",
         "contact.problem=\"PV2\"",
@@ -47,7 +42,7 @@ fn a_newton_cycle_at_the_conduction_s_kink_points_to_uzawa_which_converges() {
 /// unconverged; without the cap the same case converges to the KKT tolerance.
 #[test]
 fn a_newton_cap_exits_3_with_the_last_iterate_written() {
-    let out = temp_dir("newton-cap");
+    let out = TempDir::unmade("newton-cap");
     let newton = "solver.method=\"newton\"";
     let o = run_coarse("cases/paper-7.2.toml", &out, &[newton, "solver.max_inner=1"]);
     let t = text(&o);
@@ -74,7 +69,7 @@ fn a_newton_cap_exits_3_with_the_last_iterate_written() {
 
 #[test]
 fn a_diverging_fixed_point_exits_4_and_writes_its_last_finite_iterate() {
-    let out = temp_dir("diverge");
+    let out = TempDir::unmade("diverge");
     let o = run_coarse(
         "cases/paper-7.2.toml",
         &out,
@@ -98,7 +93,7 @@ fn a_diverging_fixed_point_exits_4_and_writes_its_last_finite_iterate() {
 
 #[test]
 fn output_directories_are_never_clobbered() {
-    let out = temp_dir("clobber");
+    let out = TempDir::unmade("clobber");
     std::fs::create_dir_all(&out).unwrap();
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
     let case_args = |case: &str, extra: &[&str]| {
@@ -139,7 +134,7 @@ fn output_directories_are_never_clobbered() {
     let o = run(args(&["--set", "contact.problem=PV1"]));
     assert!(o.status.success(), "{}", text(&o));
     let case = std::fs::read_to_string(root().join("cases/paper-7.1.toml")).unwrap();
-    let cases = super::common::temp_dir("clobber-case");
+    let cases = temp_dir("clobber-case");
     let without_contact = cases.join("case.toml");
     let stripped: String = case.split("\n[contact]").next().unwrap().to_string();
     std::fs::write(&without_contact, stripped).unwrap();
@@ -191,7 +186,7 @@ fn assert_all_complete(dir: &Path) {
 fn a_killed_run_leaves_only_complete_files() {
     let mut killed_while_running = 0;
     for (k, delay) in [150u64, 600, 1500].into_iter().enumerate() {
-        let out = temp_dir(&format!("kill{k}"));
+        let out = TempDir::unmade(&format!("kill{k}"));
         let mut child = command()
             .args(["reproduce", "--out", out.to_str().unwrap(), "--mesh", "96,16", "--jobs", "2"])
             .stdout(Stdio::null())
@@ -217,7 +212,7 @@ fn a_killed_run_leaves_only_complete_files() {
 /// ways out in the message, summary.json written with the failure and nothing else.
 #[test]
 fn a_factor_too_large_for_the_memory_is_refused_before_it_is_computed() {
-    let out = temp_dir("memory");
+    let out = TempDir::unmade("memory");
     let o = command()
         .env("PIEZOCONTACT_MEMORY_LIMIT", "3000000")
         .args(["run", "cases/indentation-3d.toml", "--out", out.to_str().unwrap()])
@@ -275,7 +270,7 @@ fn check_predicts_the_exact_solver_s_dense_matrices_and_refuses_them_when_too_la
 /// contact.csv and summary.json — says which step failed and why, and exits 4.
 #[test]
 fn a_path_that_fails_at_a_step_keeps_the_steps_before_it() {
-    let out = temp_dir("path-failure");
+    let out = TempDir::unmade("path-failure");
     let o = piezocontact(&[
         "run",
         "cases/indentation-curve.toml",
@@ -328,7 +323,7 @@ fn staging_dirs(out: &Path) -> Vec<String> {
 #[test]
 fn a_signal_stops_a_run_at_a_safe_point_with_what_it_has() {
     for (signal, code) in [("INT", 130), ("TERM", 143)] {
-        let out = temp_dir(&format!("signal-{signal}"));
+        let out = TempDir::unmade(&format!("signal-{signal}"));
         let out = out.join("run");
         let mut child = command()
             .args(["run", "cases/paper-7.2.toml", "--out", out.to_str().unwrap()])
@@ -360,7 +355,7 @@ fn a_signal_stops_a_run_at_a_safe_point_with_what_it_has() {
 /// the same place; one of a process that still runs is left alone.
 #[test]
 fn a_stale_staging_directory_is_removed_by_the_next_run() {
-    let parent = temp_dir("stale");
+    let parent = TempDir::unmade("stale");
     let out = parent.join("run");
     // A pid above Linux's largest (2²²) belongs to no process.
     let dead = parent.join(".run.piezocontact-staging-4194305");
@@ -382,7 +377,7 @@ fn a_stale_staging_directory_is_removed_by_the_next_run() {
 /// the run, and the sweep exits 1.
 #[test]
 fn a_sweep_keeps_the_rows_of_the_runs_that_fail() {
-    let out = temp_dir("sweep-failed-run");
+    let out = TempDir::unmade("sweep-failed-run");
     let newton = "solver.method=\"newton\"";
     let o =
         sweep_coarse("cases/paper-7.1.toml", "solver.max_condensed=1,100", &[], &out, &[newton]);
@@ -403,7 +398,7 @@ fn a_sweep_keeps_the_rows_of_the_runs_that_fail() {
 /// its partial result is; with --quiet that error is all it prints (no progress line).
 #[test]
 fn a_quiet_sweep_names_the_run_that_did_not_converge() {
-    let out = temp_dir("sweep-unconverged");
+    let out = TempDir::unmade("sweep-unconverged");
     let (uzawa, list) = ("solver.method=\"uzawa\"", "solver.max_inner=1,5000");
     let o = sweep_coarse("cases/paper-7.1.toml", list, &["-q"], &out, &[uzawa]);
     let stderr = String::from_utf8_lossy(&o.stderr);
@@ -423,7 +418,7 @@ fn a_quiet_sweep_names_the_run_that_did_not_converge() {
 /// [loading] table: one run per value would solve the foundation's first position alone.
 #[test]
 fn a_sweep_refuses_a_loading_path() {
-    let out = temp_dir("sweep-path");
+    let out = TempDir::unmade("sweep-path");
     let o = piezocontact(&[
         "sweep",
         "cases/indentation-curve.toml",
