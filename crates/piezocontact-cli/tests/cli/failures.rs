@@ -10,8 +10,8 @@ use std::process::{Command, Stdio};
 use std::time::Duration;
 
 /// PV2 with a strong conduction — cases/block-3d.toml on the unit cube, k_e = 1, g_p = 0.01,
-/// ϕ0 = 220 GV — where nodes settle at the kink of ψ: Newton cycles there and exits 3, and
-/// its hint names Uzawa, which converges. (Should Newton learn to converge here, the first
+/// ϕ0 = 220 GV — where nodes settle at the kink of ψ: Newton cycles there and exits 3, its
+/// message says that more steps would not help and names Uzawa, which converges. (Should Newton learn to converge here, the first
 /// half of this test is to change with it.)
 #[test]
 fn a_newton_cycle_at_the_conduction_s_kink_points_to_uzawa_which_converges() {
@@ -34,6 +34,8 @@ fn a_newton_cycle_at_the_conduction_s_kink_points_to_uzawa_which_converges() {
     let t = text(&o);
     assert_eq!(o.status.code(), Some(3), "{t}");
     assert!(t.contains("strong conduction") && t.contains("solver.method = \"uzawa\""), "{t}");
+    // A cycle: raising the cap would not help, and the message does not suggest it.
+    assert!(t.contains("not fallen by 1 %") && !t.contains("raise solver.max_inner"), "{t}");
     let o = run("uzawa");
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
 }

@@ -715,7 +715,13 @@ fn inner_failure(context: &StopContext, inner: &InnerResult) -> Option<Error> {
             criterion: inner.history.last().copied().unwrap_or(f64::NAN),
             tolerance,
             history,
-            hint: cap_hint,
+            hint: match stalled(&inner.history) {
+                Some(last) => format!(
+                    "its criterion has not fallen by 1 % in its last {last} iterations, where \
+                     more would not help: {hint}"
+                ),
+                None => cap_hint,
+            },
         }),
         Stop::Diverged => Some(Error::Diverged { what, iteration, history, hint }),
         Stop::NotFinite(cause) => {
@@ -723,6 +729,15 @@ fn inner_failure(context: &StopContext, inner: &InnerResult) -> Option<Error> {
         }
         Stop::Interrupted(signal) => Some(Error::Interrupted { signal: *signal }),
     }
+}
+
+/// The length of the second half of a criterion history (10 values or more) whose least
+/// value is not 1 % below the first half's — a cycle or a stall — else `None`.
+fn stalled(history: &[f64]) -> Option<usize> {
+    let half = history.len() / 2;
+    let least = |values: &[f64]| values.iter().copied().fold(f64::INFINITY, f64::min);
+    let stalled = history.len() >= 10 && least(&history[half..]) >= 0.99 * least(&history[..half]);
+    stalled.then_some(history.len() - half)
 }
 
 /// The last values of a criterion history, for messages.
@@ -954,6 +969,30 @@ mod tests {
             let hint = if variant == "NotConverged" { "the cap hint" } else { "the hint" };
             assert!(text.contains(hint), "{text}");
         }
+    }
+
+    /// A cap reached by a cycle or a stall says that more iterations would not help; one
+    /// reached while the criterion still falls keeps the cap hint.
+    #[test]
+    fn a_cap_reached_without_progress_is_told_from_a_slow_one() {
+        let cycle: Vec<f64> = (0..100).map(|k| [2.7, 0.57, 0.12, 0.97, 42.0][k % 5]).collect();
+        assert_eq!(stalled(&cycle), Some(50));
+        let slow: Vec<f64> = (0..100).map(|k| 0.98_f64.powi(k)).collect();
+        assert_eq!(stalled(&slow), None);
+        assert_eq!(stalled(&cycle[..9]), None, "too short to judge");
+        let inner = |history: Vec<f64>| InnerResult {
+            x: vec![],
+            state: ContactState::cold(0),
+            iterations: history.len(),
+            history,
+            stop: Stop::Cap,
+        };
+        let context = Stub { lags: false, stop: Stop::Cap, reject: false }.stop_context(1, false);
+        let text = |history| inner_failure(&context, &inner(history)).unwrap().to_string();
+        let (cycling, falling) = (text(cycle), text(slow));
+        assert!(cycling.contains("last 50 iterations") && cycling.contains("the hint"));
+        assert!(!cycling.contains("the cap hint"), "{cycling}");
+        assert!(falling.contains("the cap hint") && !falling.contains("last 50"), "{falling}");
     }
 
     /// A singular B̌ is blamed on the supports; a backend's own failure (here MUMPS out of
