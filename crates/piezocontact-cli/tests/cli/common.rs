@@ -126,16 +126,10 @@ impl AsRef<Path> for TempDir {
     }
 }
 
-impl AsRef<std::ffi::OsStr> for TempDir {
-    fn as_ref(&self) -> &std::ffi::OsStr {
-        self.0.as_os_str()
-    }
-}
-
 /// A fresh, empty temporary directory for test `name`.
 pub fn temp_dir(name: &str) -> TempDir {
     let dir = TempDir::unmade(name);
-    std::fs::create_dir_all(&*dir).unwrap();
+    std::fs::create_dir_all(&dir).unwrap();
     dir
 }
 

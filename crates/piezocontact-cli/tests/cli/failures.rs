@@ -11,8 +11,8 @@ use std::time::Duration;
 
 /// PV2 with a strong conduction — cases/block-3d.toml on the unit cube, k_e = 1, g_p = 0.01,
 /// ϕ0 = 220 GV — where nodes settle at the kink of ψ: Newton cycles there and exits 3, its
-/// message says that more steps would not help and names Uzawa, which converges. (Should Newton learn to converge here, the first
-/// half of this test is to change with it.)
+/// message says that more steps would not help and names Uzawa, which converges. (Should
+/// Newton learn to converge here, the first half of this test is to change with it.)
 #[test]
 fn a_newton_cycle_at_the_conduction_s_kink_points_to_uzawa_which_converges() {
     let out = TempDir::unmade("strong-conduction");
@@ -95,8 +95,7 @@ fn a_diverging_fixed_point_exits_4_and_writes_its_last_finite_iterate() {
 
 #[test]
 fn output_directories_are_never_clobbered() {
-    let out = TempDir::unmade("clobber");
-    std::fs::create_dir_all(&out).unwrap();
+    let out = temp_dir("clobber");
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
     let case_args = |case: &str, extra: &[&str]| {
         let mut a = vec![

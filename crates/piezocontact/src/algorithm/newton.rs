@@ -220,7 +220,7 @@ impl InnerMethod for Newton {
             .to_string();
         if pv2 {
             // Measured: the cube pressed onto a plane with k_e = 1 and ϕ0 = 220 GV cycles here
-            // and converges by Uzawa (tests/cli/failures.rs).
+            // and converges by Uzawa (the CLI's tests/cli/failures.rs).
             hint += "; with PV2, a strong conduction (k_e |ϕ − ϕ0| large beside the contact \
                      stresses) can hold nodes where its flux switches on (u_ν = g_a, the kink \
                      of ψ), around which the iteration may cycle: solver.method = \"uzawa\" \
