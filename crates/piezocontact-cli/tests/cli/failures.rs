@@ -9,37 +9,6 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
 
-/// PV2 with a strong conduction — cases/block-3d.toml on the unit cube, k_e = 1, g_p = 0.01,
-/// ϕ0 = 220 GV — where nodes settle at the kink of ψ: Newton cycles there and exits 3, its
-/// message says that more steps would not help and names Uzawa, which converges. (Should
-/// Newton learn to converge here, the first half of this test is to change with it.)
-#[test]
-fn a_newton_cycle_at_the_conduction_s_kink_points_to_uzawa_which_converges() {
-    let out = TempDir::unmade("strong-conduction");
-    let sets = [
-        "mesh.file=\"../meshes/cube.msh\"",
-        "contact.problem=\"PV2\"",
-        "friction.mu=0",
-        "conductivity.ke=1",
-        "contact.penetration=0.01",
-        "conductivity.phi0=220",
-    ];
-    let run = |method: &str| {
-        let mut args = vec!["run", "cases/block-3d.toml", "-q", "--out", out.to_str().unwrap()];
-        let method = format!("solver.method=\"{method}\"");
-        sets.iter().chain([&method.as_str()]).for_each(|s| args.extend(["--set", s]));
-        piezocontact(&args)
-    };
-    let o = run("newton");
-    let t = text(&o);
-    assert_eq!(o.status.code(), Some(3), "{t}");
-    assert!(t.contains("strong conduction") && t.contains("solver.method = \"uzawa\""), "{t}");
-    // A cycle: raising the cap would not help, and the message does not suggest it.
-    assert!(t.contains("not fallen by 1 %") && !t.contains("raise solver.max_inner"), "{t}");
-    let o = run("uzawa");
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-}
-
 /// The exact solver's cap on Newton steps exits 3 with the last iterate written, marked
 /// unconverged; without the cap the same case converges to the KKT tolerance.
 #[test]

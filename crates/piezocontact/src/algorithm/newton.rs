@@ -16,7 +16,9 @@
 //! sees (E_Y: Young's modulus). The iteration stops when the sets no longer change and the
 //! step is at round-off; one solve with the contact forces recovers the interior. With the
 //! sets settled, a chord step (the last step's dense LU with the new residual) replaces the
-//! factorisation when it multiplies the merit by at most 1e−2.
+//! factorisation when it multiplies the merit by at most 1e−2. Where a strong conduction makes
+//! the iterates cycle from both starts, a continuation in k_e (`Local::continuation`) takes
+//! its place.
 
 use super::condensed::{self, Condensed, Guess, Phi, SchurSource};
 use super::residual::KktResidual;
@@ -44,6 +46,12 @@ const GUESS_STEPS: usize = 30;
 const CHORD_DECREASE: f64 = 1e-2;
 /// Condensed problems solved in one outer step, at most (each after a factorisation).
 const MAX_ROUNDS: usize = 10;
+/// The first increment of the continuation in k_e (a fraction of k_e).
+const FIRST_INCREMENT: f64 = 1.0 / 16.0;
+/// The continuation in k_e gives up when its increment falls below this fraction of k_e.
+const LEAST_INCREMENT: f64 = 1.0 / 4096.0;
+/// Stages of the continuation in k_e, at most.
+const MAX_STAGES: usize = 64;
 
 /// The condensed problem in local coordinates.
 struct Local<'a> {
@@ -63,6 +71,9 @@ struct Local<'a> {
     /// Where the slip is measured from, in local coordinates (the tangential slots matter):
     /// 0, or the previous step of a path with incremental friction.
     origin: Vec<f64>,
+    /// θ ∈ (0, 1]: the fraction of k_e the conduction has, 1 but in the stages of a
+    /// continuation ([`Local::continuation`]).
+    conduction: f64,
 }
 
 /// E and the sets at an iterate.
@@ -93,6 +104,24 @@ struct Iteration {
     factorisations: usize,
     /// The step criterion of each step.
     history: Vec<f64>,
+}
+
+impl Iteration {
+    /// Whether the iteration ended without converging, and not by an interrupt.
+    fn failed(&self) -> bool {
+        !matches!(self.stop, Stop::Converged | Stop::Interrupted(_))
+    }
+
+    /// This iteration followed by `next`: the steps, factorisations and histories of both,
+    /// the iterate and the stop of `next`.
+    fn then(self, next: Iteration) -> Iteration {
+        Iteration {
+            iterations: self.iterations + next.iterations,
+            factorisations: self.factorisations + next.factorisations,
+            history: [self.history, next.history].concat(),
+            ..next
+        }
+    }
 }
 
 /// What the exact solver reads from `solver.*`.
@@ -219,12 +248,10 @@ impl InnerMethod for Newton {
                         touch the foundation only where the body is held"
             .to_string();
         if pv2 {
-            // Measured: the cube pressed onto a plane with k_e = 1 and ϕ0 = 220 GV cycles here
-            // and converges by Uzawa (the CLI's tests/cli/failures.rs).
             hint += "; with PV2, a strong conduction (k_e |ϕ − ϕ0| large beside the contact \
                      stresses) can hold nodes where its flux switches on (u_ν = g_a, the kink \
-                     of ψ), around which the iteration may cycle: solver.method = \"uzawa\" \
-                     may converge there";
+                     of ψ), around which the iteration may cycle even along the continuation \
+                     in k_e it then tries: solver.method = \"uzawa\" may converge there";
         }
         hint += "; report the case if it persists";
         StopContext {
@@ -350,7 +377,7 @@ impl Semismooth<'_> {
     pub fn run(&self, system: &mut CoupledSystem, schur: &mut SchurSource) -> Result<InnerResult> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;
-        let local = Local::new(self, schur.get(system, &cond.free)?, x_hat);
+        let mut local = Local::new(self, schur.get(system, &cond.free)?, x_hat);
         let from = local
             .zero_if_solution()
             .unwrap_or_else(|| local.gather(self.start.unwrap_or(&local.x_hat)));
@@ -358,14 +385,13 @@ impl Semismooth<'_> {
         let cap = if guess == from { self.max_inner } else { GUESS_STEPS.min(self.max_inner) };
         let mut newton = local.iterate(guess.clone(), cap);
         let left = self.max_inner - newton.iterations;
-        if guess != from && left > 0 && !matches!(newton.stop, Stop::Converged) {
+        if guess != from && left > 0 && newton.failed() {
             // The guess led nowhere: again from the solve without contact forces, within the
             // cap on the steps of both.
-            let again = local.iterate(from, left);
-            let history = [newton.history, again.history].concat();
-            let iterations = newton.iterations + again.iterations;
-            let factorisations = newton.factorisations + again.factorisations;
-            newton = Iteration { iterations, factorisations, history, ..again };
+            newton = newton.then(local.iterate(from, left));
+        }
+        if newton.failed() && local.conducts() {
+            newton = newton.then(local.continuation(guess, GUESS_STEPS.min(self.max_inner)));
         }
         let Iteration { y, stop, iterations, history, .. } = newton;
         let eval = local.evaluate(&y);
@@ -438,6 +464,7 @@ impl<'a> Local<'a> {
             scale: Vec::new(),
             x_hat,
             origin: vec![0.0; m],
+            conduction: 1.0,
         };
         this.load = this.schur.mul(&this.gather(&this.x_hat));
         if let Some(origin) = semismooth.step.slip_origin {
@@ -563,6 +590,50 @@ impl<'a> Local<'a> {
         y
     }
 
+    /// Whether the conduction acts: PV2 with k_e > 0, and ϕ an unknown of the condensed
+    /// problem at some node (a penetration g_p > 0 lets the laws read it).
+    fn conducts(&self) -> bool {
+        let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
+        step.model.pv2.as_ref().is_some_and(|(_, conduction)| conduction.ke > 0.0)
+            && cond.phi.iter().any(|phi| matches!(phi, Phi::Unknown(_)))
+    }
+
+    /// A continuation in k_e from the first iterate y, for when Newton has failed on the
+    /// whole conduction (model §11): the problems with k_e scaled by θ, θ rising to 1, each
+    /// stage from the solution of the last one with the nodes it pushes through the
+    /// foundation put on it, within `cap` steps. The first stage is θ = [`FIRST_INCREMENT`];
+    /// an increment is doubled after a stage that converges and quartered after one that does
+    /// not, down to [`LEAST_INCREMENT`], in [`MAX_STAGES`] stages at most. Ends with the
+    /// conduction whole again.
+    fn continuation(&mut self, y: Vec<f64>, cap: usize) -> Iteration {
+        let (mut theta, mut increment) = (0.0, FIRST_INCREMENT);
+        let mut done =
+            Iteration { y, stop: Stop::Cap, iterations: 0, factorisations: 0, history: Vec::new() };
+        for _ in 0..MAX_STAGES {
+            if increment < LEAST_INCREMENT {
+                break;
+            }
+            self.conduction = (theta + increment).min(1.0);
+            let stage = self.iterate(self.onto_foundation(&done.y, false), cap);
+            let converged = matches!(stage.stop, Stop::Converged);
+            let (y, interrupted) = (done.y.clone(), matches!(stage.stop, Stop::Interrupted(_)));
+            done = done.then(stage);
+            if interrupted || converged && self.conduction == 1.0 {
+                break;
+            }
+            if converged {
+                (theta, increment) = (self.conduction, 2.0 * increment);
+            } else {
+                (done.y, increment) = (y, increment / 4.0);
+            }
+        }
+        if matches!(done.stop, Stop::Converged) && self.conduction < 1.0 {
+            done.stop = Stop::Cap; // out of stages with a part of k_e solved
+        }
+        self.conduction = 1.0;
+        done
+    }
+
     /// y = 0 when it solves every equation exactly — no load and no foundation inside the
     /// body, as at the end of a path that unloads — else `None`. The problem having one
     /// solution, the iteration then starts there and stops at its first step: from another
@@ -680,7 +751,7 @@ impl<'a> Local<'a> {
             }
             if let (Phi::Unknown(p), Some(phi)) = (cond.phi[i], phi) {
                 eval.residual[p] = eval.forces[p];
-                eval.residual[p] -= w * step.model.flux(u_nu, phi, gap);
+                eval.residual[p] -= w * self.conduction * step.model.flux(u_nu, phi, gap);
             }
         }
         eval
@@ -758,8 +829,8 @@ impl<'a> Local<'a> {
             add(out, k, 1.0);
             if step.model.pv2.is_some() {
                 let (d_u, d_phi) = step.model.flux_derivative(u_nu, phi, surface.gap[i]);
-                out[u[0]] -= w * d_u;
-                out[k] -= w * d_phi;
+                out[u[0]] -= w * self.conduction * d_u;
+                out[k] -= w * self.conduction * d_phi;
             }
             return;
         }

@@ -507,7 +507,8 @@ pub struct SolverSection {
     pub eps_fp: Option<f64>,
     /// The largest KKT residual accepted [-]; default 1e−10 (newton only).
     pub tol: Option<f64>,
-    /// Cap on Uzawa iterations (default 10000) or Newton steps (default 100) per outer step.
+    /// Cap on Uzawa iterations per outer step (default 10000), or on Newton steps per
+    /// condensed problem (default 100; a stage of the continuation in k_e at most 30).
     pub max_inner: Option<usize>,
     /// Cap on fixed-point iterations; default 100.
     pub max_outer: Option<usize>,

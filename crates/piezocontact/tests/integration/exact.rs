@@ -173,6 +173,45 @@ fn newton_agrees_with_tight_uzawa_on_a_curved_face_and_in_3d() {
     assert_agree(&cube, &model, "cube PV2");
 }
 
+/// A strong conduction: cases/block-3d.toml on the unit cube with k_e = 1, g_p = 0.01 and
+/// ϕ0 = 220 GV, where nodes settle at the kink of ψ (u_ν = g_a) and Newton's iterates cycle
+/// from either start (model §11). Its continuation in k_e converges to a KKT residual at
+/// round-off, and the solution is the one Uzawa tends to: Uzawa's distance to it falls in
+/// proportion to ε (measured on u, ϕ, σ_ν: 9.4e−3, 7.8e−4, 4.8e−2 at ε = 1e−6; 1.1e−4,
+/// 9.0e−6, 6.1e−4 at 1e−8), so it must fall at least tenfold and end below 2e−3.
+#[test]
+fn a_strong_conduction_converges_by_continuation_to_the_solution_uzawa_tends_to() {
+    use piezocontact::case::{Built, Case};
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/block-3d.toml");
+    let built = |method: &[&str]| -> Built {
+        let sets = [
+            "mesh.file=\"../meshes/cube.msh\"",
+            "contact.problem=\"PV2\"",
+            "friction.mu=0",
+            "conductivity.ke=1",
+            "contact.penetration=0.01",
+            "conductivity.phi0=220",
+        ];
+        let overrides: Vec<String> = sets.iter().chain(method).map(|s| s.to_string()).collect();
+        Case::load(&file, &overrides).unwrap().build().unwrap()
+    };
+    let exact = built(&[]);
+    let (problem, model) = (&exact.problem, exact.model.as_ref().unwrap());
+    let newton = solve(problem, model, &exact.settings);
+    assert!(newton.kkt.max <= 1e-10, "{:?}", newton.kkt);
+    let distance = |eps: &str| {
+        let (eps, eps_fp) = (format!("solver.eps={eps}"), format!("solver.eps_fp={eps}"));
+        let sets = ["solver.method=\"uzawa\"", &eps, &eps_fp, "solver.max_inner=100000"];
+        let uzawa = built(&sets);
+        let d = differences(problem, &solve(problem, model, &uzawa.settings), &newton);
+        println!("{eps}: differences u, ϕ, σ_ν, λ_f, ϕ|Γ3 {}", show(&d));
+        // λ_f = 0 by the law (µ = 0): both are round-off, relative to round-off.
+        [d[0], d[1], d[2], d[4]].into_iter().fold(0.0, f64::max)
+    };
+    let (loose, tight) = (distance("1e-6"), distance("1e-8"));
+    assert!(tight <= loose / 10.0 && tight < 2e-3, "Uzawa's distance {loose:e}, then {tight:e}");
+}
+
 /// r = 1e−3 E, 0.25 E and 1e3 E give one solution.
 #[test]
 fn the_exact_solution_does_not_depend_on_r() {
