@@ -160,6 +160,9 @@ pub struct Newton {
     solved: usize,
     /// Time in the steps outside the system's counted phases: the dense problem \[s\].
     dense_seconds: f64,
+    /// θ ∈ [0, 1): the fraction of k_e the last outer step's iterate solves when its
+    /// continuation in k_e stopped short of the whole (`None` otherwise).
+    short_of: Option<f64>,
 }
 
 impl Newton {
@@ -172,6 +175,7 @@ impl Newton {
             schur: SchurSource::default(),
             solved: 0,
             dense_seconds: 0.0,
+            short_of: None,
         }
     }
 }
@@ -240,24 +244,36 @@ impl InnerMethod for Newton {
         self.dense_seconds += (start.elapsed().as_secs_f64() - counted).max(0.0);
         (self.condensed, self.schur) = (Some(condensed), schur);
         self.solved += 1;
-        result
+        let (result, short_of) = result?;
+        self.short_of = short_of;
+        Ok(result)
     }
 
-    fn stop_context(&self, outer_step: usize, pv2: bool) -> StopContext {
+    fn stop_context(&self, outer_step: usize, _pv2: bool) -> StopContext {
+        let max_inner = self.parameters.max_inner;
         let mut hint = "the active set cycles or the Jacobian is singular: check that Γ3 can \
                         touch the foundation only where the body is held"
             .to_string();
-        if pv2 {
-            hint += "; with PV2, a strong conduction (k_e |ϕ − ϕ0| large beside the contact \
-                     stresses) can hold nodes where its flux switches on (u_ν = g_a, the kink \
-                     of ψ), around which the iteration may cycle even along the continuation \
-                     in k_e it then tries: solver.method = \"uzawa\" may converge there";
+        if let Some(theta) = self.short_of {
+            // θ is a sum of powers of 2: printed in full, it is exact.
+            hint = format!(
+                "under the conduction the iteration cycles, and its continuation in k_e solved \
+                 the problem with θ = {theta} of k_e at most (the iterate written solves that \
+                 problem), no stage past it converging: the solution may turn back there (a \
+                 fold in k_e) or not exist; solver.method = \"uzawa\" may converge"
+            );
         }
         hint += "; report the case if it persists";
+        // A stage of the continuation has at most GUESS_STEPS steps whatever the cap above.
+        let cap_hint = if self.short_of.is_some() && max_inner >= GUESS_STEPS {
+            hint.clone()
+        } else {
+            format!("raise solver.max_inner (now {max_inner}); {hint}")
+        };
         StopContext {
             what: format!("the semismooth Newton method of outer step {outer_step}"),
             tolerance: STEP_TOLERANCE,
-            cap_hint: format!("raise solver.max_inner (now {}); {hint}", self.parameters.max_inner),
+            cap_hint,
             hint,
         }
     }
@@ -300,18 +316,19 @@ impl Newton {
     /// the Schur complement of the new set from the factor by solves when that is cheaper
     /// ([`condensed::cheaper_by_solves`]), else orders the new set last and factorises B̌
     /// with the step's linearisation again; Newton restarts from the last solution, and the
-    /// steps and histories of all rounds are summed.
+    /// steps and histories of all rounds are summed. With the result, what the last round's
+    /// [`Semismooth::run`] says of its continuation.
     fn solve_growing(
         &self,
         step: &Step,
         (condensed, schur): (&mut Condensed, &mut SchurSource),
         system: &mut CoupledSystem,
-    ) -> Result<InnerResult> {
+    ) -> Result<(InnerResult, Option<f64>)> {
         let Parameters { max_inner, max_condensed, .. } = self.parameters;
         let c_factor = self.c_factor;
         let start = (self.solved > 0).then_some(step.previous);
         let first = Semismooth { step, condensed, c_factor, max_inner, start };
-        let mut result = first.run(system, schur)?;
+        let (mut result, mut short_of) = first.run(system, schur)?;
         let mut rounds = 1;
         while matches!(result.stop, Stop::Converged)
             && let Some(grown) = condensed.grown(
@@ -338,13 +355,14 @@ impl Newton {
                 *schur = SchurSource::new(&condensed.free);
             }
             let start = Some(result.x.as_slice());
-            let next =
+            let next;
+            (next, short_of) =
                 Semismooth { step, condensed, c_factor, max_inner, start }.run(system, schur)?;
             let history = [std::mem::take(&mut result.history), next.history].concat();
             result =
                 InnerResult { iterations: result.iterations + next.iterations, history, ..next };
         }
-        Ok(result)
+        Ok((result, short_of))
     }
 }
 
@@ -373,8 +391,13 @@ struct Semismooth<'a> {
 
 impl Semismooth<'_> {
     /// Solves the condensed problem with the factorised `system` (ordered with the free
-    /// unknowns `schur` was made for last) and recovers the whole solution.
-    pub fn run(&self, system: &mut CoupledSystem, schur: &mut SchurSource) -> Result<InnerResult> {
+    /// unknowns `schur` was made for last) and recovers the whole solution; with it, when a
+    /// continuation in k_e stopped short of the whole, the fraction θ < 1 of k_e it solves.
+    pub fn run(
+        &self,
+        system: &mut CoupledSystem,
+        schur: &mut SchurSource,
+    ) -> Result<(InnerResult, Option<f64>)> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;
         let mut local = Local::new(self, schur.get(system, &cond.free)?, x_hat);
@@ -390,8 +413,11 @@ impl Semismooth<'_> {
             // cap on the steps of both.
             newton = newton.then(local.iterate(from, left));
         }
+        let mut short_of = None;
         if newton.failed() && local.conducts() {
-            newton = newton.then(local.continuation(guess, GUESS_STEPS.min(self.max_inner)));
+            let (continued, theta) = local.continuation(guess, GUESS_STEPS.min(self.max_inner));
+            newton = newton.then(continued);
+            short_of = (theta < 1.0).then_some(theta);
         }
         let Iteration { y, stop, iterations, history, .. } = newton;
         let eval = local.evaluate(&y);
@@ -417,7 +443,7 @@ impl Semismooth<'_> {
             state.lambda_f[i] =
                 [0, 1, 2].map(|k| (1..3).map(|a| frame[a][k] * tangential[a - 1]).sum());
         }
-        Ok(InnerResult { x, state, iterations, history, stop })
+        Ok((InnerResult { x, state, iterations, history, stop }, short_of))
     }
 }
 
@@ -604,8 +630,9 @@ impl<'a> Local<'a> {
     /// foundation put on it, within `cap` steps. The first stage is θ = [`FIRST_INCREMENT`];
     /// an increment is doubled after a stage that converges and quartered after one that does
     /// not, down to [`LEAST_INCREMENT`], in [`MAX_STAGES`] stages at most. Ends with the
-    /// conduction whole again.
-    fn continuation(&mut self, y: Vec<f64>, cap: usize) -> Iteration {
+    /// conduction whole again; returns the iteration (its iterate the last stage's solution,
+    /// when one converged) and the θ it solves (1: the problem; 0: none).
+    fn continuation(&mut self, y: Vec<f64>, cap: usize) -> (Iteration, f64) {
         let (mut theta, mut increment) = (0.0, FIRST_INCREMENT);
         let mut done =
             Iteration { y, stop: Stop::Cap, iterations: 0, factorisations: 0, history: Vec::new() };
@@ -630,8 +657,9 @@ impl<'a> Local<'a> {
         if matches!(done.stop, Stop::Converged) && self.conduction < 1.0 {
             done.stop = Stop::Cap; // out of stages with a part of k_e solved
         }
+        let solved = if matches!(done.stop, Stop::Converged) { 1.0 } else { theta };
         self.conduction = 1.0;
-        done
+        (done, solved)
     }
 
     /// y = 0 when it solves every equation exactly — no load and no foundation inside the
@@ -1016,7 +1044,8 @@ mod tests {
             max_inner: 100,
             start: None,
         };
-        let result = semismooth.run(&mut system, &mut SchurSource::new(&condensed.free)).unwrap();
+        let (result, _) =
+            semismooth.run(&mut system, &mut SchurSource::new(&condensed.free)).unwrap();
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
         let local = Local::new(&semismooth, system.schur_complement().unwrap(), x_hat);

@@ -212,6 +212,45 @@ fn a_strong_conduction_converges_by_continuation_to_the_solution_uzawa_tends_to(
     assert!(tight <= loose / 10.0 && tight < 2e-3, "Uzawa's distance {loose:e}, then {tight:e}");
 }
 
+/// Where the continuation in k_e stops short — the paper's bar with k_e = 5, ϕ0 = 200 GV and
+/// g_p = 0.01, where no stage past θ ≈ 0.574 converges (model §11) — the run fails and names
+/// the fraction θ of k_e its iterate solves: with k_e scaled by θ the iterate's KKT residual
+/// is at round-off, with the whole k_e it is not.
+#[test]
+fn a_continuation_that_stops_short_names_the_fraction_its_iterate_solves() {
+    use piezocontact::algorithm::residual::assess;
+    use piezocontact::case::Case;
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/paper-7.2.toml");
+    let sets = [
+        "solver.method=\"newton\"",
+        "solver.max_inner=100",
+        "conductivity.ke=5",
+        "conductivity.phi0=200",
+        "contact.penetration=0.01",
+    ];
+    let overrides: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let built = Case::load(&file, &overrides).unwrap().build().unwrap();
+    let (problem, model) = (&built.problem, built.model.as_ref().unwrap());
+    let solution = solve_contact(problem, model, &built.settings).unwrap();
+    let failure = solution.failure.as_ref().map(|e| e.to_string()).unwrap_or_default();
+    let theta: f64 = failure
+        .split("θ = ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next()?.parse().ok())
+        .unwrap_or_else(|| panic!("no θ in: {failure}"));
+    assert!(!solution.converged && 0.0 < theta && theta < 1.0, "{failure}");
+    let c = built.settings.method.complementarity_constant();
+    let mut part = model.clone();
+    part.pv2.as_mut().unwrap().1.ke *= theta;
+    let (at_part, _) = assess(problem, &part, c, &solution).unwrap();
+    let (at_whole, _) = assess(problem, model, c, &solution).unwrap();
+    println!(
+        "θ = {theta}: KKT residual {:.1e} with θ k_e, {:.1e} with k_e",
+        at_part.max, at_whole.max
+    );
+    assert!(at_part.max <= 1e-10 && at_whole.max > 1e-6, "{at_part:?}, {at_whole:?}");
+}
+
 /// r = 1e−3 E, 0.25 E and 1e3 E give one solution.
 #[test]
 fn the_exact_solution_does_not_depend_on_r() {
