@@ -254,14 +254,25 @@ impl InnerMethod for Newton {
         let mut hint = "the active set cycles or the Jacobian is singular: check that Γ3 can \
                         touch the foundation only where the body is held"
             .to_string();
-        if let Some(theta) = self.short_of {
+        match self.short_of {
             // θ is a sum of powers of 2: printed in full, it is exact.
-            hint = format!(
-                "under the conduction the iteration cycles, and its continuation in k_e solved \
-                 the problem with θ = {theta} of k_e at most (the iterate written solves that \
-                 problem), no stage past it converging: the solution may turn back there (a \
-                 fold in k_e) or not exist; solver.method = \"uzawa\" may converge"
-            );
+            Some(theta) if theta > 0.0 => {
+                hint = format!(
+                    "under the conduction the iteration cycles, and its continuation in k_e \
+                     solved the problem with θ = {theta} of k_e at most (the iterate written \
+                     solves that problem), no stage past it converging: the solution may turn \
+                     back there (a fold in k_e) or not exist; solver.method = \"uzawa\" may \
+                     converge"
+                )
+            }
+            Some(_) => {
+                hint = format!(
+                    "under the conduction the iteration cycles, and its continuation in k_e did \
+                     not converge even with 1/{:.0} of k_e: {hint}",
+                    1.0 / LEAST_INCREMENT
+                )
+            }
+            None => {}
         }
         hint += "; report the case if it persists";
         // A stage of the continuation has at most GUESS_STEPS steps whatever the cap above.

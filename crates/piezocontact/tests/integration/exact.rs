@@ -215,24 +215,35 @@ fn a_strong_conduction_converges_by_continuation_to_the_solution_uzawa_tends_to(
 /// Where the continuation in k_e stops short — the paper's bar with k_e = 5, ϕ0 = 200 GV and
 /// g_p = 0.01, where no stage past θ ≈ 0.574 converges (model §11) — the run fails and names
 /// the fraction θ of k_e its iterate solves: with k_e scaled by θ the iterate's KKT residual
-/// is at round-off, with the whole k_e it is not.
+/// is at round-off, with the whole k_e it is not. A higher solver.max_inner would not lengthen
+/// a stage, and the message does not ask for it; with solver.max_inner = 1 no stage converges,
+/// and it does.
 #[test]
 fn a_continuation_that_stops_short_names_the_fraction_its_iterate_solves() {
     use piezocontact::algorithm::residual::assess;
-    use piezocontact::case::Case;
+    use piezocontact::case::{Built, Case};
     let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/paper-7.2.toml");
-    let sets = [
-        "solver.method=\"newton\"",
-        "solver.max_inner=100",
-        "conductivity.ke=5",
-        "conductivity.phi0=200",
-        "contact.penetration=0.01",
-    ];
-    let overrides: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    let built = Case::load(&file, &overrides).unwrap().build().unwrap();
+    let run = |max_inner: &str| -> (Built, ContactSolution, String) {
+        let sets = [
+            "solver.method=\"newton\"",
+            max_inner,
+            "conductivity.ke=5",
+            "conductivity.phi0=200",
+            "contact.penetration=0.01",
+        ];
+        let overrides: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let built = Case::load(&file, &overrides).unwrap().build().unwrap();
+        let model = built.model.as_ref().unwrap();
+        let solution = solve_contact(&built.problem, model, &built.settings).unwrap();
+        let failure = solution.failure.as_ref().map(|e| e.to_string()).unwrap_or_default();
+        (built, solution, failure)
+    };
+    let (_, _, failure) = run("solver.max_inner=1");
+    assert!(failure.contains("raise solver.max_inner (now 1)"), "{failure}");
+    assert!(failure.contains("did not converge even with 1/4096 of k_e"), "{failure}");
+    let (built, solution, failure) = run("solver.max_inner=100");
     let (problem, model) = (&built.problem, built.model.as_ref().unwrap());
-    let solution = solve_contact(problem, model, &built.settings).unwrap();
-    let failure = solution.failure.as_ref().map(|e| e.to_string()).unwrap_or_default();
+    assert!(!failure.contains("raise solver.max_inner"), "{failure}");
     let theta: f64 = failure
         .split("θ = ")
         .nth(1)
