@@ -173,6 +173,13 @@ fn newton_agrees_with_tight_uzawa_on_a_curved_face_and_in_3d() {
     assert_agree(&cube, &model, "cube PV2");
 }
 
+/// The committed case cases/`name` with the overrides `sets`, built.
+fn committed_case(name: &str, sets: &[&str]) -> piezocontact::case::Built {
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases").join(name);
+    let overrides: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    piezocontact::case::Case::load(&file, &overrides).unwrap().build().unwrap()
+}
+
 /// A strong conduction: cases/block-3d.toml on the unit cube with k_e = 1, g_p = 0.01 and
 /// ϕ0 = 220 GV, where nodes settle at the kink of ψ (u_ν = g_a) and Newton's iterates cycle
 /// from either start (model §11). Its continuation in k_e converges to a KKT residual at
@@ -181,9 +188,7 @@ fn newton_agrees_with_tight_uzawa_on_a_curved_face_and_in_3d() {
 /// 9.0e−6, 6.1e−4 at 1e−8), so it must fall at least tenfold and end below 2e−3.
 #[test]
 fn a_strong_conduction_converges_by_continuation_to_the_solution_uzawa_tends_to() {
-    use piezocontact::case::{Built, Case};
-    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/block-3d.toml");
-    let built = |method: &[&str]| -> Built {
+    let built = |method: &[&str]| {
         let sets = [
             "mesh.file=\"../meshes/cube.msh\"",
             "contact.problem=\"PV2\"",
@@ -192,8 +197,7 @@ fn a_strong_conduction_converges_by_continuation_to_the_solution_uzawa_tends_to(
             "contact.penetration=0.01",
             "conductivity.phi0=220",
         ];
-        let overrides: Vec<String> = sets.iter().chain(method).map(|s| s.to_string()).collect();
-        Case::load(&file, &overrides).unwrap().build().unwrap()
+        committed_case("block-3d.toml", &[&sets, method].concat())
     };
     let exact = built(&[]);
     let (problem, model) = (&exact.problem, exact.model.as_ref().unwrap());
@@ -221,9 +225,7 @@ fn a_strong_conduction_converges_by_continuation_to_the_solution_uzawa_tends_to(
 #[test]
 fn a_continuation_that_stops_short_names_the_fraction_its_iterate_solves() {
     use piezocontact::algorithm::residual::assess;
-    use piezocontact::case::{Built, Case};
-    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/paper-7.2.toml");
-    let run = |max_inner: &str| -> (Built, ContactSolution, String) {
+    let run = |max_inner: &str| {
         let sets = [
             "solver.method=\"newton\"",
             max_inner,
@@ -231,8 +233,7 @@ fn a_continuation_that_stops_short_names_the_fraction_its_iterate_solves() {
             "conductivity.phi0=200",
             "contact.penetration=0.01",
         ];
-        let overrides: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-        let built = Case::load(&file, &overrides).unwrap().build().unwrap();
+        let built = committed_case("paper-7.2.toml", &sets);
         let model = built.model.as_ref().unwrap();
         let solution = solve_contact(&built.problem, model, &built.settings).unwrap();
         let failure = solution.failure.as_ref().map(|e| e.to_string()).unwrap_or_default();
