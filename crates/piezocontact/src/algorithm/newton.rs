@@ -644,33 +644,33 @@ impl<'a> Local<'a> {
     /// conduction whole again; returns the iteration (its iterate the last stage's solution,
     /// when one converged) and the θ it solves (1: the problem; 0: none).
     fn continuation(&mut self, y: Vec<f64>, cap: usize) -> (Iteration, f64) {
-        let (mut theta, mut increment) = (0.0, FIRST_INCREMENT);
-        let mut done =
-            Iteration { y, stop: Stop::Cap, iterations: 0, factorisations: 0, history: Vec::new() };
+        let (mut theta, mut increment, mut solved) = (0.0, FIRST_INCREMENT, y);
+        let mut done = Iteration {
+            y: Vec::new(),
+            stop: Stop::Cap,
+            iterations: 0,
+            factorisations: 0,
+            history: Vec::new(),
+        };
         for _ in 0..MAX_STAGES {
-            if increment < LEAST_INCREMENT {
+            let interrupted = matches!(done.stop, Stop::Interrupted(_));
+            if theta == 1.0 || increment < LEAST_INCREMENT || interrupted {
                 break;
             }
             self.conduction = (theta + increment).min(1.0);
-            let stage = self.iterate(self.onto_foundation(&done.y, false), cap);
-            let converged = matches!(stage.stop, Stop::Converged);
-            let (y, interrupted) = (done.y.clone(), matches!(stage.stop, Stop::Interrupted(_)));
-            done = done.then(stage);
-            if interrupted || converged && self.conduction == 1.0 {
-                break;
-            }
-            if converged {
+            done = done.then(self.iterate(self.onto_foundation(&solved, false), cap));
+            if matches!(done.stop, Stop::Converged) {
                 (theta, increment) = (self.conduction, 2.0 * increment);
+                solved = std::mem::take(&mut done.y);
             } else {
-                (done.y, increment) = (y, increment / 4.0);
+                increment /= 4.0;
             }
         }
-        if matches!(done.stop, Stop::Converged) && self.conduction < 1.0 {
+        if theta < 1.0 && matches!(done.stop, Stop::Converged) {
             done.stop = Stop::Cap; // out of stages with a part of k_e solved
         }
-        let solved = if matches!(done.stop, Stop::Converged) { 1.0 } else { theta };
         self.conduction = 1.0;
-        (done, solved)
+        (Iteration { y: solved, ..done }, theta)
     }
 
     /// y = 0 when it solves every equation exactly — no load and no foundation inside the

@@ -1,5 +1,6 @@
 use piezocontact::algorithm::Settings;
 use piezocontact::algorithm::uzawa::{self, Uzawa};
+use piezocontact::case::Case;
 use piezocontact::contact::ContactModel;
 use piezocontact::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
 use piezocontact::material::{
@@ -28,6 +29,13 @@ pub fn pzt(dim: usize, law: ElasticLaw) -> Material {
 /// A committed test mesh from `meshes/`.
 pub fn mesh_file(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes").join(name)
+}
+
+/// The committed case `cases/name` with the overrides `sets` (dotted.key=value, as `--set`).
+pub fn committed_case(name: &str, sets: &[&str]) -> Case {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../cases").join(name);
+    let overrides: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    Case::load(&file, &overrides).unwrap()
 }
 
 pub fn read_mesh(name: &str) -> Mesh {

@@ -410,9 +410,7 @@ fn a_nan_in_an_iterate_is_a_numerical_failure() {
 /// message names the exact solver, which solves the same problem to its KKT conditions.
 #[test]
 fn a_fixed_point_that_stalls_names_the_exact_solver() {
-    use piezocontact::case::Case;
     use piezocontact::run::ContactRun;
-    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/paper-7.2.toml");
     let run = |method: &str| {
         let sets = [
             "mesh.nx=24",
@@ -421,8 +419,7 @@ fn a_fixed_point_that_stalls_names_the_exact_solver() {
             "friction.radius=12.0",
             &format!("solver.method=\"{method}\""),
         ];
-        let overrides: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-        ContactRun::solve(&Case::load(&file, &overrides).unwrap()).unwrap()
+        ContactRun::solve(&super::common::committed_case("paper-7.2.toml", &sets)).unwrap()
     };
     let uzawa = run("uzawa");
     let failure = uzawa.solution.failure.map(|e| e.to_string()).unwrap_or_default();

@@ -4,8 +4,8 @@
 //! complement read off the factor.
 
 use super::common::{
-    PAPER_UNITS, arch_problem, paper_model, paper_problem, paper_problem_with_contact,
-    paper_settings, pzt, read_mesh,
+    PAPER_UNITS, arch_problem, committed_case, paper_model, paper_problem,
+    paper_problem_with_contact, paper_settings, pzt, read_mesh,
 };
 use piezocontact::algorithm::condensed::Guess;
 use piezocontact::algorithm::newton::{self, Newton};
@@ -173,13 +173,6 @@ fn newton_agrees_with_tight_uzawa_on_a_curved_face_and_in_3d() {
     assert_agree(&cube, &model, "cube PV2");
 }
 
-/// The committed case cases/`name` with the overrides `sets`, built.
-fn committed_case(name: &str, sets: &[&str]) -> piezocontact::case::Built {
-    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases").join(name);
-    let overrides: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    piezocontact::case::Case::load(&file, &overrides).unwrap().build().unwrap()
-}
-
 /// A strong conduction: cases/block-3d.toml on the unit cube with k_e = 1, g_p = 0.01 and
 /// ϕ0 = 220 GV, where nodes settle at the kink of ψ (u_ν = g_a) and Newton's iterates cycle
 /// from either start (model §11). Its continuation in k_e converges to a KKT residual at
@@ -197,7 +190,7 @@ fn a_strong_conduction_converges_by_continuation_to_the_solution_uzawa_tends_to(
             "contact.penetration=0.01",
             "conductivity.phi0=220",
         ];
-        committed_case("block-3d.toml", &[&sets, method].concat())
+        committed_case("block-3d.toml", &[&sets, method].concat()).build().unwrap()
     };
     let exact = built(&[]);
     let (problem, model) = (&exact.problem, exact.model.as_ref().unwrap());
@@ -233,7 +226,7 @@ fn a_continuation_that_stops_short_names_the_fraction_its_iterate_solves() {
             "conductivity.phi0=200",
             "contact.penetration=0.01",
         ];
-        let built = committed_case("paper-7.2.toml", &sets);
+        let built = committed_case("paper-7.2.toml", &sets).build().unwrap();
         let model = built.model.as_ref().unwrap();
         let solution = solve_contact(&built.problem, model, &built.settings).unwrap();
         let failure = solution.failure.as_ref().map(|e| e.to_string()).unwrap_or_default();

@@ -1,7 +1,7 @@
 //! Indentation experiments (model §14): the charge on the electrodes, loading paths, the
 //! cone and the punch against Sneddon and Boussinesq.
 
-use super::common::{EPS0, PAPER_UNITS, mesh_file, paper_model, perturbed_square};
+use super::common::{EPS0, PAPER_UNITS, committed_case, mesh_file, paper_model, perturbed_square};
 use piezocontact::algorithm::condensed::Guess;
 use piezocontact::algorithm::newton::{self, Newton};
 use piezocontact::algorithm::{Settings, solve_contact};
@@ -186,9 +186,7 @@ fn ball_cone_and_punch_follow_the_classical_laws() {
 /// cases/indentation-curve.toml (PV2 with friction, the piezoelectric coupling on, two
 /// electrodes) with `overrides`.
 fn curve_case(overrides: &[&str]) -> Case {
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/indentation-curve.toml");
-    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    Case::load(&file, &overrides).unwrap()
+    committed_case("indentation-curve.toml", overrides)
 }
 
 /// The case solved once, cold, with the ball `depth` below its [foundation] position.
@@ -436,10 +434,8 @@ fn a_ball_from_an_stl_file_presses_like_the_analytic_ball() {
 /// A surface that no Γ3 normal meets is refused when the case is built, naming the file.
 #[test]
 fn a_surface_out_of_reach_is_refused() {
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/block-3d.toml");
     let overrides = ["foundation.kind=\"surface\"", "foundation.file=\"../meshes/ball-tip.stl\""];
-    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    let e = Case::load(&file, &overrides).unwrap().build().err().unwrap().to_string();
+    let e = committed_case("block-3d.toml", &overrides).build().err().unwrap().to_string();
     assert!(
         e.contains("foundation.file")
             && e.contains("ball-tip.stl")
@@ -453,11 +449,7 @@ fn a_surface_out_of_reach_is_refused() {
 /// the patch is not; a path that carries the ball through the contact face is.
 #[test]
 fn a_foundation_no_normal_meets_is_refused() {
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/indentation-curve.toml");
-    let build = |overrides: &[&str]| {
-        let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-        Case::load(&file, &overrides).unwrap().build().err().map(|e| e.to_string())
-    };
+    let build = |overrides: &[&str]| curve_case(overrides).build().err().map(|e| e.to_string());
     let punch = [
         "foundation.kind=\"punch\"",
         "foundation.center=[0.0, 0.0, 0.01]",
@@ -492,16 +484,13 @@ fn a_foundation_no_normal_meets_is_refused() {
 /// single run of the scaled loads: f̌ is assembled again only when the factor changes.
 #[test]
 fn a_path_of_load_factors_scales_the_loads() {
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/paper-7.1.toml");
     let sets = ["mesh.nx=24", "mesh.ny=4", "solver.method=\"newton\""];
-    let overrides = |extra: &[&str]| -> Vec<String> {
-        sets.iter().chain(extra).map(|s| s.to_string()).collect()
-    };
-    let case = Case::load(&file, &overrides(&["loading.load_factors=[0.5, 0.5, 1.0]"])).unwrap();
+    let bar = |extra: &[&str]| committed_case("paper-7.1.toml", &[&sets, extra].concat());
+    let case = bar(&["loading.load_factors=[0.5, 0.5, 1.0]"]);
     let path =
         PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
     assert!(path.converged() && path.curve.len() == 3, "{:?}", path.failure);
-    let single = Case::load(&file, &overrides(&[])).unwrap();
+    let single = bar(&[]);
     for (k, factor) in [0.5, 0.5, 1.0].into_iter().enumerate() {
         let mut built = single.build().unwrap();
         built.problem.load_factor = factor;

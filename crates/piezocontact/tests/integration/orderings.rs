@@ -3,17 +3,15 @@
 //! in 3D nested dissection's factor is the smaller.
 
 use piezocontact::algorithm::{ContactSolution, solve_contact_with};
-use piezocontact::case::{Built, Case};
+use piezocontact::case::Built;
 use piezocontact::dofs::DofMap;
 use piezocontact::linalg::{LdltSolver, Ordering};
 use piezocontact::solver::CoupledSystem;
-use std::path::Path;
 
 /// cases/indentation-3d.toml on its coarse committed mesh.
 fn indentation() -> Built {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/indentation-3d.toml");
-    let overrides = ["mesh.file=\"../meshes/indent-3d-h0.05.msh\"".to_string()];
-    Case::load(&root, &overrides).unwrap().build().unwrap()
+    let mesh = "mesh.file=\"../meshes/indent-3d-h0.05.msh\"";
+    super::common::committed_case("indentation-3d.toml", &[mesh]).build().unwrap()
 }
 
 fn solve(built: &Built, ordering: Ordering, threads: usize) -> ContactSolution {
