@@ -131,6 +131,9 @@ pub enum Stop {
     NotFinite(String),
     /// The run was asked to stop ([`crate::interrupt`]), by this signal.
     Interrupted(i32),
+    /// The iterates came back to where they were this many steps before, a whole period
+    /// over, and would go round again.
+    Cycle(usize),
 }
 
 /// How an inner method's stops read in errors.
@@ -723,6 +726,17 @@ fn inner_failure(context: &StopContext, inner: &InnerResult) -> Option<Error> {
                 None => cap_hint,
             },
         }),
+        Stop::Cycle(period) => Some(Error::NotConverged {
+            what,
+            iterations: iteration,
+            criterion: inner.history.last().copied().unwrap_or(f64::NAN),
+            tolerance,
+            history,
+            hint: format!(
+                "its iterates cycle: each of its last {period} is, to round-off, the one \
+                 {period} steps before it, so more iterations would not help: {hint}"
+            ),
+        }),
         Stop::Diverged => Some(Error::Diverged { what, iteration, history, hint }),
         Stop::NotFinite(cause) => {
             Some(Error::NumericalFailure { what, iteration, cause: cause.clone(), hint })
@@ -956,9 +970,11 @@ mod tests {
     fn inner_stops_become_errors_with_the_method_s_words() {
         for (stop, variant) in [
             (Stop::Cap, "NotConverged"),
+            (Stop::Cycle(5), "NotConverged"),
             (Stop::Diverged, "Diverged"),
             (Stop::NotFinite("a NaN".into()), "NumericalFailure"),
         ] {
+            let (capped, cycled) = (matches!(stop, Stop::Cap), matches!(stop, Stop::Cycle(_)));
             let solution = run(Stub { lags: true, stop, reject: false }, 10);
             assert!(!solution.converged);
             assert_eq!(solution.outer_iterations, 1, "{variant}: the loop stops at once");
@@ -966,8 +982,11 @@ mod tests {
             assert!(format!("{failure:?}").starts_with(variant), "{failure:?}");
             let text = failure.to_string();
             assert!(text.contains("the stub of outer step 1"), "{text}");
-            let hint = if variant == "NotConverged" { "the cap hint" } else { "the hint" };
+            let hint = if capped { "the cap hint" } else { "the hint" };
             assert!(text.contains(hint), "{text}");
+            if cycled {
+                assert!(text.contains("cycle: each of its last 5") && !text.contains("cap hint"));
+            }
         }
     }
 

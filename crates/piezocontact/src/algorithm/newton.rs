@@ -16,9 +16,9 @@
 //! sees (E_Y: Young's modulus). The iteration stops when the sets no longer change and the
 //! step is at round-off; one solve with the contact forces recovers the interior. With the
 //! sets settled, a chord step (the last step's dense LU with the new residual) replaces the
-//! factorisation when it multiplies the merit by at most 1e−2. Where a strong conduction makes
-//! the iterates cycle from both starts, a continuation in k_e (`Local::continuation`) takes
-//! its place.
+//! factorisation when it multiplies the merit by at most 1e−2. An iteration whose iterates go
+//! round a loop stops once it has gone round twice (`Cycles`); where a strong conduction makes
+//! them cycle from both starts, a continuation in k_e (`Local::continuation`) takes its place.
 
 use super::condensed::{self, Condensed, Guess, Phi, SchurSource};
 use super::residual::KktResidual;
@@ -52,6 +52,12 @@ const FIRST_INCREMENT: f64 = 1.0 / 16.0;
 const LEAST_INCREMENT: f64 = 1.0 / 4096.0;
 /// Stages of the continuation in k_e, at most.
 const MAX_STAGES: usize = 64;
+/// The longest period of a cycle of iterates that [`Cycles`] tells.
+const LONGEST_CYCLE: usize = 8;
+/// Two iterates a period apart and nearer than this fraction of the longest step between
+/// them are the same point: the round-off of the dense solves repeats a loop to a few 1e−7
+/// of its steps (the strong-conduction cube of model §11).
+const CYCLE_TOLERANCE: f64 = 1e-5;
 
 /// The condensed problem in local coordinates.
 struct Local<'a> {
@@ -104,6 +110,44 @@ struct Iteration {
     factorisations: usize,
     /// The step criterion of each step.
     history: Vec<f64>,
+}
+
+/// The last iterates of a Newton iteration, to tell when it cycles: a semismooth iteration
+/// can go round a loop of active sets for ever (model §11), and each step spent there is a
+/// dense factorisation.
+#[derive(Default)]
+struct Cycles {
+    /// The last 2 [`LONGEST_CYCLE`] iterates, the newest last, each with the length of the
+    /// step that reached it (max norm).
+    recent: Vec<(Vec<f64>, f64)>,
+}
+
+impl Cycles {
+    /// Records the iterate `y`, reached by a step of length `step`; the period p ≥ 2 when
+    /// each of the last p iterates is the one p before it, to [`CYCLE_TOLERANCE`] of the
+    /// longest of the 2p − 1 steps between them: the iteration has gone round a loop twice.
+    /// Two iterates p apart differ by the sum of the p steps between them, which for a
+    /// converging iteration is about the first of them, the longest: they coincide only when
+    /// the steps go back and forth.
+    fn period(&mut self, y: &[f64], step: f64) -> Option<usize> {
+        if self.recent.len() == 2 * LONGEST_CYCLE {
+            self.recent.remove(0);
+        }
+        self.recent.push((y.to_vec(), step));
+        let n = self.recent.len();
+        let distance =
+            |a: &[f64], b: &[f64]| a.iter().zip(b).fold(0.0_f64, |d, (x, y)| d.max((x - y).abs()));
+        (2..=LONGEST_CYCLE).filter(|p| 2 * p <= n).find(|&p| {
+            let window = &self.recent[n - 2 * p..];
+            let longest = window[1..].iter().fold(0.0_f64, |l, (_, step)| l.max(*step));
+            let (before, last) = window.split_at(p);
+            longest > 0.0
+                && before
+                    .iter()
+                    .zip(last)
+                    .all(|(a, b)| distance(&a.0, &b.0) <= CYCLE_TOLERANCE * longest)
+        })
+    }
 }
 
 impl Iteration {
@@ -526,10 +570,11 @@ impl<'a> Local<'a> {
     }
 
     /// The semismooth Newton iteration from y, with its line search, until the sets settle
-    /// and the step is at round-off, or `cap` steps.
+    /// and the step is at round-off, its iterates go round a cycle ([`Cycles`]), or `cap`
+    /// steps.
     fn iterate(&self, mut y: Vec<f64>, cap: usize) -> Iteration {
         let semismooth = self.semismooth;
-        let mut history = Vec::new();
+        let (mut history, mut cycles) = (Vec::new(), Cycles::default());
         let mut previous_sets: Option<Vec<u8>> = None;
         let (mut stop, mut iterations) = (Stop::Cap, cap);
         let (mut frozen, mut factorisations) = (None, 0);
@@ -566,6 +611,10 @@ impl<'a> Local<'a> {
             previous_sets = Some(eval.sets);
             if (settled && criterion <= STEP_TOLERANCE) || criterion <= STEP_FLOOR {
                 (stop, iterations) = (Stop::Converged, k + 1);
+                break;
+            }
+            if let Some(period) = cycles.period(&y, criterion * size) {
+                (stop, iterations) = (Stop::Cycle(period), k + 1);
                 break;
             }
         }
@@ -939,6 +988,41 @@ mod tests {
     use crate::assembly::{Linearisation, secant_moduli};
     use crate::linalg::default_solver;
     use crate::testing::{Fixture, INDENTATION_3D, PAPER_72};
+
+    /// Feeds `points` to a fresh [`Cycles`] as iterates, each step the distance from the one
+    /// before; the step at which it tells a cycle, and the period.
+    fn first_cycle(points: &[Vec<f64>]) -> Option<(usize, usize)> {
+        let mut cycles = Cycles::default();
+        let mut last = points[0].clone();
+        points.iter().enumerate().find_map(|(k, y)| {
+            let step = y.iter().zip(&last).fold(0.0_f64, |d, (a, b)| d.max((a - b).abs()));
+            last = y.clone();
+            cycles.period(y, step).map(|period| (k, period))
+        })
+    }
+
+    /// A loop of 5 iterates (with round-off) is told once it has gone round a whole period
+    /// twice, with its period; a converging sequence, even one that turns around its limit or
+    /// takes no step at all, and a loop that drifts (by 1e−3 a step) are never told.
+    #[test]
+    fn a_cycle_is_told_after_two_periods_and_a_convergence_never() {
+        let corners = [[2.0, 0.0], [0.5, 1.0], [-1.0, 0.3], [-0.2, -1.5], [1.1, -0.7]];
+        let noise = |k: usize| 1e-13 * ((k * 7919) % 13) as f64;
+        let looped: Vec<Vec<f64>> =
+            (0..40).map(|k| corners[k % 5].iter().map(|c| c + noise(k)).collect()).collect();
+        assert_eq!(first_cycle(&looped), Some((9, 5)));
+        let spiral: Vec<Vec<f64>> = (0..200)
+            .map(|k| {
+                let (r, angle) = (0.9_f64.powi(k), 2.0 * std::f64::consts::PI * k as f64 / 5.0);
+                vec![1.0 + r * angle.cos(), r * angle.sin()]
+            })
+            .collect();
+        assert_eq!(first_cycle(&spiral), None);
+        assert_eq!(first_cycle(&vec![vec![1.0, 2.0]; 20]), None);
+        let drifting: Vec<Vec<f64>> =
+            (0..40).map(|k| corners[k % 5].iter().map(|c| c + 1e-3 * k as f64).collect()).collect();
+        assert_eq!(first_cycle(&drifting), None);
+    }
 
     /// Checks `Local::gradient` against central differences of `Local::evaluate` on every
     /// equation that does not fix its unknown, at the point `y`; `skip_slip` leaves out the
