@@ -150,8 +150,11 @@ def test_bad_input_raises_a_value_error_naming_the_key():
         [cli(), "check", PAPER_71, "--set", "material.poisson=0.7"], capture_output=True, text=True
     ).stderr
     assert cli_message.strip() == f"error: {message}"
-    with pytest.raises(ValueError, match="unknown field `youngs`"):
+    # The overrides are named as such, not as the command line's --set (which they were).
+    with pytest.raises(ValueError, match="unknown field `youngs`") as error:
         piezocontact.solve(PAPER_71, {"material.youngs": 1.0})
+    assert "(with the overrides material.youngs=1.0)" in str(error.value)
+    assert "--set" not in str(error.value)
     with pytest.raises(ValueError, match="conductivity.phi0 = 1e308 is out of range"):
         piezocontact.solve(PAPER_72, {"conductivity.phi0": 1e308})
     with pytest.raises(ValueError, match="^mesh.nx: a value of type object cannot be a case value"):

@@ -351,7 +351,7 @@ fn error_messages() {
     );
     assert_error(
         &["check", "cases/paper-7.1.toml", "--set", "solver.rr=1"],
-        &["unknown field `rr`", "--set solver.rr=1"],
+        &["unknown field `rr`", "with the overrides solver.rr=1"],
     );
     assert_error(
         &["check", "cases/paper-7.1.toml", "--set", "nonsense"],

@@ -44,7 +44,8 @@ pub struct Case {
 }
 
 impl Case {
-    /// Reads `path`, applies `--set` overrides, and parses.
+    /// Reads `path`, applies the overrides "dotted.key=value" (`--set` of the command line),
+    /// and parses.
     pub fn load(path: &Path, overrides: &[String]) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
             what: format!("cannot read the case file {}", path.display()),
@@ -65,7 +66,7 @@ impl Case {
             let note = if overrides.is_empty() {
                 String::new()
             } else {
-                format!(" (after --set {})", overrides.join(", --set "))
+                format!(" (with the overrides {})", overrides.join(", "))
             };
             input!("{}{note}: {e}", path.display())
         })?;
@@ -447,7 +448,7 @@ gap = 0.1
             (vec!["mesh.segments.bottom=[]"], vec![empty.as_str()]),
             (vec!["mesh.file=\"x.msh\""], vec!["mesh.x describes the built-in rectangle"]),
             (vec!["solver.nonsense=1"], vec!["unknown field `nonsense`"]),
-            (vec!["solver"], vec!["--set solver: expected dotted.key=value"]),
+            (vec!["solver"], vec!["the override solver: expected dotted.key=value"]),
             (vec!["mesh.nx.deep=1"], vec!["'mesh.nx' is not a table"]),
             (
                 vec!["mesh.nx=2000000000", "mesh.ny=2000000000"],

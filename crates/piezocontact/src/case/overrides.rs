@@ -1,5 +1,6 @@
-//! `--set dotted.key=value` overrides, applied to the TOML document before it is read so that
-//! an override is checked exactly like the file, and the line of a key for messages.
+//! Overrides `dotted.key=value` (the command line's `--set`, the Python package's dict),
+//! applied to the TOML document before it is read so that an override is checked exactly
+//! like the file, and the line of a key for messages.
 
 use crate::error::{Error, Result};
 
@@ -9,11 +10,11 @@ use crate::error::{Error, Result};
 /// `solver.eps=1e-6`, not a `[solver]` table emptied of its other keys.
 pub(super) fn apply_override(doc: &mut toml_edit::DocumentMut, setting: &str) -> Result<()> {
     let (key, value) = setting.split_once('=').ok_or_else(|| {
-        input!("--set {setting}: expected dotted.key=value, e.g. --set mesh.nx=192")
+        input!("the override {setting}: expected dotted.key=value, e.g. mesh.nx=192")
     })?;
     let path: Vec<String> = key.trim().split('.').map(str::to_string).collect();
     if path.iter().any(|k| k.is_empty()) {
-        return Err(input!("--set {setting}: '{key}' is not a dotted key such as solver.r"));
+        return Err(input!("the override {setting}: '{key}' is not a dotted key such as solver.r"));
     }
     let value: toml_edit::Value =
         value.trim().parse().unwrap_or_else(|_| toml_edit::Value::from(value.trim()));
@@ -64,7 +65,7 @@ fn table_at<'d>(
         item = table.entry(key).or_insert(made);
         if !item.is_table_like() {
             let key = path[..=depth].join(".");
-            return Err(input!("--set {setting}: '{key}' is not a table"));
+            return Err(input!("the override {setting}: '{key}' is not a table"));
         }
     }
     Ok(item.as_table_like_mut().expect("the root, or checked in the loop"))
