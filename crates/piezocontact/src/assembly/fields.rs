@@ -7,6 +7,7 @@ use crate::dofs::DofMap;
 use crate::error::Result;
 use crate::material::deviator_norm_squared;
 use crate::problem::Problem;
+use rayon::prelude::*;
 
 /// Strain ε(u) and ∇ϕ on cell `c` from a global vector x = (u, ϕ).
 pub fn cell_gradients<const D: usize, const N: usize>(
@@ -43,6 +44,10 @@ pub fn internal_force(
     with_simplex!(problem.mesh.dim(), internal_force_on(problem, dofs, x, moduli))
 }
 
+/// Cells whose products K_e x_e [`internal_force`] computes at once, in parallel, before it
+/// adds them to the rows in cell order: the sums are the same on any number of threads.
+const FORCE_BLOCK: usize = 1 << 14;
+
 fn internal_force_on<const D: usize, const N: usize>(
     problem: &Problem,
     dofs: &DofMap,
@@ -50,17 +55,33 @@ fn internal_force_on<const D: usize, const N: usize>(
     moduli: &[f64],
 ) -> Result<(Vec<f64>, Vec<f64>)> {
     let m = N * (D + 1);
+    let n_cells = problem.mesh.n_cells();
     let mut force = vec![0.0; dofs.n_total()];
     let mut scale = vec![0.0; dofs.n_total()];
-    for c in 0..problem.mesh.n_cells() {
-        let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, moduli[c]);
-        let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
-        for p in 0..m {
-            for q in 0..m {
-                let v = k[p][q] * x[global[q]];
-                force[global[p]] += v;
-                scale[global[p]] += v.abs();
+    // Per cell: the m rows of K_e x_e, then those of Σ_q |K_e,pq x_q|.
+    let mut products = vec![0.0; 2 * m * FORCE_BLOCK.min(n_cells)];
+    for first in (0..n_cells).step_by(FORCE_BLOCK) {
+        let cells = first..(first + FORCE_BLOCK).min(n_cells);
+        let products = &mut products[..2 * m * cells.len()];
+        products.par_chunks_mut(2 * m).zip(cells.clone()).try_for_each(|(out, c)| {
+            let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, moduli[c]);
+            let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
+            for p in 0..m {
+                for q in 0..m {
+                    let v = k[p][q] * x[global[q]];
+                    out[p] += v;
+                    out[m + p] += v.abs();
+                }
             }
+            Ok::<_, crate::error::Error>(())
+        })?;
+        for (out, c) in products.chunks_mut(2 * m).zip(cells) {
+            let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
+            for (p, &dof) in global[..m].iter().enumerate() {
+                force[dof] += out[p];
+                scale[dof] += out[m + p];
+            }
+            out.fill(0.0);
         }
     }
     Ok((force, scale))
@@ -222,6 +243,7 @@ fn deviator_tensor<const D: usize, const N: usize>(
 /// Per-element secant moduli g(‖ε^D(u_n)‖²) \[stress\] at the iterate x_n (global vector).
 pub fn secant_moduli(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Vec<f64>> {
     (0..problem.mesh.n_cells())
+        .into_par_iter()
         .map(|c| {
             let t = with_simplex!(problem.mesh.dim(), deviator_at(problem, dofs, x, c))?;
             Ok(problem.material.elasticity.g(t))
@@ -240,13 +262,12 @@ pub struct ElementFields {
 
 /// σ and D on every element of the solution x (global vector).
 pub fn element_fields(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<ElementFields> {
-    let mut fields = ElementFields::default();
-    for c in 0..problem.mesh.n_cells() {
-        let (s, d) = with_simplex!(problem.mesh.dim(), fields_on(problem, dofs, x, c))?;
-        fields.sigma.push(s);
-        fields.electric_displacement.push(d);
-    }
-    Ok(fields)
+    let cells: Vec<([f64; 9], [f64; 3])> = (0..problem.mesh.n_cells())
+        .into_par_iter()
+        .map(|c| with_simplex!(problem.mesh.dim(), fields_on(problem, dofs, x, c)))
+        .collect::<Result<_>>()?;
+    let (sigma, electric_displacement) = cells.into_iter().unzip();
+    Ok(ElementFields { sigma, electric_displacement })
 }
 
 fn fields_on<const D: usize, const N: usize>(
@@ -289,6 +310,33 @@ mod tests {
     use crate::algorithm::solve_contact;
     use crate::assembly::Assembler;
     use crate::testing::{PAPER_71, built};
+
+    /// F_int = K x on the free rows (K assembled with the same secant moduli, x zero on the
+    /// Dirichlet rows), on a mesh of more cells than [`FORCE_BLOCK`], and the same bits on 1
+    /// and 3 threads.
+    #[test]
+    fn the_internal_force_is_the_matrix_times_x_on_any_number_of_threads() {
+        let built = built(PAPER_71, &["mesh.nx=200", "mesh.ny=50"]);
+        let problem = &built.problem;
+        assert!(problem.mesh.n_cells() > FORCE_BLOCK);
+        let dofs = DofMap::new(problem).unwrap();
+        let assembler = Assembler::new(problem, dofs.clone(), &[], None).unwrap();
+        let free: Vec<f64> = (0..dofs.n_free()).map(|k| ((k * 7919) % 13) as f64 - 6.0).collect();
+        let x = dofs.expand(&free);
+        let moduli = secant_moduli(problem, &dofs, &x).unwrap();
+        let linearisation = Linearisation::secant(moduli.clone());
+        let (matrix, _) = assembler.linearised_matrix(problem, &linearisation, &[]).unwrap();
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| internal_force(problem, &dofs, &x, &moduli).unwrap())
+        };
+        let (force, scale) = on(1);
+        assert_eq!((force.clone(), scale.clone()), on(3));
+        let (ours, exact) = (assembler.restrict(&force), matrix.mul(&free));
+        for (k, row_scale) in assembler.restrict(&scale).into_iter().enumerate() {
+            assert!((ours[k] - exact[k]).abs() <= 1e-12 * row_scale, "row {k}");
+        }
+    }
 
     /// The consistent tangent of Hencky's law is the derivative of the true internal force
     /// K_sec(x) x, checked by central differences at a solution where the law softens.
