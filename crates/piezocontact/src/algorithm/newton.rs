@@ -117,7 +117,7 @@ struct Iteration {
 /// dense factorisation.
 #[derive(Default)]
 struct Cycles {
-    /// The last 2 [`LONGEST_CYCLE`] iterates, the newest last, each with the length of the
+    /// The last 2 × [`LONGEST_CYCLE`] iterates, the newest last, each with the length of the
     /// step that reached it (max norm).
     recent: Vec<(Vec<f64>, f64)>,
 }
