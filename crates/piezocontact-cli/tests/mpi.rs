@@ -109,8 +109,10 @@ fn a_process_that_fails_ends_every_process_with_one_message() {
     // Process 1 reads a case that does not exist, process 0 a good one (Open MPI's
     // colon syntax gives each its own arguments).
     let exe = env!("CARGO_BIN_EXE_piezocontact");
+    // The aborted run's staging directory, beside its output, is inside `dir`.
     let dir = out_dir("failing");
-    let out = dir.to_str().unwrap();
+    let out = dir.join("run");
+    let out = out.to_str().unwrap();
     let backend = "solver.backend=\"petsc\"";
     let start = Instant::now();
     let result = Command::new("mpirun")

@@ -156,7 +156,9 @@ fn assert_all_complete(dir: &Path) {
 fn a_killed_run_leaves_only_complete_files() {
     let mut killed_while_running = 0;
     for (k, delay) in [150u64, 600, 1500].into_iter().enumerate() {
-        let out = TempDir::unmade(&format!("kill{k}"));
+        // The killed run's staging directory, beside its output, is inside the test's.
+        let parent = TempDir::unmade(&format!("kill{k}"));
+        let out = parent.join("run");
         let mut child = command()
             .args(["reproduce", "--out", out.to_str().unwrap(), "--mesh", "96,16", "--jobs", "2"])
             .stdout(Stdio::null())
