@@ -117,35 +117,30 @@ struct Iteration {
 /// dense factorisation.
 #[derive(Default)]
 struct Cycles {
-    /// The last 2 × [`LONGEST_CYCLE`] iterates, the newest last, each with the length of the
-    /// step that reached it (max norm).
-    recent: Vec<(Vec<f64>, f64)>,
+    /// The last 2 × [`LONGEST_CYCLE`] iterates, the newest last.
+    recent: Vec<Vec<f64>>,
 }
 
 impl Cycles {
-    /// Records the iterate `y`, reached by a step of length `step`; the period p ≥ 2 when
-    /// each of the last p iterates is the one p before it, to [`CYCLE_TOLERANCE`] of the
-    /// longest of the 2p − 1 steps between them: the iteration has gone round a loop twice.
-    /// Two iterates p apart differ by the sum of the p steps between them, which for a
-    /// converging iteration is about the first of them, the longest: they coincide only when
-    /// the steps go back and forth.
-    fn period(&mut self, y: &[f64], step: f64) -> Option<usize> {
+    /// Records the iterate `y`; the period p ≥ 2 when each of the last p iterates is the one
+    /// p before it, to [`CYCLE_TOLERANCE`] of the longest of the 2p − 1 steps between them
+    /// (max norm): the iteration has gone round a loop twice. Two iterates p apart differ by
+    /// the sum of the p steps between them, which for a converging iteration is about the
+    /// first of them, the longest: they coincide only when the steps go back and forth.
+    fn period(&mut self, y: &[f64]) -> Option<usize> {
         if self.recent.len() == 2 * LONGEST_CYCLE {
             self.recent.remove(0);
         }
-        self.recent.push((y.to_vec(), step));
+        self.recent.push(y.to_vec());
         let n = self.recent.len();
         let distance =
             |a: &[f64], b: &[f64]| a.iter().zip(b).fold(0.0_f64, |d, (x, y)| d.max((x - y).abs()));
         (2..=LONGEST_CYCLE).filter(|p| 2 * p <= n).find(|&p| {
             let window = &self.recent[n - 2 * p..];
-            let longest = window[1..].iter().fold(0.0_f64, |l, (_, step)| l.max(*step));
+            let longest = window.windows(2).fold(0.0_f64, |l, w| l.max(distance(&w[0], &w[1])));
             let (before, last) = window.split_at(p);
             longest > 0.0
-                && before
-                    .iter()
-                    .zip(last)
-                    .all(|(a, b)| distance(&a.0, &b.0) <= CYCLE_TOLERANCE * longest)
+                && before.iter().zip(last).all(|(a, b)| distance(a, b) <= CYCLE_TOLERANCE * longest)
         })
     }
 }
@@ -613,7 +608,7 @@ impl<'a> Local<'a> {
                 (stop, iterations) = (Stop::Converged, k + 1);
                 break;
             }
-            if let Some(period) = cycles.period(&y, criterion * size) {
+            if let Some(period) = cycles.period(&y) {
                 (stop, iterations) = (Stop::Cycle(period), k + 1);
                 break;
             }
@@ -989,16 +984,11 @@ mod tests {
     use crate::linalg::default_solver;
     use crate::testing::{Fixture, INDENTATION_3D, PAPER_72};
 
-    /// Feeds `points` to a fresh [`Cycles`] as iterates, each step the distance from the one
-    /// before; the step at which it tells a cycle, and the period.
+    /// Feeds `points` to a fresh [`Cycles`] as iterates; the step at which it tells a cycle,
+    /// and the period.
     fn first_cycle(points: &[Vec<f64>]) -> Option<(usize, usize)> {
         let mut cycles = Cycles::default();
-        let mut last = points[0].clone();
-        points.iter().enumerate().find_map(|(k, y)| {
-            let step = y.iter().zip(&last).fold(0.0_f64, |d, (a, b)| d.max((a - b).abs()));
-            last = y.clone();
-            cycles.period(y, step).map(|period| (k, period))
-        })
+        points.iter().enumerate().find_map(|(k, y)| cycles.period(y).map(|period| (k, period)))
     }
 
     /// A loop of 5 iterates (with round-off) is told once it has gone round a whole period
