@@ -710,33 +710,38 @@ fn inner_failure(context: &StopContext, inner: &InnerResult) -> Option<Error> {
     let StopContext { what, tolerance, cap_hint, hint } = context.clone();
     let history = tail(&inner.history);
     let iteration = inner.iterations;
-    match &inner.stop {
-        Stop::Converged => None,
-        Stop::Cap => Some(Error::NotConverged {
+    let criterion = inner.history.last().copied().unwrap_or(f64::NAN);
+    let not_converged = |what, history, hint| {
+        Some(Error::NotConverged {
             what,
             iterations: iteration,
-            criterion: inner.history.last().copied().unwrap_or(f64::NAN),
+            criterion,
             tolerance,
             history,
-            hint: match stalled(&inner.history) {
+            hint,
+        })
+    };
+    match &inner.stop {
+        Stop::Converged => None,
+        Stop::Cap => not_converged(
+            what,
+            history,
+            match stalled(&inner.history) {
                 Some(last) => format!(
                     "its criterion has not fallen by 1 % in its last {last} iterations, where \
                      more would not help: {hint}"
                 ),
                 None => cap_hint,
             },
-        }),
-        Stop::Cycle(period) => Some(Error::NotConverged {
+        ),
+        Stop::Cycle(period) => not_converged(
             what,
-            iterations: iteration,
-            criterion: inner.history.last().copied().unwrap_or(f64::NAN),
-            tolerance,
             history,
-            hint: format!(
+            format!(
                 "its iterates cycle: each of its last {period} is, to round-off, the one \
                  {period} steps before it, so more iterations would not help: {hint}"
             ),
-        }),
+        ),
         Stop::Diverged => Some(Error::Diverged { what, iteration, history, hint }),
         Stop::NotFinite(cause) => {
             Some(Error::NumericalFailure { what, iteration, cause: cause.clone(), hint })
