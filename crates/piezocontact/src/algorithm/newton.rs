@@ -9,7 +9,8 @@
 //! forces on the Γ3 rows (F_ν = w σ_ν, F_τ = −w λ_f, F_ϕ = w ψ φ_L), and the residual E
 //! (E_n contact, E_t Coulomb, E_ϕ conduction) is evaluated by `Local::evaluate`, its
 //! generalised Jacobian column by column by `Local::gradient`. Rows of nodes in contact (normal)
-//! or sticking (tangential) fix their unknowns; the dense LU runs on the others. On slipping
+//! or sticking (tangential) fix their unknowns; the dense LU runs on the others, in single
+//! precision with its solves refined in double ([`TransposedLu`]). On slipping
 //! nodes the projection's derivative uses λ_f / max(s, ‖λ_f‖) (Hüeber, Stadler and Wohlmuth's
 //! relaxation), and a backtracking line search on the scaled ‖E‖ keeps the iteration from
 //! cycling. The constant c_i = (r/E_Y)·S_νν,i/w_i scales the case's r by the stiffness node i
