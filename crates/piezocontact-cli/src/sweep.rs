@@ -22,17 +22,40 @@ pub struct Job {
 }
 
 /// Runs the jobs on `threads` threads and returns the runs in the jobs' order; the first
-/// job that fails fails them all.
+/// job that fails fails them all, and the jobs not started by then are not run.
 pub fn run_jobs(jobs: Vec<Job>, threads: usize) -> Result<Vec<ContactRun>> {
-    run_each(jobs, threads).into_iter().collect()
+    let (mut runs, mut first_error, mut skipped) = (Vec::new(), None, false);
+    for result in run_until(jobs, threads, true) {
+        match result {
+            Ok(run) => runs.push(run),
+            Err(Some(error)) => first_error = first_error.or(Some(error)),
+            Err(None) => skipped = true,
+        }
+    }
+    match first_error {
+        Some(error) => Err(error),
+        None if skipped => Err(anyhow!("a job was not run")),
+        None => Ok(runs),
+    }
 }
 
 /// Runs the jobs on `threads` threads and returns each one's run or error, in the jobs'
 /// order.
 pub fn run_each(jobs: Vec<Job>, threads: usize) -> Vec<Result<ContactRun>> {
+    let results = run_until(jobs, threads, false);
+    results.into_iter().map(|r| r.map_err(|e| e.unwrap_or_else(|| anyhow!("not run")))).collect()
+}
+
+/// Runs the jobs on `threads` threads and returns each one's run, or its error, or `None`
+/// for a job not run because another had failed (with `stop_at_failure`), in the jobs' order.
+fn run_until(
+    jobs: Vec<Job>,
+    threads: usize,
+    stop_at_failure: bool,
+) -> Vec<std::result::Result<ContactRun, Option<anyhow::Error>>> {
     let pool = match rayon::ThreadPoolBuilder::new().num_threads(threads.max(1)).build() {
         Ok(pool) => pool,
-        Err(e) => return jobs.iter().map(|_| Err(anyhow!("thread pool: {e}"))).collect(),
+        Err(e) => return jobs.iter().map(|_| Err(Some(anyhow!("thread pool: {e}")))).collect(),
     };
     let total = jobs.len();
     // Progress: a bar on a terminal, else a line per run; nothing with --quiet.
@@ -46,9 +69,13 @@ pub fn run_each(jobs: Vec<Job>, threads: usize) -> Vec<Result<ContactRun>> {
         bar
     });
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let results: Vec<Result<ContactRun>> = pool.install(|| {
+    let failed = std::sync::atomic::AtomicBool::new(false);
+    let results = pool.install(|| {
         jobs.par_iter()
             .map(|job| {
+                if stop_at_failure && failed.load(std::sync::atomic::Ordering::SeqCst) {
+                    return Err(None);
+                }
                 let run = solve_job(job);
                 let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
                 let line = match &run {
@@ -59,7 +86,11 @@ pub fn run_each(jobs: Vec<Job>, threads: usize) -> Vec<Result<ContactRun>> {
                         if run.solution.converged { "converged" } else { "NOT converged" },
                         run.seconds
                     ),
-                    Err(_) => format!("{}: failed", job.label),
+                    Err(_) => {
+                        failed.store(true, std::sync::atomic::Ordering::SeqCst);
+                        let stop = if stop_at_failure { "; no further runs start" } else { "" };
+                        format!("{}: failed{stop}", job.label)
+                    }
                 };
                 match &bar {
                     Some(bar) => {
@@ -69,7 +100,7 @@ pub fn run_each(jobs: Vec<Job>, threads: usize) -> Vec<Result<ContactRun>> {
                     None if shown => say_err!("[{k}/{total}] {line}"),
                     None => {}
                 }
-                run
+                run.map_err(Some)
             })
             .collect()
     });
@@ -266,4 +297,43 @@ fn row(run: &ContactRun, distance: &str) -> String {
         csv_number(slip),
         run.seconds
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A job of the paper's Example 7.1 on a coarse mesh, writing into `out`; with `broken`,
+    /// a mesh file beside the rectangle, which the case loads and the run refuses.
+    fn job(label: &str, out: PathBuf, broken: bool) -> Job {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/paper-7.1.toml");
+        let mut overrides = vec!["mesh.nx=12".to_string(), "mesh.ny=2".to_string()];
+        if broken {
+            overrides.push("mesh.file=\"no-such-mesh.msh\"".into());
+        }
+        let case = Case::load(&path, &overrides).expect("the case loads");
+        Job { label: label.into(), case, out: Some(out) }
+    }
+
+    /// On one thread the jobs run in their order. `run_jobs` (reproduce) starts none after the
+    /// first that fails and returns its error; `run_each` (sweep) runs them all.
+    #[test]
+    fn the_first_failure_stops_the_jobs_of_run_jobs_not_those_of_run_each() {
+        let dir = std::env::temp_dir().join(format!("piezocontact-jobs-{}", std::process::id()));
+        let jobs = |tag: &str| {
+            let out = |name: &str| dir.join(format!("{tag}-{name}"));
+            vec![
+                job("first", out("first"), false),
+                job("broken", out("broken"), true),
+                job("third", out("third"), false),
+            ]
+        };
+        let error = run_jobs(jobs("jobs"), 1).err().map(|e| format!("{e:#}")).unwrap_or_default();
+        assert!(error.contains("run broken") && error.contains("mesh.file"), "{error}");
+        assert!(dir.join("jobs-first").exists() && !dir.join("jobs-third").exists());
+        let each = run_each(jobs("each"), 1);
+        assert!(each[0].is_ok() && each[1].is_err() && each[2].is_ok());
+        assert!(dir.join("each-third").exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
