@@ -154,14 +154,13 @@ impl TransposedLu {
     /// x by the single-precision factors and refinements; `None` when they stop short of
     /// [`SETTLED`] or are not finite.
     fn refined(&self, b: &[f64]) -> Option<Vec<f64>> {
-        let norm = |v: &[f64]| v.iter().fold(0.0_f64, |a, e| a.max(e.abs()));
         let mut x = self.by_single(b)?;
-        let mut last = norm(&x);
+        let mut last = max_norm(&x);
         for _ in 0..MAX_REFINEMENTS {
             let product = product(self.matrix.mat.transpose(), &x);
             let residual: Vec<f64> = b.iter().zip(&product).map(|(b, p)| b - p).collect();
             let correction = self.by_single(&residual)?;
-            let (size, change) = (norm(&x), norm(&correction));
+            let (size, change) = (max_norm(&x), max_norm(&correction));
             if change > 0.5 * last {
                 return (last <= SETTLED * size).then_some(x);
             }
@@ -171,40 +170,47 @@ impl TransposedLu {
             }
             last = change;
         }
-        (last <= SETTLED * norm(&x)).then_some(x)
+        (last <= SETTLED * max_norm(&x)).then_some(x)
     }
 
     /// (Aᵀ)⁻¹ v by the single-precision factors, v scaled to its largest entry so that no
     /// residual underflows; `None` when not finite.
     fn by_single(&self, v: &[f64]) -> Option<Vec<f64>> {
-        use faer::linalg::solvers::Solve;
-        let scale = v.iter().fold(0.0_f64, |a, e| a.max(e.abs()));
+        let scale = max_norm(v);
         if scale == 0.0 {
             return Some(vec![0.0; v.len()]);
         }
         let mut single: Vec<f32> = v.iter().map(|e| (e / scale) as f32).collect();
-        let n = single.len();
-        self.single.solve_transpose_in_place(MatMut::from_column_major_slice_mut(
-            &mut single,
-            n,
-            1,
-        ));
+        solve_transposed(&self.single, &mut single);
         let x: Vec<f64> = single.iter().map(|&e| f64::from(e) * scale).collect();
         x.iter().all(|e| e.is_finite()).then_some(x)
     }
 
-    /// (Aᵀ)⁻¹ b by double-precision factors, made at the first call.
+    /// (Aᵀ)⁻¹ b by double-precision factors of A, made at the first call.
     fn by_double(&self, b: &[f64]) -> Vec<f64> {
-        use faer::linalg::solvers::Solve;
         let lu = self.double.get_or_init(|| {
             super::parallelism(); // As in `inverse`.
-            self.matrix.mat.transpose().partial_piv_lu()
+            self.matrix.mat.partial_piv_lu()
         });
         let mut x = b.to_vec();
-        let n = x.len();
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, n, 1));
+        solve_transposed(lu, &mut x);
         x
     }
+}
+
+/// Solves Aᵀ x = v in place with the LU factors of A.
+fn solve_transposed<T: faer::traits::ComplexField>(
+    lu: &faer::linalg::solvers::PartialPivLu<T>,
+    v: &mut [T],
+) {
+    use faer::linalg::solvers::Solve;
+    let n = v.len();
+    lu.solve_transpose_in_place(MatMut::from_column_major_slice_mut(v, n, 1));
+}
+
+/// The largest |v_i|.
+fn max_norm(v: &[f64]) -> f64 {
+    v.iter().fold(0.0_f64, |a, e| a.max(e.abs()))
 }
 
 /// y = A x, as [`DenseMatrix::mul`] says.
@@ -226,12 +232,12 @@ fn product(a: faer::MatRef<'_, f64>, x: &[f64]) -> Vec<f64> {
 mod tests {
     use super::*;
 
-    /// (Aᵀ)⁻¹ b by faer's double-precision LU alone.
+    /// (Aᵀ)⁻¹ b by faer's double-precision LU of A alone, made apart from the code tested.
     fn by_double_alone(a: &DenseMatrix, b: &[f64]) -> Vec<f64> {
         use faer::linalg::solvers::Solve;
         let mut x = b.to_vec();
-        let lu = a.mat.transpose().partial_piv_lu();
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, b.len(), 1));
+        let lu = a.mat.partial_piv_lu();
+        lu.solve_transpose_in_place(MatMut::from_column_major_slice_mut(&mut x, b.len(), 1));
         x
     }
 
@@ -245,8 +251,8 @@ mod tests {
     }
 
     fn relative_error(x: &[f64], exact: &[f64]) -> f64 {
-        let norm = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0_f64, |a, e| a.max(e.abs()));
-        norm(&mut x.iter().zip(exact).map(|(a, b)| a - b)) / norm(&mut exact.iter().copied())
+        let difference: Vec<f64> = x.iter().zip(exact).map(|(a, b)| a - b).collect();
+        max_norm(&difference) / max_norm(exact)
     }
 
     /// A nonsymmetric matrix of condition about 1e4 (rows scaled over four decades): the
