@@ -5,6 +5,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 fn root() -> PathBuf {
@@ -20,15 +21,24 @@ fn out_dir(name: &str) -> PathBuf {
 /// `mpirun -n N piezocontact ARGS` from the repository's root (N = 0: without mpirun).
 fn run(n: usize, args: &[&str]) -> Output {
     let exe = env!("CARGO_BIN_EXE_piezocontact");
-    let mut command = if n == 0 {
-        Command::new(exe)
-    } else {
-        let mut c = Command::new("mpirun");
-        c.args(["--allow-run-as-root", "--oversubscribe", "--timeout", "300", "-n"]);
-        c.arg(n.to_string()).arg(exe);
-        c
-    };
-    command.current_dir(root()).args(args).output().expect("mpirun (Open MPI) on PATH")
+    if n == 0 {
+        return Command::new(exe).current_dir(root()).args(args).output().unwrap();
+    }
+    mpirun(&[&["-n", &n.to_string(), exe][..], args].concat())
+}
+
+/// `mpirun ARGS` from the repository's root, one MPI job at a time: Open MPI's jobs on one
+/// machine share its session directory, and jobs started together can fail to make theirs
+/// (Open MPI's issue 8510); this file's tests run on parallel threads.
+fn mpirun(args: &[&str]) -> Output {
+    static ONE_JOB: Mutex<()> = Mutex::new(());
+    let _job = ONE_JOB.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    Command::new("mpirun")
+        .args(["--allow-run-as-root", "--oversubscribe", "--timeout", "300"])
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("mpirun (Open MPI) on PATH")
 }
 
 /// The numeric columns of a contact.csv.
@@ -115,13 +125,13 @@ fn a_process_that_fails_ends_every_process_with_one_message() {
     let out = out.to_str().unwrap();
     let backend = "solver.backend=\"petsc\"";
     let start = Instant::now();
-    let result = Command::new("mpirun")
-        .args(["--allow-run-as-root", "--oversubscribe", "--timeout", "120"])
-        .args(["-n", "1", exe, "run", "cases/paper-7.2.toml", "--set", backend, "--out", out])
-        .args([":", "-n", "1", exe, "run", "cases/missing.toml", "--set", backend, "--out", out])
-        .current_dir(root())
-        .output()
-        .unwrap();
+    let result = mpirun(
+        &[
+            &["-n", "1", exe, "run", "cases/paper-7.2.toml", "--set", backend, "--out", out][..],
+            &[":", "-n", "1", exe, "run", "cases/missing.toml", "--set", backend, "--out", out],
+        ]
+        .concat(),
+    );
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert!(!result.status.success());
     assert!(start.elapsed() < Duration::from_secs(100), "ended by mpirun's timeout: {stderr}");

@@ -13,14 +13,19 @@ use piezocontact::run::ContactRun;
 use piezocontact::solver::{CoupledSystem, solve_without_contact};
 use std::path::PathBuf;
 use std::process::Command;
+use std::sync::Mutex;
 
 /// The process counts every test runs with.
 const PROCESSES: [usize; 3] = [1, 2, 3];
 
 /// Runs `body` on N processes for each N of [`PROCESSES`]: from the test harness, starts
-/// this test under mpirun (and asserts that every process passed); under mpirun, runs it.
+/// this test under mpirun (one MPI job at a time) and asserts that every process passed,
+/// showing the processes' output when one did not; under mpirun, runs it.
 fn on_processes(test: &str, body: impl FnOnce()) {
     if std::env::var_os("OMPI_COMM_WORLD_SIZE").is_some() {
+        // MPI first: MPI_Abort before MPI_Init cannot end the job, and the process would
+        // exit with 1 and the MPI library's complaint instead of the assertion's.
+        petsc::initialize("").expect("PETSc and MPI start");
         // A failed assertion on one process ends them all (the others would wait for it).
         let report = std::panic::take_hook();
         std::panic::set_hook(Box::new(move |info| {
@@ -30,16 +35,35 @@ fn on_processes(test: &str, body: impl FnOnce()) {
         body();
         return;
     }
+    // One MPI job at a time: Open MPI's jobs on one machine share its session directory, and
+    // jobs started together can fail to make theirs (Open MPI's issue 8510); this file's
+    // tests run on parallel threads.
+    static ONE_JOB: Mutex<()> = Mutex::new(());
+    let _job = ONE_JOB.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     for n in PROCESSES {
-        let status = Command::new("mpirun")
+        let output = Command::new("mpirun")
             .args(["--allow-run-as-root", "--oversubscribe", "--timeout", "600", "-n"])
             .arg(n.to_string())
             .arg(std::env::current_exe().unwrap())
             .args(["--exact", test, "--test-threads=1", "--nocapture"])
-            .status()
+            .env("RUST_BACKTRACE", "0") // the assertion's message and line, shown below
+            .output()
             .expect("mpirun (Open MPI) on PATH");
-        assert!(status.success(), "{test} under mpirun -n {n}: {status}");
+        assert!(
+            output.status.success(),
+            "{test} under mpirun -n {n}: {}\n--- stdout ---\n{}\n--- stderr ---\n{}",
+            output.status,
+            tail(&output.stdout),
+            tail(&output.stderr)
+        );
     }
+}
+
+/// The last 60 lines of a process's output.
+fn tail(output: &[u8]) -> String {
+    let text = String::from_utf8_lossy(output);
+    let lines: Vec<&str> = text.lines().collect();
+    lines[lines.len().saturating_sub(60)..].join("\n")
 }
 
 fn case(name: &str, overrides: &[&str]) -> Case {
