@@ -387,7 +387,8 @@ impl SchurComplement for LdltSolver {
     }
 
     /// Reads L22 and D2 of the trailing block of P S A S Pᵀ = L D Lᵀ (S the diagonal scaling)
-    /// and returns S⁻¹ L22 D2 L22ᵀ S⁻¹ on the trailing unknowns.
+    /// and returns S⁻¹ L22 D2 L22ᵀ S⁻¹ on the trailing unknowns: one triangular product of
+    /// the factors as read, (S⁻¹ L22) D2 and S⁻¹ L22, gives its lower half.
     fn schur_complement(&self) -> Result<DenseMatrix> {
         let (symbolic, m) = (self.symbolic()?, self.last);
         let n = self.signs.len();
@@ -399,30 +400,11 @@ impl SchurComplement for LdltSolver {
             ));
         };
         let first = n - m;
+        let forward = perm.arrays().0;
+        let unscale: Vec<f64> = (first..n).map(|p| 1.0 / self.scaling[forward[p]]).collect();
         let factor = SupernodalLdltRef::new(supernodal, &self.l_values);
-        let mut l22 = faer::Mat::<f64>::zeros(m, m);
-        let mut d2 = vec![0.0; m];
-        for s in 0..supernodal.n_supernodes() {
-            let node = factor.supernode(s);
-            let (start, block, pattern) = (node.start(), node.val(), node.pattern());
-            let end = start + block.ncols();
-            for j in first.max(start)..end {
-                let col = j - start;
-                d2[j - first] = block[(col, col)];
-                l22[(j - first, j - first)] = 1.0;
-                for i in j + 1..end {
-                    l22[(i - first, j - first)] = block[(i - start, col)];
-                }
-                for (q, &i) in pattern.iter().enumerate() {
-                    l22[(i - first, j - first)] = block[(block.ncols() + q, col)];
-                }
-            }
-        }
-        let mut weighted = l22.clone();
-        for (j, d) in d2.iter().enumerate() {
-            weighted.col_mut(j).iter_mut().for_each(|v| *v *= d);
-        }
-        // The lower half of (L22 D2) L22ᵀ, both factors triangular: a third of a full product.
+        let [weighted, l22] = trailing_factors(factor, first, &unscale);
+        // Both factors triangular: a third of a full product.
         let mut schur = faer::Mat::<f64>::zeros(m, m);
         triangular::matmul(
             schur.as_mut(),
@@ -431,23 +413,56 @@ impl SchurComplement for LdltSolver {
             weighted.as_ref(),
             BlockStructure::TriangularLower,
             l22.transpose(),
-            BlockStructure::UnitTriangularUpper,
+            BlockStructure::TriangularUpper,
             1.0,
             super::parallelism(),
         );
-        for j in 0..m {
-            for i in 0..j {
-                schur[(i, j)] = schur[(j, i)];
-            }
-        }
-        let forward = perm.arrays().0;
-        let unscale: Vec<f64> = (first..n).map(|p| 1.0 / self.scaling[forward[p]]).collect();
-        for j in 0..m {
-            for i in 0..m {
-                schur[(i, j)] *= unscale[i] * unscale[j];
-            }
-        }
+        mirror_lower(&mut schur);
         Ok(DenseMatrix { mat: schur })
+    }
+}
+
+/// The trailing unknowns' block of a supernodal LDLᵀ factor, from unknown `first` on, with
+/// its rows scaled by `unscale` (U): [U L22 D2, U L22], both lower triangular.
+fn trailing_factors(
+    factor: SupernodalLdltRef<'_, usize, f64>,
+    first: usize,
+    unscale: &[f64],
+) -> [faer::Mat<f64>; 2] {
+    let m = unscale.len();
+    let [mut weighted, mut l22] = [(); 2].map(|_| faer::Mat::<f64>::zeros(m, m));
+    for s in 0..factor.symbolic().n_supernodes() {
+        let node = factor.supernode(s);
+        let (start, block, pattern) = (node.start(), node.val(), node.pattern());
+        let (width, end) = (block.ncols(), start + block.ncols());
+        for j in first.max(start)..end {
+            let d = block[(j - start, j - start)];
+            let below = (j + 1..end).map(|i| (i, block[(i - start, j - start)]));
+            let outside =
+                pattern.iter().enumerate().map(|(q, &i)| (i, block[(width + q, j - start)]));
+            for (i, l) in std::iter::once((j, 1.0)).chain(below).chain(outside) {
+                let value = l * unscale[i - first];
+                l22[(i - first, j - first)] = value;
+                weighted[(i - first, j - first)] = value * d;
+            }
+        }
+    }
+    [weighted, l22]
+}
+
+/// Copies the lower half of a square matrix onto its upper half, tile by tile (the lower
+/// half's rows are read with a stride).
+fn mirror_lower(mat: &mut faer::Mat<f64>) {
+    const TILE: usize = 64;
+    let m = mat.nrows();
+    for column_tile in (0..m).step_by(TILE) {
+        for row_tile in (0..=column_tile).step_by(TILE) {
+            for j in column_tile..(column_tile + TILE).min(m) {
+                for i in row_tile..(row_tile + TILE).min(j) {
+                    mat[(i, j)] = mat[(j, i)];
+                }
+            }
+        }
     }
 }
 
@@ -550,6 +565,20 @@ mod tests {
         let signs = (0..n_u + n_phi).map(|i| if i < n_u { 1 } else { -1 }).collect();
         let (pattern, matrix) = build(n_u + n_phi, &positions, &values).unwrap();
         (pattern, matrix, signs)
+    }
+
+    /// NaN above the diagonal: an entry not copied from the lower half shows.
+    #[test]
+    fn the_lower_half_is_mirrored_across_whole_and_partial_tiles() {
+        for m in [1, 63, 64, 150] {
+            let mut mat = faer::Mat::<f64>::from_fn(m, m, |i, j| {
+                if i >= j { (1000 * i + j) as f64 } else { f64::NAN }
+            });
+            mirror_lower(&mut mat);
+            for (i, j) in (0..m).flat_map(|i| (0..m).map(move |j| (i, j))) {
+                assert_eq!(mat[(i, j)], (1000 * i.max(j) + i.min(j)) as f64, "({i}, {j}) of {m}");
+            }
+        }
     }
 
     /// The flop count of two factors whose work is known in closed form: a dense matrix of
