@@ -68,13 +68,16 @@ impl DenseMatrix {
 
     /// A ← (A + Aᵀ)/2.
     pub fn symmetrize(&mut self) {
-        for j in 0..self.n() {
-            for i in 0..j {
-                let mean = 0.5 * (self.mat[(i, j)] + self.mat[(j, i)]);
-                self.mat[(i, j)] = mean;
-                self.mat[(j, i)] = mean;
-            }
-        }
+        for_upper_pairs(self.n(), |i, j| {
+            let mean = 0.5 * (self.mat[(i, j)] + self.mat[(j, i)]);
+            self.mat[(i, j)] = mean;
+            self.mat[(j, i)] = mean;
+        });
+    }
+
+    /// The upper half ← the lower half (a product that wrote the lower half alone).
+    pub fn mirror_lower(&mut self) {
+        for_upper_pairs(self.n(), |i, j| self.mat[(i, j)] = self.mat[(j, i)]);
     }
 
     /// A⁻¹ by LU with partial pivoting; an error when an entry of it is not finite (A
@@ -95,8 +98,8 @@ impl DenseMatrix {
         Ok(Self { mat: inverse })
     }
 
-    /// The LU factors (partial pivoting) of Aᵀ (the matrix stored by the columns of Aᵀ, that
-    /// is by the rows of A), kept with A to solve with again ([`TransposedLu`]).
+    /// The factors to solve Aᵀ x = b with, again and again ([`TransposedLu`]): the LU factors
+    /// (partial pivoting) of A in single precision, kept with A.
     pub fn lu_transposed(self) -> TransposedLu {
         super::parallelism(); // As in `inverse`.
         use rayon::prelude::*;
@@ -119,9 +122,9 @@ const REFINED: f64 = 4.0 * f64::EPSILON;
 /// a matrix of condition 1e6 — else the double-precision factors solve instead.
 const SETTLED: f64 = 1e-10;
 
-/// The LU factors of the transpose of a [`DenseMatrix`] (Newton's dense system, model §11),
-/// in single precision, whose solves are refined in double precision to the accuracy of a
-/// double-precision LU: single precision halves the factorisation's time, the refinements
+/// Solves with the transpose of a [`DenseMatrix`] A (Newton's dense system, model §11) by the
+/// LU factors of A in single precision, each solve refined in double precision to the
+/// accuracy of a double-precision LU: single precision halves the factorisation's time, the refinements
 /// cost a product with the matrix and a solve each. Where they stop short (a matrix too
 /// ill-conditioned for single precision), the double-precision factors are made and solve.
 #[derive(Debug)]
@@ -195,6 +198,22 @@ impl TransposedLu {
         let mut x = b.to_vec();
         solve_transposed(lu, &mut x);
         x
+    }
+}
+
+/// Calls `f(i, j)` for every i < j of an n × n matrix, by tiles of 64 × 64: a walk that reads
+/// (j, i) beside (i, j) reads the lower half's rows, strided in column-major storage, within
+/// a tile that stays in cache.
+fn for_upper_pairs(n: usize, mut f: impl FnMut(usize, usize)) {
+    const TILE: usize = 64;
+    for column_tile in (0..n).step_by(TILE) {
+        for row_tile in (0..=column_tile).step_by(TILE) {
+            for j in column_tile..(column_tile + TILE).min(n) {
+                for i in row_tile..(row_tile + TILE).min(j) {
+                    f(i, j);
+                }
+            }
+        }
     }
 }
 
@@ -289,6 +308,24 @@ mod tests {
         let lu = tiny.lu_transposed();
         assert!(relative_error(&lu.solve(&b).unwrap(), &x) < 1e-14);
         assert!(lu.double.get().is_some());
+    }
+
+    /// NaN above the diagonal: an entry not taken from the lower half shows. Orders of one
+    /// tile, of one tile and one entry short, and of several with a partial last.
+    #[test]
+    fn the_halves_are_mirrored_and_averaged_across_whole_and_partial_tiles() {
+        for n in [1, 63, 64, 150] {
+            let lower = |i: usize, j: usize| (1000 * i.max(j) + i.min(j)) as f64;
+            let (mut mirrored, _, _) =
+                system(n, |i, j| if i >= j { lower(i, j) } else { f64::NAN });
+            mirrored.mirror_lower();
+            let (mut averaged, _, _) = system(n, |i, j| lower(i, j) + (i as f64 - j as f64));
+            averaged.symmetrize();
+            for (i, j) in (0..n).flat_map(|i| (0..n).map(move |j| (i, j))) {
+                assert_eq!(mirrored.get(i, j), lower(i, j), "({i}, {j}) of {n}");
+                assert_eq!(averaged.get(i, j), lower(i, j), "({i}, {j}) of {n}");
+            }
+        }
     }
 
     /// A singular matrix is told, by name, not solved into non-finite numbers.
