@@ -3,6 +3,7 @@
 //! Run with `cargo test --workspace --features piezocontact-cli/petsc --test mpi` (Open
 //! MPI's mpirun on PATH).
 
+use piezocontact::linalg::{max_distance, max_norm};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::Mutex;
@@ -63,8 +64,7 @@ fn assert_same_csv(a: &Path, b: &Path, tolerance: f64) {
     assert_eq!(a.len(), b.len());
     for (k, (x, y)) in a.iter().zip(&b).enumerate() {
         assert_eq!(x.len(), y.len(), "column {k}");
-        let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
-        let worst = x.iter().zip(y).map(|(p, q)| (p - q).abs() / scale).fold(0.0, f64::max);
+        let worst = max_distance(x, y) / max_norm(y).max(f64::MIN_POSITIVE);
         assert!(worst <= tolerance, "column {k}: relative difference {worst:e}");
     }
 }

@@ -28,7 +28,7 @@ use crate::assembly::NodalBlock;
 use crate::contact::ContactState;
 use crate::contact::model::{node_bound, stress_and_bound};
 use crate::error::{Error, Result};
-use crate::linalg::{DenseMatrix, LinearSolver, TransposedLu};
+use crate::linalg::{DenseMatrix, LinearSolver, TransposedLu, max_distance, max_norm};
 use crate::solver::CoupledSystem;
 use rayon::prelude::*;
 
@@ -134,14 +134,15 @@ impl Cycles {
         }
         self.recent.push(y.to_vec());
         let n = self.recent.len();
-        let distance =
-            |a: &[f64], b: &[f64]| a.iter().zip(b).fold(0.0_f64, |d, (x, y)| d.max((x - y).abs()));
         (2..=LONGEST_CYCLE).filter(|p| 2 * p <= n).find(|&p| {
             let window = &self.recent[n - 2 * p..];
-            let longest = window.windows(2).fold(0.0_f64, |l, w| l.max(distance(&w[0], &w[1])));
+            let longest = window.windows(2).fold(0.0_f64, |l, w| l.max(max_distance(&w[0], &w[1])));
             let (before, last) = window.split_at(p);
             longest > 0.0
-                && before.iter().zip(last).all(|(a, b)| distance(a, b) <= CYCLE_TOLERANCE * longest)
+                && before
+                    .iter()
+                    .zip(last)
+                    .all(|(a, b)| max_distance(a, b) <= CYCLE_TOLERANCE * longest)
         })
     }
 }
@@ -593,8 +594,8 @@ impl<'a> Local<'a> {
                 }
             };
             y.iter_mut().zip(&delta).for_each(|(a, d)| *a += alpha * d);
-            let size = y.iter().fold(0.0_f64, |a, v| a.max(v.abs())).max(f64::MIN_POSITIVE);
-            let criterion = alpha * delta.iter().fold(0.0_f64, |a, v| a.max(v.abs())) / size;
+            let size = max_norm(&y).max(f64::MIN_POSITIVE);
+            let criterion = alpha * max_norm(&delta) / size;
             history.push(criterion);
             let tolerance = STEP_TOLERANCE;
             (semismooth.step.progress)(Progress::Inner { iteration: k + 1, criterion, tolerance });

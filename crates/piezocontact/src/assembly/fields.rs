@@ -309,6 +309,7 @@ mod tests {
     use super::*;
     use crate::algorithm::solve_contact;
     use crate::assembly::Assembler;
+    use crate::linalg::max_norm;
     use crate::testing::{PAPER_71, built};
 
     /// F_int = K x on the free rows (K assembled with the same secant moduli, x zero on the
@@ -358,7 +359,7 @@ mod tests {
         };
         let free = assembler.restrict(&x);
         let direction: Vec<f64> = (0..free.len()).map(|k| ((k * 7919) % 13) as f64 - 6.0).collect();
-        let size = free.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let size = max_norm(&free);
         let h = 1e-6 * size / 6.0;
         let shifted = |sign: f64| {
             let moved: Vec<f64> =
@@ -367,7 +368,7 @@ mod tests {
         };
         let (plus, minus) = (shifted(1.0), shifted(-1.0));
         let exact = matrix.mul(&direction);
-        let scale = exact.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let scale = max_norm(&exact);
         let error = (0..free.len())
             .map(|k| ((plus[k] - minus[k]) / (2.0 * h) - exact[k]).abs())
             .fold(0.0, f64::max);

@@ -491,6 +491,7 @@ impl LdltSolver {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::linalg::{max_distance, max_norm};
 
     /// The pattern of `positions` and the matrix with `values` summed at them.
     pub(super) fn build(
@@ -585,8 +586,8 @@ mod tests {
             let mut b = a.mul(&x);
             solver.solve_in_place(&mut b).unwrap();
             for (block, range) in [("u", 0..30), ("phi", 30..42)] {
-                let err = range.clone().map(|i| (b[i] - x[i]).abs()).fold(0.0, f64::max);
-                let size = range.map(|i| x[i].abs()).fold(0.0, f64::max);
+                let err = max_distance(&b[range.clone()], &x[range.clone()]);
+                let size = max_norm(&x[range]);
                 assert!(err < 1e-12 * size, "scale {scale}, {block}: error {err} of {size}");
             }
         }
@@ -621,12 +622,10 @@ mod tests {
             for (x, column) in at_once.chunks(n).zip(b.chunks(n)) {
                 let mut one = column.to_vec();
                 solver.solve_in_place(&mut one).unwrap();
-                let size = one.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-                let apart = x.iter().zip(&one).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+                let (size, apart) = (max_norm(&one), max_distance(x, &one));
                 assert!(apart <= 1e-13 * size, "{apart:e} of {size:e}");
                 let ax = a.mul(x);
-                let residual =
-                    ax.iter().zip(column).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+                let residual = max_distance(&ax, column);
                 assert!(residual <= 1e-12 * 6.0, "residual {residual:e}");
             }
             assert_eq!(solver.stats().solve_count, 6);

@@ -54,7 +54,7 @@ pub mod ordering;
 pub mod petsc;
 mod sparse;
 
-pub use dense::{DenseMatrix, TransposedLu};
+pub use dense::{DenseMatrix, TransposedLu, max_distance, max_norm};
 pub use ldlt::LdltSolver;
 #[cfg(feature = "petsc")]
 pub use petsc::PetscSolver;
