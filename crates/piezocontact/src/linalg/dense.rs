@@ -14,7 +14,7 @@ pub struct DenseMatrix {
 impl DenseMatrix {
     /// The n × n zero matrix.
     pub fn zeros(n: usize) -> Self {
-        Self { mat: faer::Mat::zeros(n, n) }
+        Self { mat: zeros_on_threads(n, n) }
     }
 
     /// Order of the matrix.
@@ -104,13 +104,39 @@ impl DenseMatrix {
         super::parallelism(); // As in `inverse`.
         use rayon::prelude::*;
         let n = self.n();
-        let mut single = faer::Mat::<f32>::zeros(n, n);
+        let mut single = zeros_on_threads::<f32>(n, n);
         single.par_col_iter_mut().zip(self.mat.par_col_iter()).for_each(|(s, d)| {
             s.iter_mut().zip(d.iter()).for_each(|(s, &d)| *s = d as f32);
         });
         // The LU of A, whose transposed solves solve Aᵀ x = b.
         TransposedLu { single: single.partial_piv_lu(), matrix: self, double: OnceLock::new() }
     }
+}
+
+/// The m × n zero matrix, its columns written by the run's threads: faer's `Mat::zeros`
+/// writes from one thread, and the first write to a fresh block of hundreds of megabytes (a
+/// Schur complement of 5,295 unknowns is 224 MB) is the kernel's page faults, which two
+/// threads make in about half the time of one.
+pub(super) fn zeros_on_threads<T: Copy + Default + Send + Sync>(
+    m: usize,
+    n: usize,
+) -> faer::Mat<T> {
+    use rayon::prelude::*;
+    /// The matrix's storage, shared by the tasks that write its columns.
+    struct Storage<T>(*mut T);
+    // SAFETY: the tasks write disjoint columns of the storage, which outlives them.
+    unsafe impl<T> Sync for Storage<T> {}
+    let mut mat = faer::Mat::<T>::with_capacity(m, n);
+    let (stride, storage) = (mat.col_stride() as usize, Storage(mat.as_ptr_mut()));
+    (0..n).into_par_iter().for_each(|j| {
+        let storage = &storage;
+        // SAFETY: the capacity holds n columns of `stride` ≥ m entries; task j writes the first
+        // m of column j alone, through the raw pointer (nothing reads them before they are set).
+        (0..m).for_each(|i| unsafe { storage.0.add(j * stride + i).write(T::default()) });
+    });
+    // SAFETY: the capacity is at least m × n, and every entry within it was written above.
+    unsafe { mat.set_dims(m, n) };
+    mat
 }
 
 /// Refinements of a solve with single-precision factors, at most.
@@ -312,6 +338,22 @@ mod tests {
         let lu = tiny.lu_transposed();
         assert!(relative_error(&lu.solve(&b).unwrap(), &x) < 1e-14);
         assert!(lu.double.get().is_some());
+    }
+
+    /// Every entry of the matrices written by the threads is zero, in shapes whose columns
+    /// are padded (3 rows) or not, empty or one column: the heap is first filled with ones
+    /// of the same size, so an entry left unwritten would likely read 1.
+    #[test]
+    fn zeros_on_threads_writes_every_entry() {
+        for (m, n) in [(0, 0), (1, 1), (3, 5), (67, 2), (130, 130), (2, 0)] {
+            drop(vec![1.0_f64; (m + 8) * n]);
+            let double = zeros_on_threads::<f64>(m, n);
+            assert_eq!((double.nrows(), double.ncols()), (m, n));
+            assert!((0..n).all(|j| (0..m).all(|i| double[(i, j)] == 0.0)), "{m} × {n}");
+            drop(vec![1.0_f32; (m + 16) * n]);
+            let single = zeros_on_threads::<f32>(m, n);
+            assert!((0..n).all(|j| (0..m).all(|i| single[(i, j)] == 0.0)), "{m} × {n}");
+        }
     }
 
     /// NaN above the diagonal: an entry not taken from the lower half shows. Orders of one

@@ -2,6 +2,7 @@
 //! [`LinearSolver`] seam, with the [`SchurComplement`] capability read off the factor's
 //! trailing block.
 
+use super::dense::zeros_on_threads;
 use super::ordering;
 use super::{DenseMatrix, LinearSolver, Ordering, SchurComplement, SolverStats, SymmetricMatrix};
 use super::{SymmetricPattern, check_length};
@@ -407,7 +408,7 @@ impl SchurComplement for LdltSolver {
         let factor = SupernodalLdltRef::new(supernodal, &self.l_values);
         let [weighted, l22] = trailing_factors(factor, first, &unscale);
         // Both factors triangular: a third of a full product.
-        let mut schur = faer::Mat::<f64>::zeros(m, m);
+        let mut schur = zeros_on_threads(m, m);
         triangular::matmul(
             schur.as_mut(),
             BlockStructure::TriangularLower,
@@ -426,30 +427,32 @@ impl SchurComplement for LdltSolver {
 }
 
 /// The trailing unknowns' block of a supernodal LDLᵀ factor, from unknown `first` on, with
-/// its rows scaled by `unscale` (U): [U L22 D2, U L22], both lower triangular.
+/// its rows scaled by `unscale` (U): [U L22 D2, U L22], both lower triangular; the columns
+/// are read on the run's threads, each from its supernode.
 fn trailing_factors(
     factor: SupernodalLdltRef<'_, usize, f64>,
     first: usize,
     unscale: &[f64],
 ) -> [faer::Mat<f64>; 2] {
+    use rayon::prelude::*;
     let m = unscale.len();
-    let [mut weighted, mut l22] = [(); 2].map(|_| faer::Mat::<f64>::zeros(m, m));
-    for s in 0..factor.symbolic().n_supernodes() {
-        let node = factor.supernode(s);
+    let [mut weighted, mut l22] = [(); 2].map(|_| zeros_on_threads(m, m));
+    let begin = factor.symbolic().supernode_begin();
+    let columns = weighted.par_col_iter_mut().zip(l22.par_col_iter_mut()).enumerate();
+    columns.for_each(|(c, (mut weighted, mut l22))| {
+        let j = first + c;
+        let node = factor.supernode(begin.partition_point(|&b| b <= j) - 1);
         let (start, block, pattern) = (node.start(), node.val(), node.pattern());
         let (width, end) = (block.ncols(), start + block.ncols());
-        for j in first.max(start)..end {
-            let d = block[(j - start, j - start)];
-            let below = (j + 1..end).map(|i| (i, block[(i - start, j - start)]));
-            let outside =
-                pattern.iter().enumerate().map(|(q, &i)| (i, block[(width + q, j - start)]));
-            for (i, l) in std::iter::once((j, 1.0)).chain(below).chain(outside) {
-                let value = l * unscale[i - first];
-                l22[(i - first, j - first)] = value;
-                weighted[(i - first, j - first)] = value * d;
-            }
+        let d = block[(j - start, j - start)];
+        let below = (j + 1..end).map(|i| (i, block[(i - start, j - start)]));
+        let outside = pattern.iter().enumerate().map(|(q, &i)| (i, block[(width + q, j - start)]));
+        for (i, l) in std::iter::once((j, 1.0)).chain(below).chain(outside) {
+            let value = l * unscale[i - first];
+            l22[i - first] = value;
+            weighted[i - first] = value * d;
         }
-    }
+    });
     [weighted, l22]
 }
 
