@@ -109,7 +109,7 @@ impl DenseMatrix {
             s.iter_mut().zip(d.iter()).for_each(|(s, &d)| *s = d as f32);
         });
         // The LU of A, whose transposed solves solve Aᵀ x = b.
-        TransposedLu { single: single.partial_piv_lu(), matrix: self, double: OnceLock::new() }
+        TransposedLu { single: PackedLu::new(single), matrix: self, double: OnceLock::new() }
     }
 }
 
@@ -155,11 +155,11 @@ const SETTLED: f64 = 1e-10;
 /// ill-conditioned for single precision), the double-precision factors are made and solve.
 #[derive(Debug)]
 pub struct TransposedLu {
-    single: faer::linalg::solvers::PartialPivLu<f32>,
+    single: PackedLu<f32>,
     /// A (the system is Aᵀ x = b), for the residuals of the refinements and the
     /// double-precision factors.
     matrix: DenseMatrix,
-    double: OnceLock<faer::linalg::solvers::PartialPivLu<f64>>,
+    double: OnceLock<PackedLu<f64>>,
 }
 
 impl TransposedLu {
@@ -210,19 +210,16 @@ impl TransposedLu {
             return Some(vec![0.0; v.len()]);
         }
         let mut single: Vec<f32> = v.iter().map(|e| (e / scale) as f32).collect();
-        solve_transposed(&self.single, &mut single);
+        self.single.solve_transposed(&mut single);
         let x: Vec<f64> = single.iter().map(|&e| f64::from(e) * scale).collect();
         x.iter().all(|e| e.is_finite()).then_some(x)
     }
 
     /// (Aᵀ)⁻¹ b by double-precision factors of A, made at the first call.
     fn by_double(&self, b: &[f64]) -> Vec<f64> {
-        let lu = self.double.get_or_init(|| {
-            super::parallelism(); // As in `inverse`.
-            self.matrix.mat.partial_piv_lu()
-        });
+        let lu = self.double.get_or_init(|| PackedLu::new(self.matrix.mat.clone()));
         let mut x = b.to_vec();
-        solve_transposed(lu, &mut x);
+        lu.solve_transposed(&mut x);
         x
     }
 }
@@ -243,14 +240,54 @@ fn for_upper_pairs(n: usize, mut f: impl FnMut(usize, usize)) {
     }
 }
 
-/// Solves Aᵀ x = v in place with the LU factors of A.
-fn solve_transposed<T: faer::traits::ComplexField>(
-    lu: &faer::linalg::solvers::PartialPivLu<T>,
-    v: &mut [T],
-) {
-    use faer::linalg::solvers::Solve;
+/// The LU factors (partial pivoting) of a square matrix, packed in its own storage: L below
+/// the diagonal (its unit diagonal implied), U on and above it; the triangular solves read
+/// only their own halves. faer's `PartialPivLu` copies the matrix, factorises the copy and
+/// splits it into L and a new U, each pass from one thread and two of them through fresh
+/// pages (42 MB each for a single-precision system of 3,248 unknowns).
+#[derive(Debug)]
+struct PackedLu<T> {
+    lu: faer::Mat<T>,
+    /// The rows' permutation's inverse: row i of the solution is row `inverse[i]`.
+    inverse: Vec<usize>,
+}
+
+impl<T: faer::traits::ComplexField> PackedLu<T> {
+    /// Factorises `matrix` in place, on faer's global parallelism.
+    fn new(mut matrix: faer::Mat<T>) -> Self {
+        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::linalg::lu::partial_pivoting::factor;
+        let (n, par) = (matrix.nrows(), super::parallelism());
+        let (mut forward, mut inverse) = (vec![0; n], vec![0; n]);
+        let scratch = factor::lu_in_place_scratch::<usize, T>(n, n, par, Default::default());
+        let mut stack = MemBuffer::new(scratch);
+        let stack = MemStack::new(&mut stack);
+        factor::lu_in_place(
+            matrix.as_mut(),
+            &mut forward,
+            &mut inverse,
+            par,
+            stack,
+            Default::default(),
+        );
+        Self { lu: matrix, inverse }
+    }
+
+    /// Solves Aᵀ x = v in place: with Uᵀ, then Lᵀ, then the rows back to the order of A.
+    fn solve_transposed(&self, v: &mut [T]) {
+        use faer::linalg::triangular_solve as triangular;
+        let (par, lu) = (super::parallelism(), self.lu.transpose());
+        triangular::solve_lower_triangular_in_place(lu, column(v), par);
+        triangular::solve_unit_upper_triangular_in_place(lu, column(v), par);
+        let permuted: Vec<T> = self.inverse.iter().map(|&k| v[k].clone()).collect();
+        v.clone_from_slice(&permuted);
+    }
+}
+
+/// A slice as a one-column matrix.
+fn column<T>(v: &mut [T]) -> MatMut<'_, T> {
     let n = v.len();
-    lu.solve_transpose_in_place(MatMut::from_column_major_slice_mut(v, n, 1));
+    MatMut::from_column_major_slice_mut(v, n, 1)
 }
 
 /// The largest |v_i| (the max norm; 0 for no entries).
