@@ -1,8 +1,7 @@
 //! Dense square matrices, for the condensed contact problem (model §11).
 
-use super::check_length;
+use super::{check_length, column};
 use crate::error::{Error, Result};
-use faer::MatMut;
 use std::sync::OnceLock;
 
 /// A dense square matrix, for the condensed contact problem.
@@ -14,7 +13,7 @@ pub struct DenseMatrix {
 impl DenseMatrix {
     /// The n × n zero matrix.
     pub fn zeros(n: usize) -> Self {
-        Self { mat: zeros_on_threads(n, n) }
+        Self { mat: matrix_on_threads(n, n, |_, _| 0.0) }
     }
 
     /// Order of the matrix.
@@ -102,24 +101,21 @@ impl DenseMatrix {
     /// (partial pivoting) of A in single precision, kept with A.
     pub fn lu_transposed(self) -> TransposedLu {
         super::parallelism(); // As in `inverse`.
-        use rayon::prelude::*;
         let n = self.n();
-        let mut single = zeros_on_threads::<f32>(n, n);
-        single.par_col_iter_mut().zip(self.mat.par_col_iter()).for_each(|(s, d)| {
-            s.iter_mut().zip(d.iter()).for_each(|(s, &d)| *s = d as f32);
-        });
+        let single = matrix_on_threads(n, n, |i, j| self.mat[(i, j)] as f32);
         // The LU of A, whose transposed solves solve Aᵀ x = b.
         TransposedLu { single: PackedLu::new(single), matrix: self, double: OnceLock::new() }
     }
 }
 
-/// The m × n zero matrix, its columns written by the run's threads: faer's `Mat::zeros`
-/// writes from one thread, and the first write to a fresh block of hundreds of megabytes (a
-/// Schur complement of 5,295 unknowns is 224 MB) is the kernel's page faults, which two
-/// threads make in about half the time of one.
-pub(super) fn zeros_on_threads<T: Copy + Default + Send + Sync>(
+/// The m × n matrix of entries `entry(i, j)`, its columns written by the run's threads:
+/// faer's `Mat::zeros` and `Mat::from_fn` write from one thread, and the first write to a
+/// fresh block of hundreds of megabytes (a Schur complement of 5,295 unknowns is 224 MB) is
+/// the kernel's page faults, which two threads make in about half the time of one.
+pub(super) fn matrix_on_threads<T: Send + Sync>(
     m: usize,
     n: usize,
+    entry: impl Fn(usize, usize) -> T + Sync,
 ) -> faer::Mat<T> {
     use rayon::prelude::*;
     /// The matrix's storage, shared by the tasks that write its columns.
@@ -132,7 +128,7 @@ pub(super) fn zeros_on_threads<T: Copy + Default + Send + Sync>(
         let storage = &storage;
         // SAFETY: the capacity holds n columns of `stride` ≥ m entries; task j writes the first
         // m of column j alone, through the raw pointer (nothing reads them before they are set).
-        (0..m).for_each(|i| unsafe { storage.0.add(j * stride + i).write(T::default()) });
+        (0..m).for_each(|i| unsafe { storage.0.add(j * stride + i).write(entry(i, j)) });
     });
     // SAFETY: the capacity is at least m × n, and every entry within it was written above.
     unsafe { mat.set_dims(m, n) };
@@ -284,12 +280,6 @@ impl<T: faer::traits::ComplexField> PackedLu<T> {
     }
 }
 
-/// A slice as a one-column matrix.
-fn column<T>(v: &mut [T]) -> MatMut<'_, T> {
-    let n = v.len();
-    MatMut::from_column_major_slice_mut(v, n, 1)
-}
-
 /// The largest |v_i| (the max norm; 0 for no entries).
 pub fn max_norm(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |a, e| a.max(e.abs()))
@@ -305,7 +295,7 @@ fn product(a: faer::MatRef<'_, f64>, x: &[f64]) -> Vec<f64> {
     let n = a.nrows();
     let mut y = vec![0.0; n];
     faer::linalg::matmul::matmul(
-        MatMut::from_column_major_slice_mut(&mut y, n, 1),
+        column(&mut y),
         faer::Accum::Replace,
         a,
         faer::MatRef::from_column_major_slice(x, n, 1),
@@ -324,7 +314,7 @@ mod tests {
         use faer::linalg::solvers::Solve;
         let mut x = b.to_vec();
         let lu = a.mat.partial_piv_lu();
-        lu.solve_transpose_in_place(MatMut::from_column_major_slice_mut(&mut x, b.len(), 1));
+        lu.solve_transpose_in_place(column(&mut x));
         x
     }
 
@@ -377,19 +367,21 @@ mod tests {
         assert!(lu.double.get().is_some());
     }
 
-    /// Every entry of the matrices written by the threads is zero, in shapes whose columns
-    /// are padded (3 rows) or not, empty or one column: the heap is first filled with ones
-    /// of the same size, so an entry left unwritten would likely read 1.
+    /// Every entry of the matrices written by the threads is the one asked for, in shapes
+    /// whose columns are padded (3 rows) or not, empty or one column: the heap is first
+    /// filled with NaN of the same size, so an entry left unwritten would likely read NaN.
     #[test]
-    fn zeros_on_threads_writes_every_entry() {
+    fn matrix_on_threads_writes_every_entry() {
+        let entry = |i: usize, j: usize| (1000 * j + i) as f64;
         for (m, n) in [(0, 0), (1, 1), (3, 5), (67, 2), (130, 130), (2, 0)] {
-            drop(vec![1.0_f64; (m + 8) * n]);
-            let double = zeros_on_threads::<f64>(m, n);
+            drop(vec![f64::NAN; (m + 8) * n]);
+            let double = matrix_on_threads(m, n, entry);
             assert_eq!((double.nrows(), double.ncols()), (m, n));
-            assert!((0..n).all(|j| (0..m).all(|i| double[(i, j)] == 0.0)), "{m} × {n}");
-            drop(vec![1.0_f32; (m + 16) * n]);
-            let single = zeros_on_threads::<f32>(m, n);
-            assert!((0..n).all(|j| (0..m).all(|i| single[(i, j)] == 0.0)), "{m} × {n}");
+            assert!((0..n).all(|j| (0..m).all(|i| double[(i, j)] == entry(i, j))), "{m} × {n}");
+            drop(vec![f32::NAN; (m + 16) * n]);
+            let single = matrix_on_threads(m, n, |i, j| entry(i, j) as f32);
+            let same = |i, j| single[(i, j)] == entry(i, j) as f32;
+            assert!((0..n).all(|j| (0..m).all(|i| same(i, j))), "{m} × {n}");
         }
     }
 

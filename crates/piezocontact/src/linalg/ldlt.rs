@@ -2,7 +2,7 @@
 //! [`LinearSolver`] seam, with the [`SchurComplement`] capability read off the factor's
 //! trailing block.
 
-use super::dense::zeros_on_threads;
+use super::dense::matrix_on_threads;
 use super::ordering;
 use super::{DenseMatrix, LinearSolver, Ordering, SchurComplement, SolverStats, SymmetricMatrix};
 use super::{SymmetricPattern, check_length};
@@ -408,7 +408,7 @@ impl SchurComplement for LdltSolver {
         let factor = SupernodalLdltRef::new(supernodal, &self.l_values);
         let [weighted, l22] = trailing_factors(factor, first, &unscale);
         // Both factors triangular: a third of a full product.
-        let mut schur = zeros_on_threads(m, m);
+        let mut schur = matrix_on_threads(m, m, |_, _| 0.0);
         triangular::matmul(
             schur.as_mut(),
             BlockStructure::TriangularLower,
@@ -436,7 +436,7 @@ fn trailing_factors(
 ) -> [faer::Mat<f64>; 2] {
     use rayon::prelude::*;
     let m = unscale.len();
-    let [mut weighted, mut l22] = [(); 2].map(|_| zeros_on_threads(m, m));
+    let [mut weighted, mut l22] = [(); 2].map(|_| matrix_on_threads(m, m, |_, _| 0.0));
     let begin = factor.symbolic().supernode_begin();
     let columns = weighted.par_col_iter_mut().zip(l22.par_col_iter_mut()).enumerate();
     columns.for_each(|(c, (mut weighted, mut l22))| {
@@ -485,7 +485,7 @@ impl LdltSolver {
             .map_err(|_| Error::LinearAlgebra("out of memory for the solve workspace".into()))?;
         LdltRef::new(symbolic, &l_values).solve_in_place_with_conj(
             Conj::No,
-            MatMut::from_column_major_slice_mut(&mut x, matrix.n(), 1),
+            super::column(&mut x),
             par,
             MemStack::new(&mut mem),
         );

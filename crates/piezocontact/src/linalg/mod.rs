@@ -195,6 +195,12 @@ fn check_length(what: &str, expected: usize, got: usize) -> Result<()> {
     Err(crate::Error::Length { what: what.into(), expected, got })
 }
 
+/// A slice as a one-column matrix, for faer's solves and products of one right-hand side.
+fn column<T>(v: &mut [T]) -> faer::MatMut<'_, T> {
+    let n = v.len();
+    faer::MatMut::from_column_major_slice_mut(v, n, 1)
+}
+
 /// The processes of the run: those of PETSc's communicator once the PETSc backend has
 /// started, else 1.
 pub fn processes() -> usize {

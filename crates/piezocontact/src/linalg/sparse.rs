@@ -8,7 +8,7 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::SymmetricOrdering;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, SymbolicSparseColMatRef, Triplet};
-use faer::{MatMut, Par, Side};
+use faer::{Par, Side};
 
 /// The lower-triangle sparsity pattern of a symmetric matrix.
 #[derive(Debug)]
@@ -215,7 +215,7 @@ impl SymmetricMatrix {
         let t_numeric = t.elapsed().as_secs_f64();
         let mut x = rhs.to_vec();
         let t = std::time::Instant::now();
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut x, self.n(), 1));
+        lu.solve_in_place(super::column(&mut x));
         Ok([t_symbolic, t_numeric, t.elapsed().as_secs_f64()])
     }
 }
