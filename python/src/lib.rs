@@ -13,11 +13,10 @@
 //! and a panic inside it becomes a `RuntimeError`.
 
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
-use piezocontact::case::Case as CaseFile;
+use piezocontact::case::{Built, Case as CaseFile};
 use piezocontact::output::files::Claimed;
-use piezocontact::path::{Column, PathRun};
-use piezocontact::report::{contact_columns, row_values};
-use piezocontact::run::{ContactRun, StaticRun};
+use piezocontact::report::{Column, contact_columns, row_values};
+use piezocontact::run::Run;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyRuntimeWarning, PyValueError};
 use pyo3::prelude::*;
@@ -113,14 +112,6 @@ fn override_strings(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<Strin
         .collect()
 }
 
-/// A solved case: a contact run, a loading path, or a run without contact (no `[contact]`
-/// table).
-enum Run {
-    Contact(Box<ContactRun>),
-    Path(Box<PathRun>),
-    Static(Box<StaticRun>),
-}
-
 /// Runs `work` without the GIL; a panic in it becomes a `RuntimeError` instead of unwinding
 /// into the interpreter.
 fn guarded<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
@@ -207,31 +198,17 @@ fn solve_case(py: Python<'_>, case: CaseFile, threads: Option<i64>) -> PyResult<
         let message = CString::new(warning).unwrap_or_default();
         PyErr::warn(py, &py.get_type::<CaseWarning>(), &message, 1)?;
     }
-    let (run, case) = watched(py, threads, move || {
-        let run = if case.file.loading.is_some() {
-            case.build()
-                .and_then(|built| {
-                    PathRun::solve_built(&case, built, case.linear_solver()?, &|_| {})
-                })
-                .map(|r| Run::Path(Box::new(r)))
-        } else if case.file.contact.is_some() {
-            ContactRun::solve(&case).map(|r| Run::Contact(Box::new(r)))
-        } else {
-            StaticRun::solve(&case).map(|r| Run::Static(Box::new(r)))
-        };
-        (run, case)
+    let solved = watched(py, threads, move || {
+        let built = case.build()?;
+        let run = built.linear_solver().and_then(|solver| Run::solve(&built, solver, &|_| {}))?;
+        Ok::<_, piezocontact::Error>(Solution { run, built })
     })?;
-    let run = run.map_err(case_error)?;
-    let solution = Solution { run, case };
-    let failure = match &solution.run {
-        Run::Contact(run) => run.solution.failure.as_ref().map(|e| e.to_string()),
-        Run::Path(path) => path.failure.clone(),
-        Run::Static(_) => None,
-    };
-    if let Some(failure) = failure {
+    let solution = solved.map_err(case_error)?;
+    if let Some(failure) = solution.run.failure() {
         let message = CString::new(format!(
-            "{}: {failure}; the partial result is in the Solution (converged = False)",
-            solution.case.path.display()
+            "{}: {failure}; {} in the Solution (converged = False)",
+            solution.built.origin.path.display(),
+            solution.run.kept()
         ))
         .unwrap_or_default();
         PyErr::warn(py, &py.get_type::<PyRuntimeWarning>(), &message, 1)?;
@@ -289,7 +266,7 @@ impl Case {
     /// The case as TOML text (with its overrides applied).
     #[getter]
     fn text(&self) -> &str {
-        &self.case.source
+        &self.case.origin.text
     }
 
     /// Solves the case.
@@ -299,39 +276,21 @@ impl Case {
     }
 }
 
-/// The solution of a case.
+/// The solution of a case: its run and the built case it ran.
 #[pyclass(frozen, module = "piezocontact")]
 struct Solution {
     run: Run,
-    case: CaseFile,
+    built: Built,
 }
 
 impl Solution {
-    /// The problem, the DOF map and x = (u, ϕ).
-    fn parts(&self) -> (&piezocontact::problem::Problem, &piezocontact::dofs::DofMap, &[f64]) {
-        match &self.run {
-            Run::Contact(r) => (&r.problem, &r.solution.dofs, &r.solution.x),
-            Run::Path(p) => (&p.last.problem, &p.last.solution.dofs, &p.last.solution.x),
-            Run::Static(r) => (&r.problem, &r.solution.dofs, &r.solution.x),
-        }
-    }
-
-    /// The contact run: the run itself, or the last step of a path.
-    fn contact_run(&self) -> Option<&ContactRun> {
-        match &self.run {
-            Run::Contact(r) => Some(r),
-            Run::Path(p) => Some(&p.last),
-            Run::Static(_) => None,
-        }
-    }
-
     /// An n × d array of the nodes.
     fn nodal<'py>(
         &self,
         py: Python<'py>,
         value: impl Fn(usize, usize) -> f64,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let mesh = &self.parts().0.mesh;
+        let mesh = &self.built.problem.mesh;
         let (n, d) = (mesh.n_nodes(), mesh.dim());
         let flat: Vec<f64> =
             (0..n).flat_map(|a| (0..d).map(move |k| (a, k))).map(|(a, k)| value(a, k)).collect();
@@ -344,12 +303,7 @@ impl Solution {
     /// summary.json as a dict.
     #[getter]
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let summary = match &self.run {
-            Run::Contact(r) => r.summary(&self.case),
-            Run::Path(p) => p.summary(&self.case),
-            Run::Static(r) => r.summary(&self.case),
-        };
-        let text = serde_json::to_string(&summary).map_err(case_error)?;
+        let text = serde_json::to_string(&self.run.summary(&self.built)).map_err(case_error)?;
         py.import("json")?.call_method1("loads", (text,))
     }
 
@@ -358,8 +312,8 @@ impl Solution {
     #[getter]
     fn contact<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
-        let Some(run) = self.contact_run() else { return Ok(dict) };
-        let dim = run.problem.mesh.dim();
+        let Some(run) = self.run.contact() else { return Ok(dict) };
+        let dim = self.built.problem.mesh.dim();
         let rows: Vec<Vec<f64>> = run.rows.iter().map(|r| row_values(r, dim)).collect();
         for (k, name) in contact_columns(dim).iter().enumerate() {
             let column: Vec<f64> = rows.iter().map(|r| r[k]).collect();
@@ -373,22 +327,23 @@ impl Solution {
     /// The node coordinates, n × d.
     #[getter]
     fn points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let mesh = &self.parts().0.mesh;
+        let mesh = &self.built.problem.mesh;
         self.nodal(py, |a, k| mesh.node(a)[k])
     }
 
     /// The displacement u at the nodes, n × d.
     #[getter]
     fn u<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let (_, dofs, x) = self.parts();
+        let (dofs, x) = self.run.state();
         self.nodal(py, |a, k| x[dofs.u(a, k)])
     }
 
     /// The electric potential ϕ at the nodes, n.
     #[getter]
     fn phi<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        let (problem, dofs, x) = self.parts();
-        let phi: Vec<f64> = (0..problem.mesh.n_nodes()).map(|a| x[dofs.phi(a)]).collect();
+        let (dofs, x) = self.run.state();
+        let n = self.built.problem.mesh.n_nodes();
+        let phi: Vec<f64> = (0..n).map(|a| x[dofs.phi(a)]).collect();
         PyArray1::from_vec(py, phi)
     }
 
@@ -396,11 +351,7 @@ impl Solution {
     /// step did).
     #[getter]
     fn converged(&self) -> bool {
-        match &self.run {
-            Run::Contact(r) => r.solution.converged,
-            Run::Path(p) => p.converged() && p.last.solution.converged,
-            Run::Static(_) => true,
-        }
+        self.run.failure().is_none()
     }
 
     /// The curve.csv columns of a loading path as 1-D numpy arrays (`step` and
@@ -411,7 +362,7 @@ impl Solution {
         let dict = PyDict::new(py);
         let Run::Path(path) = &self.run else { return Ok(dict) };
         let numpy = py.import("numpy")?;
-        for (name, column) in path.columns() {
+        for (name, column) in path.columns(&self.built) {
             match column {
                 Column::Integer(v) => dict.set_item(name, numpy.call_method1("array", (v,))?)?,
                 Column::Real(v) => dict.set_item(name, PyArray1::from_vec(py, v))?,
@@ -426,12 +377,12 @@ impl Solution {
     #[getter]
     fn steps<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
         let Run::Path(path) = &self.run else { return Ok(Vec::new()) };
-        let (_, dofs, _) = self.parts();
+        let (dofs, _) = self.run.state();
+        let n = self.built.problem.mesh.n_nodes();
         path.states()
             .map(|x| {
                 let dict = PyDict::new(py);
                 dict.set_item("u", self.nodal(py, |a, k| x[dofs.u(a, k)])?)?;
-                let n = self.parts().0.mesh.n_nodes();
                 let phi: Vec<f64> = (0..n).map(|a| x[dofs.phi(a)]).collect();
                 dict.set_item("phi", PyArray1::from_vec(py, phi))?;
                 Ok(dict)
@@ -458,11 +409,7 @@ impl Solution {
     /// [`Solution::write`] without the GIL.
     fn write_files(&self, directory: &Path, force: bool) -> piezocontact::Result<()> {
         let _claim = Claimed::new(directory, force)?;
-        match &self.run {
-            Run::Contact(run) => run.write(&self.case, directory),
-            Run::Path(path) => path.write(&self.case, directory),
-            Run::Static(run) => run.write(&self.case, directory),
-        }
+        self.run.write(&self.built, directory)
     }
 }
 

@@ -3,8 +3,6 @@
 //! files, runs, post-processing, figures and output files live in the `piezocontact` library.
 
 pub mod bench;
-#[cfg(feature = "petsc")]
-pub mod bench_petsc;
 pub mod fuzzing;
 pub mod print;
 pub mod processes;

@@ -8,8 +8,8 @@ use piezocontact::case::{Built, Case};
 use piezocontact::dofs::DofMap;
 use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
-use piezocontact::path::PathRun;
-use piezocontact::run::{self, ContactRun, StaticRun};
+use piezocontact::report::summary::refusal_summary;
+use piezocontact::run::Run;
 use piezocontact_cli::progress::Reporter;
 use piezocontact_cli::{bench, print, processes, reproduce, sweep};
 use piezocontact_cli::{say, say_err};
@@ -131,7 +131,7 @@ enum Command {
         lu: bool,
         /// The fill-reducing orderings to measure, comma separated: amd, nd (METIS's nested
         /// dissection), auto (nested dissection in 3D, else the smaller factor of both). Each runs on 1 thread and on all.
-        #[arg(long, value_delimiter = ',', default_value = "amd,nd", value_parser = bench::parse_ordering, conflicts_with = "contact")]
+        #[arg(long, value_delimiter = ',', default_value = "amd,nd", value_parser = bench::factorisation::parse_ordering, conflicts_with = "contact")]
         ordering: Vec<piezocontact::linalg::Ordering>,
         /// Time the exact contact solver (newton) on PV1 and PV2 (µ = k_e = 0.2, 0.6) of the
         /// paper's bar against one plain factorisation of the same mesh, each in a process of
@@ -252,14 +252,14 @@ fn run(command: Command) -> Result<Outcome> {
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
         Command::Bench { sizes, mesh, lu, contact, case, path, one, ordering, backend } => {
             if let Some(spec) = one {
-                return bench::measure_one(&spec).map(|_| Outcome::Done);
+                return bench::one::measure_one(&spec).map(|_| Outcome::Done);
             }
             if backend == "petsc" {
                 return bench_backend(mesh.as_deref()).map(|_| Outcome::Done);
             }
             if path {
                 let case = case.unwrap_or_else(|| PathBuf::from("cases/indentation-curve.toml"));
-                return bench::path(&case, mesh.as_deref()).map(|_| Outcome::Done);
+                return bench::path::path(&case, mesh.as_deref()).map(|_| Outcome::Done);
             }
             if case.is_some() && !contact {
                 anyhow::bail!("--case goes with --contact (a case's mesh) or --path (with --mesh)");
@@ -270,34 +270,43 @@ fn run(command: Command) -> Result<Outcome> {
                 );
             }
             if contact {
-                let targets = match (&mesh, sizes) {
-                    _ if case.is_some() => {
-                        case.as_deref().map(bench::case_target).into_iter().collect()
-                    }
-                    (Some(path), _) => vec![path.display().to_string()],
-                    (None, Some(sizes)) => sizes,
-                    (None, None) => bench::CONTACT_SIZES.map(String::from).to_vec(),
-                };
-                return bench::contact(&targets).map(|_| Outcome::Done);
+                return bench_contact(case.as_deref(), mesh.as_deref(), sizes)
+                    .map(|_| Outcome::Done);
             }
-            let sizes = sizes.unwrap_or_else(|| bench::SIZES.map(String::from).to_vec());
+            let sizes =
+                sizes.unwrap_or_else(|| bench::factorisation::SIZES.map(String::from).to_vec());
             let target = match &mesh {
-                Some(path) => bench::Target::Mesh(path),
-                None => bench::Target::Sizes(&sizes),
+                Some(path) => bench::factorisation::Target::Mesh(path),
+                None => bench::factorisation::Target::Sizes(&sizes),
             };
             let all = rayon::current_num_threads();
             let threads = if all > 1 { vec![1, all] } else { vec![1] };
-            let variants = bench::Variants { orderings: ordering, threads };
-            bench::run(&target, &variants, lu).map(|_| Outcome::Done)
+            let variants = bench::factorisation::Variants { orderings: ordering, threads };
+            bench::factorisation::run(&target, &variants, lu).map(|_| Outcome::Done)
         }
     }
+}
+
+/// `bench --contact`: on the case's mesh, on one mesh file, or on a list of sizes.
+fn bench_contact(
+    case: Option<&Path>,
+    mesh: Option<&Path>,
+    sizes: Option<Vec<String>>,
+) -> Result<()> {
+    let targets = match (mesh, sizes) {
+        _ if case.is_some() => case.map(bench::contact::case_target).into_iter().collect(),
+        (Some(path), _) => vec![path.display().to_string()],
+        (None, Some(sizes)) => sizes,
+        (None, None) => bench::contact::CONTACT_SIZES.map(String::from).to_vec(),
+    };
+    bench::contact::contact(&targets)
 }
 
 /// `bench --mesh FILE --backend petsc`.
 #[cfg(feature = "petsc")]
 fn bench_backend(mesh: Option<&Path>) -> Result<()> {
     let mesh = mesh.ok_or_else(|| anyhow::anyhow!("--backend petsc needs --mesh FILE"))?;
-    piezocontact_cli::bench_petsc::run(mesh)
+    bench::petsc::run(mesh)
 }
 
 #[cfg(not(feature = "petsc"))]
@@ -383,162 +392,58 @@ fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Resu
     for warning in case.setting_warnings() {
         say_err!("warning: {warning}");
     }
-    if case.file.contact.is_some() {
-        return run_contact(&case, out, interval);
-    }
-    let run = StaticRun::solve(&case)?;
-    if !run.problem.boundary.contact.is_empty() {
-        log::warn!(
-            "the case has no [contact] table: Γ3 is treated as free (traction and charge free)"
-        );
-    }
-    if processes::is_root() {
-        run.write(&case, out)?;
-    }
-    print::static_run(&run, &case, out);
-    Ok(Outcome::Done)
-}
-
-fn run_contact(case: &Case, out: &Path, interval: Duration) -> Result<Outcome> {
     let built = case.build()?;
-    // What summary.json says of a run the solver refuses after validation (memory, a
-    // capability), taken before the solve consumes the problem.
-    let header = run::common_summary(case, &built.problem, &DofMap::new(&built.problem)?);
-    let reporter = Reporter::new(case.method_name(), interval);
+    let reporter = Reporter::new(built.method_name(), interval);
     let progress = |event| reporter.event(event);
-    // A refusal after validation writes summary.json with the failure, then fails.
-    let refused = |e: piezocontact::Error| -> anyhow::Error {
-        if !processes::is_root() {
-            return e.into();
-        }
-        match output::write_summary(out, &run::refusal_summary(header.clone(), case, &e)) {
-            Ok(()) => e.into(),
-            Err(written) => written.into(),
-        }
-    };
-    if built.loading.is_some() {
-        let path = PathRun::solve_built(case, built, case.linear_solver()?, &progress);
-        let path = match path {
-            Ok(path) => path,
-            Err(e) => return Err(refused(e)),
-        };
-        drop(reporter);
-        return write_path(&path, case, out);
-    }
-    let run = match ContactRun::solve_built(case, built, case.linear_solver()?, &progress) {
-        Ok(run) => run,
-        Err(e) => return Err(refused(e)),
-    };
+    let solved = built.linear_solver().and_then(|solver| Run::solve(&built, solver, &progress));
     drop(reporter);
+    let run = solved.map_err(|e| refused(&built, out, e))?;
     if processes::is_root() {
-        run.write(case, out)?;
+        run.write(&built, out)?;
     }
-    print::contact_run(&run, case, out);
-    if let Some(failure) = &run.solution.failure {
-        say_err!(
-            "error: {}: {failure}; the partial result is in {} (marked \"converged\": false)",
-            case.path.display(),
-            out.display()
-        );
-        return Ok(failed(failure));
-    }
-    Ok(Outcome::Done)
-}
-
-/// Writes and reports a loading path; a path that stopped early says which step and why.
-fn write_path(path: &PathRun, case: &Case, out: &Path) -> Result<Outcome> {
-    if processes::is_root() {
-        path.write(case, out)?;
-    }
-    print::path_run(path, case, out);
-    let Some(failure) = &path.failure else { return Ok(Outcome::Done) };
+    print::run(&run, &built, out);
+    let Some(failure) = run.failure() else { return Ok(Outcome::Done) };
     say_err!(
-        "error: {}: {failure}; the steps before it are in {} (marked \"converged\": false)",
-        case.path.display(),
+        "error: {}: {failure}; {} in {} (marked \"converged\": false)",
+        built.origin.path.display(),
+        run.kept(),
         out.display()
     );
-    Ok(path.last.solution.failure.as_ref().map_or(Outcome::Failed, failed))
+    Ok(run.error().map_or(Outcome::Failed, failed))
+}
+
+/// The error of a contact case that the solver refused after validation (memory, a
+/// capability), with summary.json written to say so.
+fn refused(built: &Built, out: &Path, e: piezocontact::Error) -> anyhow::Error {
+    if built.model.is_none() || !processes::is_root() {
+        return e.into();
+    }
+    match output::write_summary(out, &refusal_summary(built, &e)) {
+        Ok(()) => e.into(),
+        Err(written) => written.into(),
+    }
 }
 
 fn check(path: &Path, set: &[String]) -> Result<()> {
     let case = Case::load(path, set)?;
-    let Built { problem, model, loading, settings, warnings } = case.build()?;
-    let dofs = piezocontact::dofs::DofMap::new(&problem)?;
-    let (mesh, units) = (&problem.mesh, &case.file.units);
-    let (lo, hi) = mesh.bounding_box();
+    let built = case.build()?;
     say!("{}: valid", path.display());
-    say!(
-        "mesh: {}D, {} nodes, {} elements, bounding box {lo:?}–{hi:?} {}",
-        mesh.dim(),
-        mesh.n_nodes(),
-        mesh.n_cells(),
-        units.length
-    );
-    let unit = if mesh.dim() == 2 { units.length.clone() } else { format!("{}^2", units.length) };
-    let b = &problem.boundary;
-    for (p, part) in mesh.parts().iter().enumerate() {
-        let mut roles = Vec::new();
-        for (role, list) in
-            [("Γ1 clamped", &b.clamped), ("Γa grounded", &b.grounded), ("Γ3 contact", &b.contact)]
-        {
-            if list.contains(&p) {
-                roles.push(role);
-            }
-        }
-        if b.traction.iter().any(|(q, _)| *q == p) {
-            roles.push("Γ2 traction");
-        }
-        if b.charge.iter().any(|(q, _)| *q == p) {
-            roles.push("Γb charge");
-        }
-        let roles = if roles.is_empty() {
-            "no role: traction and charge free".to_string()
-        } else {
-            roles.join(", ")
-        };
-        say!(
-            "  part {:<12} {:>6} facets, measure {:.6} {unit}  ({roles})",
-            part.name,
-            part.n_facets(),
-            mesh.part_measure(p)
-        );
-    }
-    let el = problem.material.elasticity;
-    say!(
-        "material: mu1 = {:.6} {s}, k0 = {:.6} {s}, law {:?}",
-        el.mu1,
-        el.k0,
-        el.law,
-        s = units.stress
-    );
-    say!(
-        "dofs: {} in all, {} free ({} u, {} phi)",
-        dofs.n_total(),
-        dofs.n_free(),
-        dofs.n_free_u(),
-        dofs.n_free() - dofs.n_free_u()
-    );
+    print::mesh(&built);
+    print::material(&built)?;
     // The model a run sets up with: its first step's on a loading path.
-    let first =
-        model.clone().map(|m| run::contact_model(&case, &problem, Some(m))).transpose()?.map(|m| {
-            match &loading {
-                Some(l) => l.at_first(&m),
-                None => m,
-            }
-        });
-    print_memory_prediction(
-        case.linear_solver()?,
-        &problem,
-        first.as_ref().map(|m| (m, &settings)),
-    )?;
-    if let Some(model) = &model {
+    let first = built.model.as_ref().map(|m| match &built.loading {
+        Some(l) => l.at_first(m),
+        None => m.clone(),
+    });
+    print_memory_prediction(&built, first.as_ref())?;
+    if let Some(model) = &built.model {
         say!("problem: {:?}, foundation: {:?}", case.problem_kind(), model.foundation);
     }
-    if let Some(loading) = &loading {
-        print::loading(loading, problem.mesh.dim(), units);
+    if let Some(loading) = &built.loading {
+        print::loading(loading, built.problem.mesh.dim(), &built.units);
     }
-    print::indentation_moduli(&problem.material, units);
-    for warning in warnings {
+    print::indentation_moduli(&built.problem.material, &built.units);
+    for warning in &built.warnings {
         say!("warning: {warning}");
     }
     if let Some(note) = case.uniqueness_note() {
@@ -556,18 +461,18 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
 /// bytes of a numeric factorisation, the exact solver's dense matrices, against the memory
 /// available (a run that does not fit is refused here, as by `run`, with both numbers).
 fn print_memory_prediction(
-    solver: Box<dyn piezocontact::linalg::LinearSolver>,
-    problem: &piezocontact::problem::Problem,
-    contact: Option<(&piezocontact::contact::ContactModel, &piezocontact::algorithm::Settings)>,
+    built: &Built,
+    model: Option<&piezocontact::contact::ContactModel>,
 ) -> Result<()> {
     use piezocontact::limits::{available_memory, bytes_text};
-    let (stats, dense_bytes, nodes) = match contact {
-        Some((model, settings)) => {
-            ContactSolver::new(problem, model, settings, solver)?.predicted_memory()
+    let (problem, solver) = (&built.problem, built.linear_solver()?);
+    let (stats, dense_bytes, nodes) = match model {
+        Some(model) => {
+            ContactSolver::new(problem, model, &built.settings, solver)?.predicted_memory()
         }
         None => {
             let dofs = DofMap::new(problem)?;
-            let system = piezocontact::solver::CoupledSystem::new(problem, dofs, &[], solver)?;
+            let system = piezocontact::system::CoupledSystem::new(problem, dofs, &[], solver)?;
             (system.solver_stats(), 0.0, 0)
         }
     };

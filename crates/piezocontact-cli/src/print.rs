@@ -1,33 +1,43 @@
 //! The terminal report of a run: every number with its unit.
 
 use crate::say;
-use piezocontact::case::Case;
+use piezocontact::case::Built;
 use piezocontact::case::schema::Units;
+use piezocontact::contact::Loading;
 use piezocontact::material::Material;
 use piezocontact::oracles::{Piezoelectric, plane_strain_modulus};
-use piezocontact::path::{Loading, PathRun};
-use piezocontact::run::{ContactRun, StaticRun};
+use piezocontact::run::{ContactRun, PathRun, Run, StaticRun};
 use std::path::Path;
 
+/// Prints a run's figures on the terminal, each with its unit.
+pub fn run(run: &Run, built: &Built, out: &Path) {
+    match run {
+        Run::Static(run) => static_run(run, built, out),
+        Run::Contact(run) => contact_run(run, built, out),
+        Run::Path(path) => path_run(path, built, out),
+    }
+}
+
 /// Prints a contact run's figures on the terminal, each with its unit.
-pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
-    let (units, solution, kkt) = (&case.file.units, &run.solution, &run.solution.kkt);
+fn contact_run(run: &ContactRun, built: &Built, out: &Path) {
+    let (units, solution, kkt) = (&built.units, &run.solution, &run.solution.kkt);
+    let mesh = &built.problem.mesh;
     let (sigma_nu, sigma_tau) = run.peaks();
     let (c, st, sl) = run.zones();
     let t = solution.timings;
     say!(
         "{}: {}, {} nodes, {} elements",
-        case.path.display(),
+        built.origin.path.display(),
         run.model.name(),
-        run.problem.mesh.n_nodes(),
-        run.problem.mesh.n_cells()
+        mesh.n_nodes(),
+        mesh.n_cells()
     );
     say!(
         "  outer iterations   = {} ({})",
-        solution.outer_iterations,
-        if solution.converged { "converged" } else { "NOT converged" }
+        solution.outer_iterations(),
+        if solution.converged() { "converged" } else { "NOT converged" }
     );
-    let exact = !run.settings.method.lags_contact();
+    let exact = !built.settings.method.lags_contact();
     let inner = if exact { "Newton steps" } else { "inner iterations" };
     say!("  {inner:<18} = {:?} (per outer step)", solution.inner_iterations);
     if exact {
@@ -35,12 +45,12 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         say!("  condensed nodes    = {} of {n3} Γ3 nodes", solution.condensed_nodes);
     }
     if solution.floored_steps > 0 {
-        let tangent = piezocontact::report::hencky_tangent(solution, !exact);
+        let tangent = piezocontact::report::summary::hencky_tangent(solution, !exact);
         say!("  Hencky tangent     = {tangent} (beyond e·t0)");
     }
     say!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
     say!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
-    let measure = match run.problem.mesh.dim() {
+    let measure = match mesh.dim() {
         2 => units.length.clone(),
         _ => format!("{}^2", units.length),
     };
@@ -60,21 +70,21 @@ pub fn contact_run(run: &ContactRun, case: &Case, out: &Path) {
         "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}){dense}, total {:.3} s",
         t.pattern,
         t.assembly,
-        t.symbolic,
-        t.numeric,
-        t.numeric_count,
-        t.solve,
-        t.solve_count,
+        t.solver.symbolic_seconds,
+        t.solver.numeric_seconds,
+        t.solver.numeric_count,
+        t.solver.solve_seconds,
+        t.solver.solve_count,
         run.seconds
     );
-    let map = if run.problem.mesh.dim() == 3 { ", contact_map.png/.svg" } else { "" };
+    let map = if mesh.dim() == 3 { ", contact_map.png/.svg" } else { "" };
     say!("  wrote contact.csv, summary.json, solution.vtu{map} in {}", out.display());
 }
 
 /// Prints a loading path: a line per step, then the last step as a run.
-pub fn path_run(path: &PathRun, case: &Case, out: &Path) {
-    let units = &case.file.units;
-    let dim = path.last.problem.mesh.dim();
+fn path_run(path: &PathRun, built: &Built, out: &Path) {
+    let units = &built.units;
+    let dim = built.problem.mesh.dim();
     let force = if dim == 3 {
         format!("{}·{}²", units.stress, units.length)
     } else {
@@ -82,8 +92,8 @@ pub fn path_run(path: &PathRun, case: &Case, out: &Path) {
     };
     say!(
         "{}: loading path of {} steps, {} solved",
-        case.path.display(),
-        path.loading.steps.len(),
+        built.origin.path.display(),
+        built.loading.as_ref().map_or(0, |l| l.steps.len()),
         path.curve.len()
     );
     say!(
@@ -114,7 +124,7 @@ pub fn path_run(path: &PathRun, case: &Case, out: &Path) {
         );
     }
     say!("the last step:");
-    contact_run(&path.last, case, out);
+    contact_run(&path.last, built, out);
     say!(
         "  wrote curve.csv, curve.png/.svg, solution-NNNN.vtu and solution.pvd (every step) in {}",
         out.display()
@@ -170,14 +180,14 @@ pub fn indentation_moduli(material: &Material, units: &Units) {
 }
 
 /// Prints a run without contact.
-pub fn static_run(run: &StaticRun, case: &Case, out: &Path) {
-    let (units, problem, t) = (&case.file.units, &run.problem, run.solution.timings);
+fn static_run(run: &StaticRun, built: &Built, out: &Path) {
+    let (units, problem, t) = (&built.units, &built.problem, run.solution.timings);
     say!(
         "{}: {} nodes, {} elements, {} free DOFs (no contact)",
-        case.path.display(),
+        built.origin.path.display(),
         problem.mesh.n_nodes(),
         problem.mesh.n_cells(),
-        run.solution.free_dofs
+        run.solution.dofs.n_free()
     );
     say!("  max |u|            = {:.6e} {}", run.max_u, units.length);
     let (lo, hi) = run.phi_range;
@@ -187,10 +197,79 @@ pub fn static_run(run: &StaticRun, case: &Case, out: &Path) {
         "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, total {:.3} s",
         t.pattern,
         t.assembly,
-        t.symbolic,
-        t.numeric,
-        t.solve,
+        t.solver.symbolic_seconds,
+        t.solver.numeric_seconds,
+        t.solver.solve_seconds,
         run.seconds
     );
     say!("  wrote summary.json and solution.vtu in {}", out.display());
+}
+
+/// Prints a built case's mesh: its size, its bounding box and each boundary part with its
+/// roles.
+pub fn mesh(built: &Built) {
+    let (mesh, units) = (&built.problem.mesh, &built.units);
+    let (lo, hi) = mesh.bounding_box();
+    say!(
+        "mesh: {}D, {} nodes, {} elements, bounding box {lo:?}–{hi:?} {}",
+        mesh.dim(),
+        mesh.n_nodes(),
+        mesh.n_cells(),
+        units.length
+    );
+    let unit = if mesh.dim() == 2 { units.length.clone() } else { format!("{}^2", units.length) };
+    for (p, part) in mesh.parts().iter().enumerate() {
+        say!(
+            "  part {:<12} {:>6} facets, measure {:.6} {unit}  ({})",
+            part.name,
+            part.n_facets(),
+            mesh.part_measure(p),
+            roles(&built.problem.boundary, p)
+        );
+    }
+}
+
+/// The roles of boundary part `p`, for `check`.
+fn roles(b: &piezocontact::problem::Boundary, p: usize) -> String {
+    let mut roles = Vec::new();
+    for (role, list) in
+        [("Γ1 clamped", &b.clamped), ("Γa grounded", &b.grounded), ("Γ3 contact", &b.contact)]
+    {
+        if list.contains(&p) {
+            roles.push(role);
+        }
+    }
+    if b.traction.iter().any(|(q, _)| *q == p) {
+        roles.push("Γ2 traction");
+    }
+    if b.charge.iter().any(|(q, _)| *q == p) {
+        roles.push("Γb charge");
+    }
+    if roles.is_empty() {
+        "no role: traction and charge free".to_string()
+    } else {
+        roles.join(", ")
+    }
+}
+
+/// Prints a built case's material constants and unknowns.
+pub fn material(built: &Built) -> piezocontact::Result<()> {
+    let problem = &built.problem;
+    let dofs = piezocontact::dofs::DofMap::new(problem)?;
+    let el = problem.material.elasticity;
+    say!(
+        "material: mu1 = {:.6} {s}, k0 = {:.6} {s}, law {:?}",
+        el.mu1,
+        el.k0,
+        el.law,
+        s = built.units.stress
+    );
+    say!(
+        "dofs: {} in all, {} free ({} u, {} phi)",
+        dofs.n_total(),
+        dofs.n_free(),
+        dofs.n_free_u(),
+        dofs.n_free() - dofs.n_free_u()
+    );
+    Ok(())
 }

@@ -2,7 +2,7 @@
 //! 7.1 and 7.2, Table 2, Figures 1–4 — with a Theorem 4.1 convergence figure, a mesh study
 //! and a stopping-rule study, and writes REPORT.md around them.
 
-use crate::sweep::{Job, run_jobs, threads};
+use crate::sweep::{Job, Solved, run_jobs, threads};
 use anyhow::Result;
 use piezocontact::case::{Case, Units};
 use piezocontact::contact::NodeStatus;
@@ -164,6 +164,9 @@ impl Table2 {
 }
 
 /// One series of the Theorem 4.1 study: what varies, and a run per value.
+/// (g_p, the series' name, its asymptotic slope) of the Theorem 4.1 study.
+type Slope = (f64, &'static str, Option<f64>);
+
 struct LimitSeries {
     name: &'static str,
     label: &'static str,
@@ -288,12 +291,12 @@ pub fn reproduce(request: &Request) -> Result<bool> {
     let runs = run_jobs(planner.jobs, threads(request.jobs))?;
     let report = Report { request, runs: &runs, units: &units };
     report.write_all(&studies)?;
-    Ok(runs.iter().all(|r| r.solution.converged))
+    Ok(runs.iter().all(|r| r.run.solution.converged()))
 }
 
 struct Report<'a> {
     request: &'a Request,
-    runs: &'a [ContactRun],
+    runs: &'a [Solved],
     units: &'a Units,
 }
 
@@ -304,7 +307,13 @@ impl Report<'_> {
 
     /// The result of a planned run.
     fn run(&self, id: RunId) -> &ContactRun {
-        &self.runs[id.0]
+        &self.runs[id.0].run
+    }
+
+    /// ‖x − x_ref‖_X / ‖x_ref‖_X of two planned runs of one mesh.
+    fn distance(&self, id: RunId, reference: RunId) -> Result<f64> {
+        let reference = &self.runs[reference.0];
+        Ok(self.run(id).distance_to(&reference.built, &reference.run)?)
     }
 
     /// (x, value) along Γ3 of a run.
@@ -379,40 +388,10 @@ impl Report<'_> {
         figure: &str,
         title: &str,
     ) -> Result<()> {
-        let run = self.run(studies.examples.run(example));
+        let id = studies.examples.run(example);
+        self.example_figures(id, figure, title)?;
+        let run = self.run(id);
         let u = self.units;
-        let stress = format!("[{}]", u.stress);
-        plot::line_plot(
-            &LinePlot {
-                title: format!("Figure {figure}(a): {title}, stresses on Γ3"),
-                x_label: format!("x on Γ3 [{}]", u.length),
-                y_label: format!("stress {stress}"),
-                series: vec![
-                    Series {
-                        label: "|σ_ν|".into(),
-                        points: Self::profile(run, |r| r.sigma_nu.abs()),
-                        color: PALETTE[1],
-                        markers: true,
-                    },
-                    Series {
-                        label: "|σ_τ|".into(),
-                        points: Self::profile(run, |r| r.sigma_tau[0].abs()),
-                        color: PALETTE[2],
-                        markers: true,
-                    },
-                ],
-                log_log: false,
-                legend: SeriesLabelPosition::UpperRight,
-            },
-            &self.path(&format!("figure{figure}a")),
-        )?;
-        let labels = BodyLabels {
-            title: &format!("Figure {figure}(b): {title}, deformed body and ϕ"),
-            length: &u.length,
-            stress: &u.stress,
-            potential: &u.potential,
-        };
-        plot::body_plot(run, &labels, &self.path(&format!("figure{figure}b")))?;
         let (sn, st) = run.peaks();
         let (c, stick, slip) = run.zones();
         let s = &run.solution;
@@ -431,42 +410,96 @@ impl Report<'_> {
         let _ = writeln!(
             md,
             "| {} | {:?} | {sn:.4} | {st:.4} | {c:.3} / {stick:.3} / {slip:.3} | {:.1e} | {} |\n",
-            s.outer_iterations, s.inner_iterations, run.solution.kkt.max, s.converged
+            s.outer_iterations(),
+            s.inner_iterations,
+            run.solution.kkt.max,
+            s.converged()
         );
         if example == Example::Pv1 {
-            let verdict = if s.outer_iterations == 2 {
-                "stops after 2 outer iterations, as the paper says"
-            } else {
-                "does not stop after 2 outer iterations as the paper says"
-            };
-            let _ = writeln!(
-                md,
-                "Algorithm 3 {verdict}. The contact zone covers {c:.2} of the 8 {l} of Γ3 and the normal stress peaks at {sn:.2} {s_}, the ≈ 6 of the paper's Figure 1(a); σ_τ vanishes (frictionless). With the paper's gap and no penetration allowed, p_ν and ψ vanish at the solution (docs/model.md §9): the contact is Signorini's with gap ρ, and the rigid stop carries the whole contact pressure.\n",
-                l = u.length,
-                s_ = u.stress
-            );
+            self.example_pv1(md, run);
         } else {
-            let ratios: Vec<f64> = run
-                .rows
-                .iter()
-                .filter(|r| r.status == NodeStatus::Slip && r.sigma_nu != 0.0)
-                .map(|r| (r.sigma_tau[0] / r.sigma_nu).abs())
-                .collect();
-            let (lo, hi) =
-                ratios.iter().fold((f64::INFINITY, 0.0_f64), |(a, b), &v| (a.min(v), b.max(v)));
-            let _ = writeln!(
-                md,
-                "Along Γ3 the nodes are: {}. Stick holds {stick:.2} {l} and slip {slip:.2} {l}; on the slip nodes |σ_τ|/|σ_ν| lies in [{lo:.4}, {hi:.4}] (µ = 0.6 up to the lag of s by one outer step), and the peak |σ_τ| is {st:.2} {s_}. The paper shows the stick and slip zones in its Figure 2 without numbers; our zones are drawn in Figure 2(b).\n",
-                zone_text(&run.rows),
-                l = u.length,
-                s_ = u.stress
-            );
+            self.example_pv2(md, run);
         }
         Ok(())
     }
 
+    /// Figures (a), the stresses along Γ3, and (b), the deformed body, of an example's run.
+    fn example_figures(&self, id: RunId, figure: &str, title: &str) -> Result<()> {
+        let (solved, u) = (&self.runs[id.0], self.units);
+        let run = &solved.run;
+        let stress = format!("[{}]", u.stress);
+        let profile = |label: &str, k: usize, f: fn(&Row) -> f64| Series {
+            label: label.into(),
+            points: Self::profile(run, f),
+            color: PALETTE[k],
+            markers: true,
+        };
+        plot::line_plot(
+            &LinePlot {
+                title: format!("Figure {figure}(a): {title}, stresses on Γ3"),
+                x_label: format!("x on Γ3 [{}]", u.length),
+                y_label: format!("stress {stress}"),
+                series: vec![
+                    profile("|σ_ν|", 1, |r| r.sigma_nu.abs()),
+                    profile("|σ_τ|", 2, |r| r.sigma_tau[0].abs()),
+                ],
+                log_log: false,
+                legend: SeriesLabelPosition::UpperRight,
+            },
+            &self.path(&format!("figure{figure}a")),
+        )?;
+        let labels = BodyLabels {
+            title: &format!("Figure {figure}(b): {title}, deformed body and ϕ"),
+            length: &u.length,
+            stress: &u.stress,
+            potential: &u.potential,
+        };
+        let stem = self.path(&format!("figure{figure}b"));
+        Ok(plot::body_plot(&run.view(&solved.built), &labels, &stem)?)
+    }
+
+    /// What Example 7.1's run shows against the paper.
+    fn example_pv1(&self, md: &mut String, run: &ContactRun) {
+        let u = self.units;
+        let (sn, _) = run.peaks();
+        let (c, _, _) = run.zones();
+        let verdict = if run.solution.outer_iterations() == 2 {
+            "stops after 2 outer iterations, as the paper says"
+        } else {
+            "does not stop after 2 outer iterations as the paper says"
+        };
+        let _ = writeln!(
+            md,
+            "Algorithm 3 {verdict}. The contact zone covers {c:.2} of the 8 {l} of Γ3 and the normal stress peaks at {sn:.2} {s_}, the ≈ 6 of the paper's Figure 1(a); σ_τ vanishes (frictionless). With the paper's gap and no penetration allowed, p_ν and ψ vanish at the solution (docs/model.md §9): the contact is Signorini's with gap ρ, and the rigid stop carries the whole contact pressure.\n",
+            l = u.length,
+            s_ = u.stress
+        );
+    }
+
+    /// What Example 7.2's run shows: its zones and the friction ratio on the slip nodes.
+    fn example_pv2(&self, md: &mut String, run: &ContactRun) {
+        let u = self.units;
+        let (_, st) = run.peaks();
+        let (_, stick, slip) = run.zones();
+        let ratios: Vec<f64> = run
+            .rows
+            .iter()
+            .filter(|r| r.status == NodeStatus::Slip && r.sigma_nu != 0.0)
+            .map(|r| (r.sigma_tau[0] / r.sigma_nu).abs())
+            .collect();
+        let (lo, hi) =
+            ratios.iter().fold((f64::INFINITY, 0.0_f64), |(a, b), &v| (a.min(v), b.max(v)));
+        let _ = writeln!(
+            md,
+            "Along Γ3 the nodes are: {}. Stick holds {stick:.2} {l} and slip {slip:.2} {l}; on the slip nodes |σ_τ|/|σ_ν| lies in [{lo:.4}, {hi:.4}] (µ = 0.6 up to the lag of s by one outer step), and the peak |σ_τ| is {st:.2} {s_}. The paper shows the stick and slip zones in its Figure 2 without numbers; our zones are drawn in Figure 2(b).\n",
+            zone_text(&run.rows),
+            l = u.length,
+            s_ = u.stress
+        );
+    }
+
     fn table2(&self, md: &mut String, studies: &Studies) -> Result<()> {
-        let pv1 = self.run(studies.examples.pv1);
+        let pv1 = studies.examples.pv1;
         let mut csv = String::from(
             "mu,ke,paper_outer_iterations,outer_iterations,inner_iterations,converged,max_abs_sigma_nu,max_abs_sigma_tau,distance_to_pv1,wall_seconds\n",
         );
@@ -480,15 +513,15 @@ impl Report<'_> {
         for &(mu, paper, id) in &studies.table2.rows {
             let run = self.run(id);
             let (sn, st) = run.peaks();
-            let d = run.distance_to(pv1)?;
+            let d = self.distance(id, pv1)?;
             let s = &run.solution;
             let inner: usize = s.inner_iterations.iter().sum();
-            ours.push(s.outer_iterations);
+            ours.push(s.outer_iterations());
             let _ = writeln!(
                 csv,
                 "{mu},{mu},{paper},{},{inner},{},{},{},{},{:.3}",
-                s.outer_iterations,
-                s.converged,
+                s.outer_iterations(),
+                s.converged(),
                 csv_number(sn),
                 csv_number(st),
                 csv_number(d),
@@ -498,7 +531,7 @@ impl Report<'_> {
             let _ = writeln!(
                 md,
                 "| {mu:.1e} | {paper} | {} | {inner} | {sn:.4} | {st:.4} | {d:.2e} | {} |",
-                s.outer_iterations,
+                s.outer_iterations(),
                 history.join(", ")
             );
         }
@@ -595,16 +628,18 @@ impl Report<'_> {
         Ok(())
     }
 
-    fn limit(&self, md: &mut String, study: &Limit) -> Result<()> {
+    /// The distances of the Theorem 4.1 study with their fitted slopes: the series of the
+    /// figure, the rows of the table, and (g_p, series name, asymptotic slope) per series.
+    fn limit_series(&self, study: &Limit) -> Result<(Vec<Series>, String, Vec<Slope>)> {
         let mut series = Vec::new();
         let mut rows = String::new();
         let mut slopes = Vec::new();
         for (g, (gp, pv1, layer)) in study.layers.iter().enumerate() {
-            let (gp, pv1) = (*gp, self.run(*pv1));
+            let (gp, pv1) = (*gp, *pv1);
             for (k, LimitSeries { name, label, runs }) in layer.iter().enumerate() {
                 let points: Vec<(f64, f64)> = runs
                     .iter()
-                    .map(|&(m, id)| Ok((m, self.run(id).distance_to(pv1)?)))
+                    .map(|&(m, id)| Ok((m, self.distance(id, pv1)?)))
                     .collect::<Result<_>>()?;
                 let max = points.iter().map(|p| p.1).fold(0.0, f64::max);
                 // Distances below NOISE are round-off of the exact runs, not a rate.
@@ -622,7 +657,7 @@ impl Report<'_> {
                     text(all),
                     text(small)
                 );
-                slopes.push((gp, name, small));
+                slopes.push((gp, *name, small));
                 let slope_text = text(small);
                 series.push(Series {
                     label: format!("g_p = {gp}: {label}, slope {slope_text}"),
@@ -632,6 +667,11 @@ impl Report<'_> {
                 });
             }
         }
+        Ok((series, rows, slopes))
+    }
+
+    fn limit(&self, md: &mut String, study: &Limit) -> Result<()> {
+        let (series, rows, slopes) = self.limit_series(study)?;
         plot::line_plot(
             &LinePlot {
                 title: "Theorem 4.1: ‖x(µ, k_e) − x_PV1‖_X / ‖x_PV1‖_X".into(),
@@ -696,7 +736,7 @@ impl Report<'_> {
                 "{ex},{},{},{},{},{},{},{}",
                 nx * k,
                 ny * k,
-                run.solution.outer_iterations,
+                run.solution.outer_iterations(),
                 csv_number(sn),
                 csv_number(st),
                 csv_number(c),
@@ -707,7 +747,7 @@ impl Report<'_> {
                 "| {ex} | {}×{} | {} | {sn:.4} | {st:.4} | {c:.3} | {stick:.3} |",
                 nx * k,
                 ny * k,
-                run.solution.outer_iterations
+                run.solution.outer_iterations()
             );
         }
         write_atomic(&self.path("mesh_convergence.csv"), csv.as_bytes())?;

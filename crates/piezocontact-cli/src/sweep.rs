@@ -4,10 +4,10 @@
 use crate::{say, say_err};
 use anyhow::{Context, Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressStyle};
-use piezocontact::case::Case;
+use piezocontact::case::{Built, Case};
 use piezocontact::output::files::write_atomic;
 use piezocontact::report::csv_number;
-use piezocontact::run::ContactRun;
+use piezocontact::run::{ContactRun, Run};
 use rayon::prelude::*;
 use std::fmt::Write;
 use std::io::IsTerminal;
@@ -21,9 +21,17 @@ pub struct Job {
     pub out: Option<PathBuf>,
 }
 
+/// A job's contact run with the case it solved, built.
+pub struct Solved {
+    /// The case, built.
+    pub built: Built,
+    /// Its contact run.
+    pub run: ContactRun,
+}
+
 /// Runs the jobs on `threads` threads and returns the runs in the jobs' order; the first
 /// job that fails fails them all, and the jobs not started by then are not run.
-pub fn run_jobs(jobs: Vec<Job>, threads: usize) -> Result<Vec<ContactRun>> {
+pub fn run_jobs(jobs: Vec<Job>, threads: usize) -> Result<Vec<Solved>> {
     let (mut runs, mut first_error, mut skipped) = (Vec::new(), None, false);
     for result in run_until(jobs, threads, true) {
         match result {
@@ -41,7 +49,7 @@ pub fn run_jobs(jobs: Vec<Job>, threads: usize) -> Result<Vec<ContactRun>> {
 
 /// Runs the jobs on `threads` threads and returns each one's run or error, in the jobs'
 /// order.
-pub fn run_each(jobs: Vec<Job>, threads: usize) -> Vec<Result<ContactRun>> {
+pub fn run_each(jobs: Vec<Job>, threads: usize) -> Vec<Result<Solved>> {
     let results = run_until(jobs, threads, false);
     results.into_iter().map(|r| r.map_err(|e| e.unwrap_or_else(|| anyhow!("not run")))).collect()
 }
@@ -52,7 +60,7 @@ fn run_until(
     jobs: Vec<Job>,
     threads: usize,
     stop_at_failure: bool,
-) -> Vec<std::result::Result<ContactRun, Option<anyhow::Error>>> {
+) -> Vec<std::result::Result<Solved, Option<anyhow::Error>>> {
     let pool = match rayon::ThreadPoolBuilder::new().num_threads(threads.max(1)).build() {
         Ok(pool) => pool,
         Err(e) => return jobs.iter().map(|_| Err(Some(anyhow!("thread pool: {e}")))).collect(),
@@ -79,11 +87,11 @@ fn run_until(
                 let run = solve_job(job);
                 let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
                 let line = match &run {
-                    Ok(run) => format!(
+                    Ok(Solved { run, .. }) => format!(
                         "{}: {} outer iterations, {}, {:.2} s",
                         job.label,
-                        run.solution.outer_iterations,
-                        if run.solution.converged { "converged" } else { "NOT converged" },
+                        run.solution.outer_iterations(),
+                        if run.solution.converged() { "converged" } else { "NOT converged" },
                         run.seconds
                     ),
                     Err(_) => {
@@ -111,12 +119,26 @@ fn run_until(
 }
 
 /// Solves a job and writes its files.
-fn solve_job(job: &Job) -> Result<ContactRun> {
-    let run = ContactRun::solve(&job.case).with_context(|| format!("run {}", job.label))?;
+fn solve_job(job: &Job) -> Result<Solved> {
+    let solved = solve_contact(&job.case).with_context(|| format!("run {}", job.label))?;
     if let Some(out) = &job.out {
-        run.write(&job.case, out)?;
+        solved.run.write(&solved.built, out)?;
     }
-    Ok(run)
+    Ok(solved)
+}
+
+/// Builds and solves a case with contact and without a loading path, on the case's own linear
+/// solver.
+pub fn solve_contact(case: &Case) -> piezocontact::Result<Solved> {
+    case.one_position()?;
+    let built = case.build()?;
+    match Run::solve(&built, built.linear_solver()?, &|_| {})? {
+        Run::Contact(run) => Ok(Solved { built, run }),
+        _ => Err(piezocontact::Error::Input(format!(
+            "{}: the case has no [contact] table",
+            case.path().display()
+        ))),
+    }
 }
 
 /// The number of threads: `--jobs`, or the machine's cores.
@@ -223,9 +245,9 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
     for (i, (value, run)) in values.iter().zip(&runs).enumerate() {
         let values = vec![csv_field(value); keys.len()].join(",");
         match run {
-            Ok(run) => {
+            Ok(Solved { built, run }) => {
                 let distance = match &reference {
-                    Some(r) => csv_number(run.distance_to(r)?),
+                    Some(r) => csv_number(run.distance_to(built, &r.run)?),
                     None => String::new(),
                 };
                 let _ = writeln!(csv, "{values},{}", row(run, &distance));
@@ -248,8 +270,8 @@ pub fn sweep(request: &SweepRequest) -> Result<bool> {
     }
     write_atomic(&request.out.join("sweep.csv"), csv.as_bytes())?;
     say!("{}", csv.trim_end());
-    if let Some(run) = runs.iter().find_map(|r| r.as_ref().ok()) {
-        say!("{}", units_line(&units, run.problem.mesh.dim()));
+    if let Some(solved) = runs.iter().find_map(|r| r.as_ref().ok()) {
+        say!("{}", units_line(&units, solved.built.problem.mesh.dim()));
     }
     say!("wrote {} and one directory per run", request.out.join("sweep.csv").display());
     for run in &unconverged {
@@ -287,9 +309,9 @@ fn row(run: &ContactRun, distance: &str) -> String {
     let (contact, stick, slip) = run.zones();
     format!(
         "{},{},{},{},{},{},{},{},{distance},{:.3}",
-        run.solution.outer_iterations,
+        run.solution.outer_iterations(),
         run.solution.inner_iterations.iter().sum::<usize>(),
-        run.solution.converged,
+        run.solution.converged(),
         csv_number(sigma_nu),
         csv_number(sigma_tau),
         csv_number(contact),

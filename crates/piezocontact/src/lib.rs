@@ -53,34 +53,46 @@
 //! Indices of unknowns are `dof` (global) and `k` (free); `residual` is always a defect of
 //! equations, never the parameter r.
 //!
-//! ## Modules (data flow top to bottom)
+//! ## Modules (each imports only those above it)
 //!
-//! - [`mesh`]: meshes with named boundary parts (structured rectangle, Gmsh MSH 4.1).
+//! - [`error`], [`limits`], [`interrupt`]: errors, the machine's limits, Ctrl-C.
+//! - [`linalg`]: the linear-solver seam (backends and their capabilities) and sparse LDLᵀ, the
+//!   only module naming faer.
 //! - [`element`]: P1 simplex geometry and quadrature.
+//! - [`mesh`]: meshes with named boundary parts (structured rectangle, Gmsh MSH 4.1).
 //! - [`material`]: Hencky law g, piezoelectric and permittivity tensors.
+//! - [`oracles`]: closed-form solutions the tests and the reproduction compare with.
 //! - [`problem`]: a checked problem: mesh, material, boundary roles, loads.
 //! - [`dofs`]: DOF numbering [u; ϕ] and Dirichlet elimination.
 //! - [`assembly`]: element kernels, B̌ (pattern once, parallel refills), f̌, fields and norms.
-//! - [`linalg`]: the linear-solver seam (backends and their capabilities) and sparse LDLᵀ, the
-//!   only module naming faer.
-//! - [`solver`]: the coupled system on the caller's backend; the solve without contact.
-//! - [`contact`]: Γ3 (w_i, ν_i, u_ν, u_τ), the contact laws, the contact model, multipliers,
-//!   statuses, the mollifier and the foundation.
+//! - [`system`]: the coupled system on the caller's backend; the solve without contact.
+//! - [`contact`]: Γ3 (w_i, ν_i, u_ν, u_τ), each contact law written once (complementarity,
+//!   Coulomb's ball, a node's status), the contact model, friction bounds, the mollifier, the
+//!   foundation and loading paths.
 //! - [`algorithm`]: the outer fixed point (Algorithms 1, 3) around an inner method — Uzawa
-//!   (Algorithms 2, 4) or the exact solver — residuals and balances.
-//! - [`case`]: case files — schema and defaults, overrides, validation, one build.
-//! - [`report`], [`run`]: a run of a case, its Γ3 table, summary and files.
+//!   (Algorithms 2, 4) or the exact solver — Hencky's linearisation, residuals and balances.
+//! - [`case`]: case files — schema and defaults, overrides, validation, one build
+//!   ([`case::Built`]: everything a run reads).
+//! - [`report`]: the Γ3 table, the curve of a path, summary.json.
 //! - [`output`]: ParaView `.vtu`, figures, atomic files.
+//! - [`run`]: a run of a built case — without contact, one contact solve or a loading path,
+//!   chosen in one place — and its files.
+//!
+//! Within a module folder, files import their siblings' files, never the folder's `mod.rs`,
+//! which declares and re-exports.
 //!
 //! ## Running a case
 //!
 //! ```no_run
-//! use piezocontact::{case::Case, run::ContactRun};
+//! use piezocontact::{case::Case, run::Run};
 //! # fn main() -> piezocontact::Result<()> {
-//! let case = Case::load("cases/paper-7.1.toml".as_ref(), &["mesh.nx=48".into()])?;
-//! let run = ContactRun::solve(&case)?;
-//! println!("{} outer iterations, KKT residual {:.1e}", run.solution.outer_iterations, run.solution.kkt.max);
-//! run.write(&case, "out/example".as_ref())?;
+//! let built = Case::load("cases/paper-7.1.toml".as_ref(), &["mesh.nx=48".into()])?.build()?;
+//! let run = Run::solve(&built, built.linear_solver()?, &|_| {})?;
+//! if let Some(contact) = run.contact() {
+//!     let solution = &contact.solution;
+//!     println!("{} outer iterations, KKT residual {:.1e}", solution.outer_iterations(), solution.kkt.max);
+//! }
+//! run.write(&built, "out/example".as_ref())?;
 //! # Ok(())
 //! # }
 //! ```
@@ -117,11 +129,10 @@ pub mod material;
 pub mod mesh;
 pub mod oracles;
 pub mod output;
-pub mod path;
 pub mod problem;
 pub mod report;
 pub mod run;
-pub mod solver;
+pub mod system;
 #[cfg(test)]
 mod testing;
 

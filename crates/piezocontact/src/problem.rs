@@ -62,9 +62,6 @@ pub struct Problem {
     pub boundary: Boundary,
     /// Body loads.
     pub loads: BodyLoads,
-    /// The factor on every applied load — f0, q0, f2 and q2 — (1 but on a loading path's
-    /// steps) [-].
-    pub load_factor: f64,
 }
 
 impl Problem {
@@ -84,7 +81,7 @@ impl Problem {
                 requirement: format!("must equal the mesh dimension {}", mesh.dim()),
             });
         }
-        let problem = Self { mesh, material, boundary, loads, load_factor: 1.0 };
+        let problem = Self { mesh, material, boundary, loads };
         problem.check_roles()?;
         Ok(problem)
     }

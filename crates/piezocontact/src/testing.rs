@@ -3,8 +3,7 @@
 use crate::algorithm::{Setup, Step};
 use crate::assembly::{Linearisation, MassNorm};
 use crate::case::{Built, Case};
-use crate::contact::model::nodal_mu;
-use crate::contact::{ContactModel, ContactSurface, Mollifier};
+use crate::contact::{ContactModel, ContactSurface, NodalFriction};
 use crate::dofs::DofMap;
 use crate::problem::Problem;
 
@@ -30,10 +29,8 @@ pub struct Fixture {
     pub surface: ContactSurface,
     /// The L2(Ω) norm of the stopping rules.
     pub mass: MassNorm,
-    /// R of the friction bound.
-    pub mollifier: Mollifier,
-    /// µ per Γ3 node (empty for PV1).
-    pub mu: Vec<f64>,
+    /// µ_i and R of the friction bound (PV2).
+    pub friction: Option<NodalFriction>,
 }
 
 impl Fixture {
@@ -47,10 +44,10 @@ impl Fixture {
             &model.foundation,
             model.compliance.gap,
         );
-        let mu = model.pv2.as_ref().map_or_else(Vec::new, |(f, _)| nodal_mu(problem, &surface, f));
+        let friction =
+            model.friction.as_ref().map(|f| NodalFriction::new(problem, &surface, f).unwrap());
         let mass = MassNorm::new(problem).unwrap();
-        let mollifier = Mollifier::new(problem, &surface, model).unwrap();
-        Self { built, surface, mass, mollifier, mu }
+        Self { built, surface, mass, friction }
     }
 
     /// The problem.
@@ -82,8 +79,7 @@ impl Fixture {
             mass: &self.mass,
             surface: &self.surface,
             model: self.model(),
-            mu: &self.mu,
-            mollifier: &self.mollifier,
+            friction: self.friction.as_ref(),
             previous,
             friction_bound,
             linearisation,

@@ -3,7 +3,7 @@
 
 use piezocontact::Error;
 use piezocontact::case::Case;
-use piezocontact::run::ContactRun;
+use piezocontact::run::Run;
 use proptest::prelude::*;
 use proptest::test_runner::{RngAlgorithm, TestRng, TestRunner};
 use std::path::Path;
@@ -180,18 +180,17 @@ fn check(path: &str, base: &str, o: &[String]) -> Result<Outcome, TestCaseError>
     // Every override names a real key with a value of the right type: the case parses.
     let case = Case::from_text(&super::common::root().join(path), base, o)
         .map_err(|e| TestCaseError::fail(format!("{e}")))?;
-    if case.build().is_err() {
-        return Ok(Outcome::Invalid);
-    }
-    let result = std::panic::catch_unwind(|| {
-        ContactRun::solve(&case).and_then(|run| {
+    let Ok(built) = case.build() else { return Ok(Outcome::Invalid) };
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let solved = built.linear_solver().and_then(|solver| Run::solve(&built, solver, &|_| {}));
+        solved.and_then(|run| {
             static RUN: AtomicUsize = AtomicUsize::new(0);
             let k = RUN.fetch_add(1, Ordering::SeqCst);
             let out =
                 std::env::temp_dir().join(format!("piezocontact-prop-{}-{k}", std::process::id()));
-            run.write(&case, &out).map(|_| (out, run.solution.failure.clone()))
+            run.write(&built, &out).map(|_| (out, run.error().cloned()))
         })
-    });
+    }));
     let Ok(outcome) = result else { return Err(TestCaseError::fail(format!("panic on {o:?}"))) };
     let (out, failure) = match outcome {
         Ok(written) => written,

@@ -6,7 +6,7 @@ use crate::contact::ContactSurface;
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
 use crate::linalg::{DenseMatrix, SolverStats};
-use crate::solver::CoupledSystem;
+use crate::system::CoupledSystem;
 use std::collections::HashMap;
 
 /// The Γ3 unknowns kept by the condensation, in the order of the Schur complement.

@@ -22,14 +22,14 @@
 //! them cycle from both starts, a continuation in k_e (`Local::continuation`) takes its place.
 
 use super::condensed::{self, Condensed, Guess, Phi, SchurSource};
+use super::inner::{InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
 use super::residual::KktResidual;
-use super::{InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
 use crate::assembly::NodalBlock;
-use crate::contact::ContactState;
-use crate::contact::model::{node_bound, stress_and_bound};
+use crate::contact::law::{coulomb, stop_complementarity};
+use crate::contact::{ContactState, NodeStatus};
 use crate::error::{Error, Result};
 use crate::linalg::{DenseMatrix, LinearSolver, TransposedLu, max_distance, max_norm};
-use crate::solver::CoupledSystem;
+use crate::system::CoupledSystem;
 use rayon::prelude::*;
 
 /// A relative Newton step below this, with unchanged sets, is round-off.
@@ -83,12 +83,38 @@ struct Local<'a> {
     conduction: f64,
 }
 
+/// The active sets at an iterate, as the laws decide them: per node, whether the rigid
+/// stop holds it ([`stop_complementarity`]) and what the friction law says ([`coulomb`]:
+/// stick or slip; [`NodeStatus::Contact`] without friction; slip on the nodes left out of
+/// the condensed problem, which bear no force).
+#[derive(Clone, Debug, PartialEq)]
+struct Sets {
+    at_stop: Vec<bool>,
+    status: Vec<NodeStatus>,
+}
+
+impl Sets {
+    /// No node at the stop, every node slipping (in contact without `friction`).
+    fn new(n3: usize, friction: bool) -> Self {
+        let status = if friction { NodeStatus::Slip } else { NodeStatus::Contact };
+        Self { at_stop: vec![false; n3], status: vec![status; n3] }
+    }
+
+    /// Nodes at the stop or sticking: those whose equations fix some unknown.
+    #[cfg(test)]
+    fn holding(&self) -> usize {
+        (0..self.at_stop.len())
+            .filter(|&i| self.at_stop[i] || self.status[i] == NodeStatus::Stick)
+            .count()
+    }
+}
+
 /// E and the sets at an iterate.
 struct Evaluation {
     /// E, the residual of the condensed equations.
     residual: Vec<f64>,
-    /// Per node: 0 separated, 1 in contact; + 2 when sticking.
-    sets: Vec<u8>,
+    /// The active sets.
+    sets: Sets,
     /// Per condensed unknown: whether its equation fixes it (contact normal, stick tangent).
     fixed: Vec<bool>,
     /// λ_c, λ_f (local tangential components).
@@ -246,7 +272,7 @@ impl InnerMethod for Newton {
         let Setup { problem, dofs, surface, model } = setup;
         let with_phi = model.compliance.penetration > 0.0;
         let Parameters { max_condensed, guess, .. } = self.parameters;
-        let frictionless = model.pv2.is_none();
+        let frictionless = model.friction.is_none();
         let guess = guess.at_most(max_condensed);
         let condensed = Condensed::new(&dofs, surface, (with_phi, frictionless), guess);
         condensed.check_memory(crate::limits::available_memory())?;
@@ -290,7 +316,7 @@ impl InnerMethod for Newton {
         Ok(result)
     }
 
-    fn stop_context(&self, outer_step: usize, _pv2: bool) -> StopContext {
+    fn stop_context(&self, outer_step: usize, _friction: bool) -> StopContext {
         let max_inner = self.parameters.max_inner;
         let mut hint = "the active set cycles or the Jacobian is singular: check that Γ3 can \
                         touch the foundation only where the body is held"
@@ -423,8 +449,8 @@ impl Newton {
 /// on a node left out), not the round-off of the condensed forces — so that a left-out node
 /// bears friction only from nodes that touch.
 fn friction_bound(step: &Step, system: &CoupledSystem, result: &InnerResult) -> Vec<f64> {
-    let at = (system.dofs(), step.surface);
-    stress_and_bound(at, step.model, step.friction(), &result.x, &result.state).1
+    let sigma_nu = result.state.normal_stress(system.dofs(), step.surface, step.model, &result.x);
+    step.friction.map_or_else(|| vec![0.0; sigma_nu.len()], |f| f.bound(&sigma_nu))
 }
 
 /// One semismooth Newton solve of the condensed problem of an outer step.
@@ -480,12 +506,12 @@ impl Semismooth<'_> {
         let x = system.solve(Some(&forces))?;
         let mut state = eval.multipliers;
         // Off the active set the law is λ_c = 0, held to round-off by the Newton equations.
-        for (i, set) in eval.sets.iter().enumerate() {
-            if set & 1 == 0 || !cond.kept[i] {
+        for (i, at_stop) in eval.sets.at_stop.iter().enumerate() {
+            if !at_stop || !cond.kept[i] {
                 state.lambda_c[i] = 0.0;
             }
         }
-        if self.step.model.pv2.is_none() {
+        if self.step.model.friction.is_none() {
             // Frictionless: σ_τ = 0 by the law; the tangential rows hold it to round-off.
             state.lambda_f.iter_mut().for_each(|l| *l = [0.0; 3]);
         }
@@ -495,7 +521,14 @@ impl Semismooth<'_> {
             state.lambda_f[i] =
                 [0, 1, 2].map(|k| (1..3).map(|a| frame[a][k] * tangential[a - 1]).sum());
         }
-        Ok((InnerResult { x, state, iterations, history, stop }, short_of))
+        let mut status = eval.sets.status;
+        if let Some(friction) = self.step.friction {
+            // A node left out bears no force: the law at rest, λ_f = 0, with its bound.
+            for i in (0..status.len()).filter(|&i| !cond.kept[i]) {
+                status[i] = coulomb([0.0; 2], friction.node_bound(i, eval.r_sigma[i])).1;
+            }
+        }
+        Ok((InnerResult { x, state, iterations, history, status, stop }, short_of))
     }
 }
 
@@ -572,7 +605,7 @@ impl<'a> Local<'a> {
     fn iterate(&self, mut y: Vec<f64>, cap: usize) -> Iteration {
         let semismooth = self.semismooth;
         let (mut history, mut cycles) = (Vec::new(), Cycles::default());
-        let mut previous_sets: Option<Vec<u8>> = None;
+        let mut previous_sets: Option<Sets> = None;
         let (mut stop, mut iterations) = (Stop::Cap, cap);
         let (mut frozen, mut factorisations) = (None, 0);
         // E at y when the last step's line search or chord test has evaluated it already.
@@ -628,7 +661,7 @@ impl<'a> Local<'a> {
         &self,
         y: &[f64],
         eval: &Evaluation,
-        frozen: &mut Option<(Vec<u8>, TransposedLu)>,
+        frozen: &mut Option<(Sets, TransposedLu)>,
         factorisations: &mut usize,
     ) -> Result<(Vec<f64>, f64, Option<Evaluation>)> {
         let merit = self.merit(eval);
@@ -677,7 +710,7 @@ impl<'a> Local<'a> {
     /// problem at some node (a penetration g_p > 0 lets the laws read it).
     fn conducts(&self) -> bool {
         let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
-        step.model.pv2.as_ref().is_some_and(|(_, conduction)| conduction.ke > 0.0)
+        step.model.conduction.as_ref().is_some_and(|conduction| conduction.ke > 0.0)
             && cond.phi.iter().any(|phi| matches!(phi, Phi::Unknown(_)))
     }
 
@@ -786,10 +819,10 @@ impl<'a> Local<'a> {
         let sigma_nu: Vec<f64> = (0..n3)
             .map(|i| if cond.kept[i] { forces[cond.u[i][0]] / surface.weight[i] } else { 0.0 })
             .collect();
-        let r_sigma = step.friction().map_or_else(|| sigma_nu.clone(), |(_, r)| r.apply(&sigma_nu));
+        let r_sigma = step.friction.map_or_else(|| sigma_nu.clone(), |f| f.regularised(&sigma_nu));
         let mut eval = Evaluation {
             residual: vec![0.0; y.len()],
-            sets: vec![0; n3],
+            sets: Sets::new(n3, step.friction.is_some()),
             fixed: vec![false; y.len()],
             multipliers: ContactState::cold(n3),
             forces,
@@ -804,34 +837,21 @@ impl<'a> Local<'a> {
             let (gap, rho) = (surface.gap[i], law.stop(surface.gap[i]));
             let lambda_c = -eval.sigma_nu[i] - self.pressure(u_nu, phi, i);
             eval.multipliers.lambda_c[i] = lambda_c;
-            if lambda_c + c * (u_nu - rho) > 0.0 {
-                eval.residual[u[0]] = -c * (u_nu - rho);
+            let normal = stop_complementarity(lambda_c, c, u_nu, rho);
+            if normal.at_stop {
+                eval.residual[u[0]] = -normal.overlap;
                 eval.fixed[u[0]] = true;
-                eval.sets[i] = 1;
+                eval.sets.at_stop[i] = true;
             } else {
                 eval.residual[u[0]] = lambda_c;
             }
             let lambda_f: Vec<f64> = (1..dim).map(|a| -eval.forces[u[a]] / w).collect();
             (0..dim - 1).for_each(|a| eval.multipliers.lambda_f[i][a] = lambda_f[a]);
-            match step.friction() {
+            match step.friction {
                 None => (1..dim).for_each(|a| eval.residual[u[a]] = lambda_f[a - 1]),
-                Some((mu, _)) => {
-                    let s = node_bound(mu[i], eval.r_sigma[i]);
-                    let slip = |a: usize| y[u[a]] - self.origin[u[a]];
-                    let z: Vec<f64> = (1..dim).map(|a| lambda_f[a - 1] + c * slip(a)).collect();
-                    let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
-                    if norm < s {
-                        eval.sets[i] += 2;
-                        for a in 1..dim {
-                            eval.residual[u[a]] = -c * slip(a);
-                            eval.fixed[u[a]] = true;
-                        }
-                    } else {
-                        for a in 1..dim {
-                            let direction = if norm > 0.0 { z[a - 1] / norm } else { 0.0 };
-                            eval.residual[u[a]] = lambda_f[a - 1] - s * direction;
-                        }
-                    }
+                Some(friction) => {
+                    let s = friction.node_bound(i, eval.r_sigma[i]);
+                    self.coulomb_rows(y, i, (&lambda_f, s), &mut eval);
                 }
             }
             if let (Phi::Unknown(p), Some(phi)) = (cond.phi[i], phi) {
@@ -840,6 +860,35 @@ impl<'a> Local<'a> {
             }
         }
         eval
+    }
+
+    /// The tangential rows E_t of node i with friction, from λ_f and the bound s: where the
+    /// Coulomb law ([`coulomb`]) says the node sticks, −c (u_τ − u_τ⁰), which fixes u_τ; where
+    /// it slips, λ_f − s ẑ with ẑ = z/‖z‖ (the projection of z = λ_f + c (u_τ − u_τ⁰) on the
+    /// ball, written as the Jacobian differentiates it).
+    fn coulomb_rows(
+        &self,
+        y: &[f64],
+        i: usize,
+        (lambda_f, s): (&[f64], f64),
+        eval: &mut Evaluation,
+    ) {
+        let (u, c) = (self.semismooth.condensed.u[i], self.c[i]);
+        let slip = |a: usize| y[u[a]] - self.origin[u[a]];
+        let mut z = [0.0; 2];
+        (0..lambda_f.len()).for_each(|a| z[a] = lambda_f[a] + c * slip(a + 1));
+        let status = coulomb(z, s).1;
+        eval.sets.status[i] = status;
+        let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
+        for a in 1..=lambda_f.len() {
+            if status == NodeStatus::Stick {
+                eval.residual[u[a]] = -c * slip(a);
+                eval.fixed[u[a]] = true;
+            } else {
+                let direction = if norm > 0.0 { z[a - 1] / norm } else { 0.0 };
+                eval.residual[u[a]] = lambda_f[a - 1] - s * direction;
+            }
+        }
     }
 
     /// The Newton step δ at y: the fixed unknowns from their own rows, the others from the
@@ -912,7 +961,7 @@ impl<'a> Local<'a> {
         };
         if let (true, Some(phi)) = (Some(k) == phi_position, phi) {
             add(out, k, 1.0);
-            if step.model.pv2.is_some() {
+            if step.model.conduction.is_some() {
                 let (d_u, d_phi) = step.model.flux_derivative(u_nu, phi, surface.gap[i]);
                 out[u[0]] -= w * self.conduction * d_u;
                 out[k] -= w * self.conduction * d_phi;
@@ -932,7 +981,7 @@ impl<'a> Local<'a> {
         }
         // A tangential equation, component a = k's place among the tangents.
         let a = (1..dim).find(|&a| u[a] == k).unwrap_or(1);
-        let Some((mu, mollifier)) = step.friction() else {
+        let Some(friction) = step.friction else {
             add(out, k, -1.0 / w); // E_t = λ_f = −r_τ / w.
             return;
         };
@@ -941,7 +990,7 @@ impl<'a> Local<'a> {
         let z: Vec<f64> =
             (1..dim).map(|b| lambda_f[b - 1] + c * (y[u[b]] - self.origin[u[b]])).collect();
         let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let s = node_bound(mu[i], eval.r_sigma[i]);
+        let s = friction.node_bound(i, eval.r_sigma[i]);
         let z_hat: Vec<f64> = z.iter().map(|v| if norm > 0.0 { v / norm } else { 0.0 }).collect();
         let lambda_norm = lambda_f.iter().map(|v| v * v).sum::<f64>().sqrt();
         let bound = s.max(lambda_norm).max(f64::MIN_POSITIVE);
@@ -955,8 +1004,9 @@ impl<'a> Local<'a> {
             out[u[b]] -= coefficient * c;
         }
         if s > 0.0 {
-            let sign = mu[i] * eval.r_sigma[i].signum() * z_hat[a - 1];
-            for (j, weight) in mollifier.row(i).into_iter().filter(|(j, _)| cond.kept[*j]) {
+            let sign = friction.mu[i] * eval.r_sigma[i].signum() * z_hat[a - 1];
+            for (j, weight) in friction.mollifier.row(i).into_iter().filter(|(j, _)| cond.kept[*j])
+            {
                 // ∂σ_ν,j = S_{ν_j,·} / w_j.
                 add(out, cond.u[j][0], -sign * weight / surface.weight[j]);
             }
@@ -1031,7 +1081,7 @@ mod tests {
             if let Phi::Unknown(p) = cond.phi[i] {
                 node_of[p] = i;
             }
-            let slipping = eval.sets[i] < 2 && local.semismooth.step.model.pv2.is_some();
+            let slipping = eval.sets.status[i] == NodeStatus::Slip;
             idx[1..].iter().for_each(|&k| slip_row[k] = slipping);
         }
         // Steps relative to the size of each kind of unknown (u and ϕ differ by far).
@@ -1098,7 +1148,7 @@ mod tests {
         solved_step(fixture, |local, result| {
             let start = local.gather(&local.x_hat);
             let solution = local.gather(&result.x);
-            let contact = local.evaluate(&solution).sets.iter().filter(|s| **s > 0).count();
+            let contact = local.evaluate(&solution).sets.holding();
             assert!(contact > 3, "the bar touches the foundation at {contact} nodes");
             check_gradient(local, &start, true) + check_gradient(local, &solution, false)
         })

@@ -15,11 +15,10 @@
 //! method's constant c ([`super::InnerMethod::complementarity_constant`], the case's r); their
 //! defects divided by c are lengths, reported relative to max ‖u‖.
 
-use super::ContactSolution;
 use crate::assembly::{internal_force, load_vector, secant_moduli};
-use crate::contact::ContactModel;
-use crate::contact::law::project_ball;
-use crate::dofs::CONSTRAINED;
+use crate::contact::law::{coulomb, stop_complementarity};
+use crate::contact::{ContactModel, ContactState, ContactSurface};
+use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::Result;
 use crate::problem::Problem;
 
@@ -57,20 +56,39 @@ pub struct Balance {
     pub charges: Vec<f64>,
 }
 
+/// What the assessment reads of a contact solution.
+pub struct SolutionView<'a> {
+    /// x = (u, ϕ), global.
+    pub x: &'a [f64],
+    /// The DOF numbering of x.
+    pub dofs: &'a DofMap,
+    /// Γ3 with its gaps.
+    pub surface: &'a ContactSurface,
+    /// The factor on the applied loads [-].
+    pub load_factor: f64,
+    /// λ_c, λ_f.
+    pub state: &'a ContactState,
+    /// σ_ν on the Γ3 nodes \[stress\].
+    pub sigma_nu: &'a [f64],
+    /// s = µ|Rσ_ν(x)| on the Γ3 nodes \[stress\].
+    pub s: &'a [f64],
+    /// The state the slip is measured from (global), empty for the static law.
+    pub slip_origin: &'a [f64],
+}
+
 /// Residuals and balance of a contact solution, with the complementarity constant c =
 /// `constant` [stress/length].
 pub fn assess(
     problem: &Problem,
     model: &ContactModel,
     constant: f64,
-    solution: &ContactSolution,
+    solution: &SolutionView,
 ) -> Result<(KktResidual, Balance)> {
-    let dofs = &solution.dofs;
-    let x = &solution.x;
+    let (dofs, x) = (solution.dofs, solution.x);
     let dim = problem.mesh.dim();
     let g = secant_moduli(problem, dofs, x)?;
     let (f_int, scale) = internal_force(problem, dofs, x, &g)?;
-    let f_ext = load_vector(problem, dofs);
+    let f_ext = load_vector(problem, dofs, solution.load_factor);
     let (contact_force, mut kkt) = contact_conditions(problem, model, constant, solution);
     let (mut r_u, mut s_u, mut r_phi, mut s_phi) = (0.0, 0.0, 0.0, 0.0);
     let mut balance = Balance {
@@ -122,10 +140,10 @@ fn contact_conditions(
     problem: &Problem,
     model: &ContactModel,
     constant: f64,
-    solution: &ContactSolution,
+    solution: &SolutionView,
 ) -> (Vec<f64>, KktResidual) {
-    let dofs = &solution.dofs;
-    let (surface, state, x) = (&solution.surface, &solution.state, &solution.x);
+    let dofs = solution.dofs;
+    let (surface, state, x) = (solution.surface, solution.state, solution.x);
     let dim = problem.mesh.dim();
     let mut contact_force = vec![0.0; dofs.n_total()];
     let mut kkt = KktResidual::default();
@@ -136,7 +154,7 @@ fn contact_conditions(
     for i in 0..surface.len() {
         let (u_nu, mut u_tau) = surface.split(dofs, x, i);
         if !solution.slip_origin.is_empty() {
-            let (_, origin) = surface.split(dofs, &solution.slip_origin, i);
+            let (_, origin) = surface.split(dofs, solution.slip_origin, i);
             (0..3).for_each(|k| u_tau[k] -= origin[k]);
         }
         let phi = surface.phi(dofs, x, i);
@@ -146,14 +164,15 @@ fn contact_conditions(
                 w * (solution.sigma_nu[i] * surface.normal[i][c] - state.lambda_f[i][c]);
         }
         let (lambda_c, rho) = (state.lambda_c[i], model.compliance.stop(surface.gap[i]));
-        kkt.contact = kkt.contact.max(
-            (lambda_c - (lambda_c + constant * (u_nu - rho)).max(0.0)).abs() / constant / max_u,
-        );
+        let projected = stop_complementarity(lambda_c, constant, u_nu, rho).projected;
+        kkt.contact = kkt.contact.max((lambda_c - projected).abs() / constant / max_u);
         kkt.penetration = kkt.penetration.max(u_nu - rho);
-        if model.pv2.is_some() {
+        if model.conduction.is_some() {
             contact_force[dofs.phi(node)] += w * model.flux(u_nu, phi, surface.gap[i]);
+        }
+        if model.friction.is_some() {
             let z = [0, 1, 2].map(|k| state.lambda_f[i][k] + constant * u_tau[k]);
-            let p = project_ball(z, solution.s[i]);
+            let (p, _) = coulomb(z, solution.s[i]);
             let defect = (0..3).map(|k| (state.lambda_f[i][k] - p[k]).powi(2)).sum::<f64>().sqrt();
             kkt.friction = kkt.friction.max(defect / constant / max_u);
         }
@@ -194,8 +213,8 @@ mod tests {
         let (problem, model) = (&built.problem, built.model.as_ref().unwrap());
         let solution = solve_contact(problem, model, &built.settings).unwrap();
         let c = built.settings.method.complementarity_constant();
-        let (kkt, balance) = assess(problem, model, c, &solution).unwrap();
-        assert!(solution.converged && kkt.max < 1e-10, "{kkt:?}");
+        let (kkt, balance) = assess(problem, model, c, &solution.view()).unwrap();
+        assert!(solution.converged() && kkt.max < 1e-10, "{kkt:?}");
         assert!(balance.imbalance < 1e-10, "{balance:?}");
         let applied = balance.applied[1];
         assert!(applied < 0.0 && balance.contact[1] > 0.0 && balance.reaction[1] > 0.0);
@@ -214,7 +233,7 @@ mod tests {
         let mut broken = solution.clone();
         broken.state.lambda_c[i] = delta;
         broken.sigma_nu[i] -= delta;
-        let (kkt_broken, balance_broken) = assess(problem, model, c, &broken).unwrap();
+        let (kkt_broken, balance_broken) = assess(problem, model, c, &broken.view()).unwrap();
         let max_u = (0..problem.mesh.n_nodes())
             .map(|a| (0..2).map(|k| solution.x[dofs.u(a, k)].powi(2)).sum::<f64>().sqrt())
             .fold(0.0, f64::max);

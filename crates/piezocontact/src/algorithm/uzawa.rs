@@ -11,14 +11,16 @@
 //! The matrix of Step 1 was factorised by the caller; every iteration is one solve plus
 //! O(|Γ3|) work. Every call starts cold (p = λ = 0, x⁰ = 0), as model §7 requires.
 
-use super::{DIVERGENCE, InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
+use super::inner::{
+    DIVERGENCE, InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext,
+};
 use crate::assembly::NodalBlock;
-use crate::contact::law::project_ball;
-use crate::contact::{ContactModel, ContactState, ContactSurface};
+use crate::contact::law::{coulomb, stop_complementarity};
+use crate::contact::{ContactModel, ContactState, ContactSurface, NodeStatus};
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::Result;
 use crate::linalg::LinearSolver;
-use crate::solver::CoupledSystem;
+use crate::system::CoupledSystem;
 
 /// What the Uzawa method reads from `solver.*`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -71,7 +73,7 @@ impl InnerMethod for Uzawa {
     }
 
     fn prepare(&mut self, setup: Setup, solver: Box<dyn LinearSolver>) -> Result<CoupledSystem> {
-        let friction = setup.model.pv2.is_some();
+        let friction = setup.model.friction.is_some();
         self.blocks = step1_blocks(setup.surface, self.parameters.r, friction);
         CoupledSystem::new(setup.problem, setup.dofs, &setup.surface.nodes, solver)
     }
@@ -86,9 +88,9 @@ impl InnerMethod for Uzawa {
         Loop { step, base: &base, r, eps, max_inner }.run(system)
     }
 
-    fn stop_context(&self, outer_step: usize, pv2: bool) -> StopContext {
+    fn stop_context(&self, outer_step: usize, friction: bool) -> StopContext {
         let Parameters { r, eps, max_inner, .. } = self.parameters;
-        let algorithm = if pv2 { 2 } else { 4 };
+        let algorithm = if friction { 2 } else { 4 };
         let hint = format!(
             "r too small or too large for this problem: try solver.r = {:.4e} or {:.4e} (now {r:.4e}; the paper uses 0.25 E)",
             2.0 * r,
@@ -112,6 +114,9 @@ struct Iterate {
     p_c: Vec<f64>,
     /// p_f: auxiliary tangential displacement [length].
     p_f: Vec<[f64; 3]>,
+    /// What the friction law said of each node in the last Step 3 (at λ = 0 before one;
+    /// [`NodeStatus::Contact`] without friction).
+    status: Vec<NodeStatus>,
 }
 
 /// One Uzawa loop: the outer step's data and the method's parameters.
@@ -131,13 +136,17 @@ struct Loop<'a> {
 impl Loop<'_> {
     /// Runs the loop with the factorised `system`, starting cold.
     pub fn run(&self, system: &mut CoupledSystem) -> Result<InnerResult> {
-        let (step, r) = (self.step, self.r);
-        let surface = step.surface;
-        let n3 = surface.len();
+        let step = self.step;
+        let n3 = step.surface.len();
+        let friction = step.model.friction.is_some();
+        let at_rest = |i: usize| coulomb([0.0; 3], step.friction_bound[i]).1;
         let mut state = Iterate {
             multipliers: ContactState::cold(n3),
             p_c: vec![0.0; n3],
             p_f: vec![[0.0; 3]; n3],
+            status: (0..n3)
+                .map(|i| if friction { at_rest(i) } else { NodeStatus::Contact })
+                .collect(),
         };
         let mut x = vec![0.0; system.dofs().n_total()];
         let mut history: Vec<f64> = Vec::new();
@@ -147,6 +156,7 @@ impl Loop<'_> {
             state: state.multipliers,
             iterations,
             history,
+            status: state.status,
             stop,
         };
         for k in 0..self.max_inner {
@@ -161,26 +171,7 @@ impl Loop<'_> {
                 }
             };
             let dofs = system.dofs();
-            let mut next = state.clone();
-            let (mut num, mut den) = (0.0, 0.0);
-            for i in 0..surface.len() {
-                let (u_nu, u_tau) = surface.split(dofs, &x_new, i);
-                let w = surface.weight[i];
-                let (lambda, next_lambda) = (&state.multipliers, &mut next.multipliers);
-                let rho = step.model.compliance.stop(surface.gap[i]);
-                next.p_c[i] = (u_nu + lambda.lambda_c[i] / r).min(rho);
-                next_lambda.lambda_c[i] = (lambda.lambda_c[i] + r * (u_nu - rho)).max(0.0);
-                if step.model.pv2.is_some() {
-                    let s = step.friction_bound;
-                    let z = [0, 1, 2].map(|c| lambda.lambda_f[i][c] + r * u_tau[c]);
-                    next_lambda.lambda_f[i] = project_ball(z, s[i]);
-                    next.p_f[i] = [0, 1, 2].map(|c| (z[c] - next_lambda.lambda_f[i][c]) / r);
-                }
-                num += w
-                    * ((next.p_c[i] - state.p_c[i]).powi(2)
-                        + squared_distance(&next.p_f[i], &state.p_f[i]));
-                den += w * (next.p_c[i].powi(2) + squared_distance(&next.p_f[i], &[0.0; 3]));
-            }
+            let (next, mut num, mut den) = self.update(dofs, &x_new, &state);
             let difference: Vec<f64> = x_new.iter().zip(&x).map(|(a, b)| a - b).collect();
             num += step.mass.squared(step.problem, dofs, &difference);
             den += step.mass.squared(step.problem, dofs, &x_new);
@@ -206,6 +197,35 @@ impl Loop<'_> {
             }
         }
         Ok(done(x, state, self.max_inner, history, Stop::Cap))
+    }
+
+    /// Steps 2 and 3 at every Γ3 node from x_{k+1} = `x_new`: p_c, λ_c, and with friction
+    /// p_f, λ_f and the node's status; with the Γ3 part of the criterion (6.12), its numerator
+    /// and denominator.
+    fn update(&self, dofs: &DofMap, x_new: &[f64], state: &Iterate) -> (Iterate, f64, f64) {
+        let (step, r, surface) = (self.step, self.r, self.step.surface);
+        let friction = step.model.friction.is_some();
+        let mut next = state.clone();
+        let (mut num, mut den) = (0.0, 0.0);
+        for i in 0..surface.len() {
+            let (u_nu, u_tau) = surface.split(dofs, x_new, i);
+            let w = surface.weight[i];
+            let (lambda, next_lambda) = (&state.multipliers, &mut next.multipliers);
+            let rho = step.model.compliance.stop(surface.gap[i]);
+            next.p_c[i] = (u_nu + lambda.lambda_c[i] / r).min(rho);
+            next_lambda.lambda_c[i] =
+                stop_complementarity(lambda.lambda_c[i], r, u_nu, rho).projected;
+            if friction {
+                let z = [0, 1, 2].map(|c| lambda.lambda_f[i][c] + r * u_tau[c]);
+                (next_lambda.lambda_f[i], next.status[i]) = coulomb(z, step.friction_bound[i]);
+                next.p_f[i] = [0, 1, 2].map(|c| (z[c] - next_lambda.lambda_f[i][c]) / r);
+            }
+            num += w
+                * ((next.p_c[i] - state.p_c[i]).powi(2)
+                    + squared_distance(&next.p_f[i], &state.p_f[i]));
+            den += w * (next.p_c[i].powi(2) + squared_distance(&next.p_f[i], &[0.0; 3]));
+        }
+        (next, num, den)
     }
 
     /// The Step 1 right-hand side beyond f̌: base + Σ_i w_i [(r p_c − λ_c) ν_i + (r p_f − λ_f)].
@@ -269,7 +289,7 @@ fn lagged_loads(
                 base[k] -= w * pressure * surface.normal[i][c];
             }
         }
-        if model.pv2.is_some() {
+        if model.conduction.is_some() {
             let k = dofs.free_index(dofs.phi(node));
             if k != CONSTRAINED {
                 base[k] += w * model.flux(u_nu, phi, surface.gap[i]);
@@ -283,7 +303,6 @@ fn lagged_loads(
 mod tests {
     use super::*;
     use crate::assembly::{Linearisation, secant_moduli};
-    use crate::contact::model::normal_stress;
     use crate::linalg::default_solver;
     use crate::testing::{Fixture, PAPER_71, PAPER_72};
 
@@ -344,7 +363,7 @@ mod tests {
             slipping += usize::from(traction > 0.05 * (1.0 - 1e-9));
         }
         assert!(touching > 3 && slipping > 0, "{touching} touching, {slipping} slipping");
-        let sigma_nu = normal_stress(dofs, &fixture.surface, model, &first.x, &first.state);
+        let sigma_nu = first.state.normal_stress(dofs, &fixture.surface, model, &first.x);
         assert!(sigma_nu.iter().all(|s| *s <= 0.0), "the foundation only pushes");
         let again = uzawa.solve(&step, &mut system).unwrap();
         assert_eq!((again.x, again.history), (first.x, first.history));
@@ -373,7 +392,7 @@ mod tests {
             let (w, node) = (surface.weight[i], surface.nodes[i]);
             // h_ν(8) p_ν(0.05) and ψ(0.05) φ_L(8) of the case's laws.
             let pressure = 1.0 * (1.0 + 8.0 / 128.0) * 0.05;
-            let flux = model.pv2.as_ref().unwrap().1.ke * 0.05 * 8.0;
+            let flux = model.conduction.as_ref().unwrap().ke * 0.05 * 8.0;
             for c in 0..2 {
                 let k = dofs.free_index(dofs.u(node, c));
                 if k != CONSTRAINED {

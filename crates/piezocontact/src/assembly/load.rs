@@ -10,12 +10,17 @@ use crate::dofs::DofMap;
 use crate::element::{Simplex, point_at, quadrature};
 use crate::problem::Problem;
 
-/// f̌ on the global DOFs of `dofs`.
-pub fn load_vector(problem: &Problem, dofs: &DofMap) -> Vec<f64> {
-    with_simplex!(problem.mesh.dim(), load_vector_on(problem, dofs))
+/// f̌ on the global DOFs of `dofs`, every load scaled by `load_factor` [-] (a step of a
+/// loading path; 1 for the case's loads).
+pub fn load_vector(problem: &Problem, dofs: &DofMap, load_factor: f64) -> Vec<f64> {
+    with_simplex!(problem.mesh.dim(), load_vector_on(problem, dofs, load_factor))
 }
 
-fn load_vector_on<const D: usize, const N: usize>(problem: &Problem, dofs: &DofMap) -> Vec<f64> {
+fn load_vector_on<const D: usize, const N: usize>(
+    problem: &Problem,
+    dofs: &DofMap,
+    load_factor: f64,
+) -> Vec<f64> {
     let mesh = &problem.mesh;
     let mut f = vec![0.0; dofs.n_total()];
     let (f0, q0) = (&problem.loads.f0, &problem.loads.q0);
@@ -48,7 +53,7 @@ fn load_vector_on<const D: usize, const N: usize>(problem: &Problem, dofs: &DofM
             f[dofs.phi(node)] += weight * charge(p)
         });
     }
-    f.iter_mut().for_each(|v| *v *= problem.load_factor);
+    f.iter_mut().for_each(|v| *v *= load_factor);
     f
 }
 

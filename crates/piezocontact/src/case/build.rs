@@ -1,17 +1,19 @@
-//! From a validated case file to the objects the solver takes: the mesh, the material, the
-//! problem, the contact model and the settings of the algorithms.
+//! From a validated case file to what a run takes ([`Built`]): the mesh, the material, the
+//! problem, the contact model, the loading path and the settings of the algorithms, with the
+//! case's title, units, backend and origin.
 
+use super::file::{Case, Linear, Origin};
 use super::schema::{
-    DiagonalKey, FrictionPathKey, LawKey, MethodKey, ProblemKey, RegularizationKey,
+    DEFAULTS, DiagonalKey, FrictionPathKey, LawKey, MethodKey, ProblemKey, RegularizationKey, Units,
 };
-use super::{Case, DEFAULTS};
 use crate::algorithm::Settings;
 use crate::algorithm::condensed::Guess;
 use crate::algorithm::newton::{self, Newton};
 use crate::algorithm::uzawa::{self, Uzawa};
-use crate::contact::ContactModel;
 use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
+use crate::contact::{ContactModel, Loading};
 use crate::error::{Error, Result};
+use crate::linalg::LinearSolver;
 use crate::material::{ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants};
 use crate::mesh::rectangle::{Diagonal, Rectangle, Segment, SegmentParts};
 use crate::mesh::{Mesh, gmsh};
@@ -27,7 +29,82 @@ pub(super) enum MethodParameters {
     Newton(newton::Parameters),
 }
 
+/// A validated case: everything a run takes.
+pub struct Built {
+    /// The checked problem.
+    pub problem: Problem,
+    /// Its contact model: `None` without a `[contact]` table; with one, Γ3 names a part.
+    pub model: Option<ContactModel>,
+    /// The loading path of `[loading]`, `None` for a single solve (with a contact model).
+    pub loading: Option<Loading>,
+    /// The algorithms' settings.
+    pub settings: Settings,
+    /// The linear solver the case asks for.
+    pub linear: Linear,
+    /// The paper's hypotheses that fail and the keys the method does not read.
+    pub warnings: Vec<String>,
+    /// The case's title (may be empty).
+    pub title: String,
+    /// The case's units, which every number it reads and writes is in.
+    pub units: Units,
+    /// The case's file and text, for the locations in messages.
+    pub origin: Origin,
+}
+
+impl Built {
+    /// A new linear solver of the case's choice.
+    pub fn linear_solver(&self) -> Result<Box<dyn LinearSolver>> {
+        self.linear.solver()
+    }
+
+    /// The inner method's name (`solver.method`).
+    pub fn method_name(&self) -> &'static str {
+        self.settings.method.name()
+    }
+
+    /// Places an error in the case: at the line of the key it names, else in the file.
+    pub fn context(&self, e: Error) -> Error {
+        self.origin.context(e)
+    }
+}
+
 impl Case {
+    /// Validates the case once and builds everything a run takes.
+    pub fn build(&self) -> Result<Built> {
+        self.check_backend()?;
+        self.contact_settings()?;
+        let problem = self.problem_checked()?;
+        let model = self.contact_model(&problem)?;
+        let loading = self.loading(problem.mesh.dim())?;
+        match (&model, &loading) {
+            (Some(model), loading) => self.check_reach(&problem, model, loading.as_ref())?,
+            (None, Some(_)) => {
+                return Err(input!("{}: the case has no [contact] table", self.path().display()));
+            }
+            (None, None) => {}
+        }
+        let mut warnings = self.hypothesis_warnings(&problem.material);
+        warnings.extend(self.setting_warnings());
+        Ok(Built {
+            problem,
+            model,
+            loading,
+            settings: self.settings_checked(),
+            linear: self.linear(),
+            warnings,
+            title: self.file.title.clone(),
+            units: self.file.units.clone(),
+            origin: self.origin.clone(),
+        })
+    }
+
+    /// The checked problem alone (for a case without contact).
+    pub fn problem(&self) -> Result<Problem> {
+        self.check_backend()?;
+        self.contact_settings()?;
+        self.problem_checked()
+    }
+
     /// Builds the mesh: the rectangle or the Gmsh file.
     pub fn mesh(&self) -> Result<Mesh> {
         let m = &self.file.mesh;
@@ -46,7 +123,7 @@ impl Case {
                     ));
                 }
             }
-            let full = self.path.parent().unwrap_or(Path::new(".")).join(file);
+            let full = self.path().parent().unwrap_or(Path::new(".")).join(file);
             let bytes = std::fs::read(&full).map_err(|e| Error::Io {
                 what: format!(
                     "{}: cannot read mesh.file {}",
@@ -68,7 +145,7 @@ impl Case {
         let need = |key: &str| {
             input!(
                 "{}: {key} is missing: give the rectangle (mesh.x, mesh.y, mesh.nx, mesh.ny) or mesh.file",
-                self.path.display()
+                self.path().display()
             )
         };
         let rectangle = Rectangle {
@@ -161,10 +238,17 @@ impl Case {
         f.contact.as_ref().and_then(|c| c.problem).unwrap_or(implied)
     }
 
-    /// The contact model of [P] on `problem`'s Γ3, or `None` without a `[contact]` table.
+    /// The contact model of [P] on `problem`'s Γ3, or `None` without a `[contact]` table;
+    /// refused when the table is given and no boundary part is Γ3.
     pub(super) fn contact_model(&self, problem: &Problem) -> Result<Option<ContactModel>> {
         let f = &self.file;
         let Some(c) = &f.contact else { return Ok(None) };
+        if problem.boundary.contact.is_empty() {
+            return Err(input!(
+                "{}: [contact] is given but boundary.contact names no boundary part",
+                self.locate("boundary")
+            ));
+        }
         let conduction = f.conductivity.as_ref();
         let phi0 = conduction.map_or(0.0, |k| k.phi0);
         let compliance = NormalCompliance {
@@ -175,8 +259,8 @@ impl Case {
             n_nu: c.n_nu,
             h_nu_range: c.h_nu_range,
         };
-        let pv2 = match self.problem_kind() {
-            ProblemKey::PV1 => None,
+        let (friction, conduction) = match self.problem_kind() {
+            ProblemKey::PV1 => (None, None),
             ProblemKey::PV2 => {
                 let fr = f.friction.clone().unwrap_or_default();
                 let mut mu_parts = Vec::new();
@@ -206,14 +290,14 @@ impl Case {
                     ));
                 }
                 let k = conduction.cloned().unwrap_or_default();
-                Some((
-                    Friction { mu: fr.mu, mu_parts, regularization, path: fr.path.into() },
-                    Conduction { ke: k.ke, delta: k.delta, truncation: k.truncation },
-                ))
+                (
+                    Some(Friction { mu: fr.mu, mu_parts, regularization, path: fr.path.into() }),
+                    Some(Conduction { ke: k.ke, delta: k.delta, truncation: k.truncation }),
+                )
             }
         };
         let foundation = self.foundation(problem.mesh.dim())?;
-        Ok(Some(ContactModel { compliance, pv2, foundation, phi0 }))
+        Ok(Some(ContactModel { compliance, friction, conduction, foundation, phi0 }))
     }
 
     /// The algorithms' parameters with their [`DEFAULTS`], after [`Case::contact_settings`]

@@ -1,14 +1,14 @@
 //! Where the foundation is and where a loading path moves it: `[foundation]` and `[loading]`
 //! checked for a d-dimensional body (model §12, §14).
 
-use super::Case;
+use super::file::Case;
 use super::schema::{Depths, FoundationKind, FoundationSection, LoadingSection};
 use super::validate::positive;
 use crate::contact::rigid::RigidSurface;
 use crate::contact::{ContactModel, ContactSurface, Foundation};
+use crate::contact::{LoadStep, Loading};
 use crate::dofs::DofMap;
-use crate::error::{Error, Result};
-use crate::path::{LoadStep, Loading};
+use crate::error::Result;
 use crate::problem::Problem;
 use std::path::Path;
 use std::sync::Arc;
@@ -194,7 +194,7 @@ impl Case {
                         self.locate("foundation.kind")
                     ));
                 }
-                let full = self.path.parent().unwrap_or(Path::new(".")).join(file);
+                let full = self.path().parent().unwrap_or(Path::new(".")).join(file);
                 let surface = RigidSurface::read(&full).map_err(|e| {
                     input!("{}: foundation.file: {e}", self.locate("foundation.file"))
                 })?;

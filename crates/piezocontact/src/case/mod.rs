@@ -4,211 +4,40 @@
 //!   ([`DEFAULTS`]);
 //! - [`overrides`]: `--set dotted.key=value` edits the document before it is read, so an
 //!   override is checked exactly like the file;
+//! - [`mod@file`]: the case read ([`Case`]) and where its keys are ([`Origin`]);
 //! - [`validate`]: magnitudes and ranges, each error naming the file, the line of the key and
-//!   the fix ([`Error::Input`]); the paper's hypotheses as warnings;
-//! - `build`: [`Case::build`] validates once and returns the problem, the contact model, the
-//!   settings and the warnings ([`Built`]).
+//!   the fix ([`Error::Input`](crate::Error::Input)); the paper's hypotheses as warnings;
+//! - [`build`]: [`Case::build`] validates once and returns everything a run takes
+//!   ([`Built`]): the problem, the contact model, the loading path, the settings, the
+//!   warnings, and the case's title, units, method and backend.
+//!
+//! Each file imports its siblings' files, never this one.
 
 /// An [`Error::Input`] with a formatted message.
 macro_rules! input {
-    ($($arg:tt)*) => { Error::Input(format!($($arg)*)) };
+    ($($arg:tt)*) => { crate::error::Error::Input(format!($($arg)*)) };
 }
 
-mod build;
+pub mod build;
+pub mod file;
 mod geometry;
 pub mod overrides;
 pub mod schema;
 pub mod validate;
 
-use crate::algorithm::Settings;
-use crate::contact::ContactModel;
-use crate::error::{Error, Result};
-use crate::linalg::{LdltSolver, LinearSolver, Ordering};
-use crate::path::Loading;
-use crate::problem::Problem;
-use overrides::apply_override;
+pub use build::Built;
+pub use file::{Case, Origin};
 pub use overrides::key_line;
 pub use schema::*;
-use std::path::{Path, PathBuf};
 pub use validate::{MAGNITUDE, MIN_MAGNITUDE};
-
-/// A case read from a file, with the source text kept for error locations.
-#[derive(Clone, Debug)]
-pub struct Case {
-    /// The file it came from.
-    pub path: PathBuf,
-    /// The document after overrides.
-    pub source: String,
-    /// The parsed case.
-    pub file: CaseFile,
-}
-
-impl Case {
-    /// Reads `path`, applies the overrides "dotted.key=value" (`--set` of the command line),
-    /// and parses.
-    pub fn load(path: &Path, overrides: &[String]) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
-            what: format!("cannot read the case file {}", path.display()),
-            cause: e.to_string(),
-        })?;
-        Self::from_text(path, &text, overrides)
-    }
-
-    /// Parses a case from text (`path` names it in messages and anchors relative mesh files).
-    pub fn from_text(path: &Path, text: &str, overrides: &[String]) -> Result<Self> {
-        let mut doc: toml_edit::DocumentMut =
-            text.parse().map_err(|e| input!("{}: {e}", path.display()))?;
-        for o in overrides {
-            apply_override(&mut doc, o)?;
-        }
-        let source = doc.to_string();
-        let file: CaseFile = toml::from_str(&source).map_err(|e| {
-            let note = if overrides.is_empty() {
-                String::new()
-            } else {
-                format!(" (with the overrides {})", overrides.join(", "))
-            };
-            input!("{}{note}: {e}", path.display())
-        })?;
-        let case = Self { path: path.to_path_buf(), source, file };
-        case.check_magnitudes("", doc.as_item())?;
-        Ok(case)
-    }
-
-    /// "file:line" of a dotted key, for messages.
-    pub fn locate(&self, dotted: &str) -> String {
-        match key_line(&self.source, dotted) {
-            Some(line) => format!("{}:{line}", self.path.display()),
-            None => self.path.display().to_string(),
-        }
-    }
-
-    /// The error of a case with a `[loading]` path given to one run, which would solve the
-    /// foundation where `[foundation]` puts it, under the loads unscaled, and ignore the path
-    /// ([`crate::path::PathRun`] follows it).
-    pub fn path_in_one_run(&self) -> Error {
-        input!(
-            "{}: the case has a [loading] path, which one run does not follow (it would solve \
-             the foundation where [foundation] puts it, under the loads unscaled): solve the \
-             path with `piezocontact run` (one row per step in curve.csv), or remove [loading] \
-             for that one position",
-            self.locate("loading")
-        )
-    }
-
-    /// [`Case::path_in_one_run`] when the case has a `[loading]` path, for a command that
-    /// solves one position per run.
-    pub fn one_position(&self) -> Result<()> {
-        match self.file.loading {
-            Some(_) => Err(self.path_in_one_run()),
-            None => Ok(()),
-        }
-    }
-
-    /// Places an error in this case: at the line of the key it names, else in the file.
-    pub fn context(&self, e: Error) -> Error {
-        let location = match &e {
-            Error::InvalidParameter { name, .. } => self.locate(name),
-            _ => self.path.display().to_string(),
-        };
-        Error::Located { location, error: Box::new(e) }
-    }
-
-    /// Validates the case once and builds everything a run needs.
-    pub fn build(&self) -> Result<Built> {
-        self.check_backend()?;
-        self.contact_settings()?;
-        let problem = self.problem_checked()?;
-        let model = self.contact_model(&problem)?;
-        let loading = self.loading(problem.mesh.dim())?;
-        if let Some(model) = &model {
-            self.check_reach(&problem, model, loading.as_ref())?;
-        }
-        let mut warnings = self.hypothesis_warnings(&problem.material);
-        warnings.extend(self.setting_warnings());
-        Ok(Built { problem, model, settings: self.settings_checked(), warnings, loading })
-    }
-
-    /// The checked problem alone (for a case without contact).
-    pub fn problem(&self) -> Result<Problem> {
-        self.check_backend()?;
-        self.contact_settings()?;
-        self.problem_checked()
-    }
-
-    /// The linear solver the case asks for (`solver.backend`): faer's sparse LDLᵀ with
-    /// `solver.ordering` on the run's threads, or PETSc + MUMPS on the run's processes.
-    pub fn linear_solver(&self) -> Result<Box<dyn LinearSolver>> {
-        let ordering = match self.file.solver.ordering.unwrap_or(DEFAULTS.ordering) {
-            OrderingKey::Auto => Ordering::Auto,
-            OrderingKey::Nd => Ordering::NestedDissection,
-            OrderingKey::Amd => Ordering::Amd,
-        };
-        match self.file.solver.backend.unwrap_or(DEFAULTS.backend) {
-            BackendKey::Faer => Ok(Box::new(LdltSolver::with_ordering(ordering))),
-            BackendKey::Petsc => self.petsc_solver(),
-        }
-    }
-
-    #[cfg(feature = "petsc")]
-    fn petsc_solver(&self) -> Result<Box<dyn LinearSolver>> {
-        Ok(Box::new(crate::linalg::PetscSolver::new()?))
-    }
-
-    #[cfg(not(feature = "petsc"))]
-    fn petsc_solver(&self) -> Result<Box<dyn LinearSolver>> {
-        self.check_backend()?;
-        Err(Error::Input("the PETSc backend is not built in".into()))
-    }
-
-    /// Refuses `solver.backend = "petsc"` in a build without the PETSc backend, with the
-    /// command that builds it.
-    fn check_backend(&self) -> Result<()> {
-        if cfg!(feature = "petsc") || self.file.solver.backend != Some(BackendKey::Petsc) {
-            return Ok(());
-        }
-        Err(Error::Input(format!(
-            "{}: solver.backend = \"petsc\" needs piezocontact built with the PETSc backend: install petsc-dev and openmpi-bin (Debian), then cargo build --release --features petsc; or use solver.backend = \"faer\"",
-            self.locate("solver.backend")
-        )))
-    }
-
-    /// The name of the linear-solver backend the case chooses (`solver.backend`).
-    pub fn backend_name(&self) -> &'static str {
-        match self.file.solver.backend.unwrap_or(DEFAULTS.backend) {
-            BackendKey::Faer => "faer",
-            BackendKey::Petsc => "petsc",
-        }
-    }
-
-    /// The name of the inner method the case chooses (`solver.method`).
-    pub fn method_name(&self) -> &'static str {
-        match self.file.solver.method.unwrap_or(DEFAULTS.method) {
-            MethodKey::Newton => "newton",
-            MethodKey::Uzawa => "uzawa",
-        }
-    }
-}
-
-/// A validated case: what a run takes.
-pub struct Built {
-    /// The checked problem.
-    pub problem: Problem,
-    /// Its contact model, `None` without a `[contact]` table.
-    pub model: Option<ContactModel>,
-    /// The algorithms' settings.
-    pub settings: Settings,
-    /// The paper's hypotheses that fail and the keys the method does not read.
-    pub warnings: Vec<String>,
-    /// The loading path of `[loading]`, `None` for a single solve.
-    pub loading: Option<Loading>,
-}
 
 #[cfg(test)]
 mod tests {
     use super::build::MethodParameters;
     use super::*;
     use crate::algorithm::{newton, uzawa};
+    use crate::error::Result;
+    use std::path::Path;
 
     const PAPER_71: &str = include_str!("../../../../cases/paper-7.1.toml");
     const PAPER_72: &str = include_str!("../../../../cases/paper-7.2.toml");
@@ -347,7 +176,7 @@ gap = 0.1
         let problem = c.problem().unwrap();
         let model = c.contact_model(&problem).unwrap().unwrap();
         assert_eq!(c.problem_kind(), ProblemKey::PV1);
-        assert!(model.pv2.is_none());
+        assert!(model.friction.is_none() && model.conduction.is_none());
         assert_eq!((model.compliance.gap, model.phi0), (0.5, 32.0));
         // The paper's cases ask for the paper's algorithm.
         assert_eq!(c.build().unwrap().settings.method.name(), "uzawa");
@@ -355,9 +184,9 @@ gap = 0.1
         // PV2 is implied by a [friction] table; conduction then takes its defaults.
         let pv2 = case(MINIMAL, &["friction.mu=0.3"]).unwrap();
         let problem = pv2.problem().unwrap();
-        let (friction, conduction) = pv2.contact_model(&problem).unwrap().unwrap().pv2.unwrap();
-        assert_eq!(friction.mu, 0.3);
-        assert_eq!(conduction, {
+        let model = pv2.contact_model(&problem).unwrap().unwrap();
+        assert_eq!(model.friction.unwrap().mu, 0.3);
+        assert_eq!(model.conduction.unwrap(), {
             let d = ConductivitySection::default();
             crate::contact::law::Conduction { ke: 0.0, delta: d.delta, truncation: d.truncation }
         });
@@ -635,7 +464,7 @@ gap = 0.1
         let c = case(PAPER_71, &["material={e32=-1.5}", "mesh={segments={extra=[\"[0,1]x{1}\"]}}"])
             .unwrap();
         assert_eq!((c.file.material.e31, c.file.material.young), (-1.5, 58.7102));
-        assert!(c.source.contains("extra"), "{}", c.source);
+        assert!(c.origin.text.contains("extra"), "{}", c.origin.text);
         let c = case(MINIMAL, &["friction={mu=0.3}"]).unwrap();
         assert_eq!(c.file.friction.map(|f| f.mu), Some(0.3));
         // Into a table the file writes inline.

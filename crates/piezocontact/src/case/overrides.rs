@@ -2,7 +2,7 @@
 //! applied to the TOML document before it is read so that an override is checked exactly
 //! like the file, and the line of a key for messages.
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 /// Applies one `dotted.key=value` override to the document; the value is read as TOML
 /// (numbers, booleans, quoted strings, arrays, tables) or else taken as a bare string. A table

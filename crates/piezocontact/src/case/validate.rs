@@ -2,10 +2,10 @@
 //! range (with the file, the line, the key and the requirement in the message), and the
 //! paper's hypotheses and unused keys reported as warnings.
 
-use super::Case;
 use super::build::MethodParameters;
+use super::file::Case;
 use super::schema::{BackendKey, FrictionPathKey, MethodKey, ProblemKey, RegularizationKey};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::material::{ElasticLaw, Material};
 
 /// The largest magnitude of a number in a case file, and the smallest nonzero one: the model

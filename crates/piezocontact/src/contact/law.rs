@@ -141,11 +141,83 @@ pub enum FrictionPath {
     Incremental,
 }
 
-/// The projection of z on the ball of radius s (any dimension), the closed form of Steps 2–3
-/// of Algorithm 2.
-pub fn project_ball<const D: usize>(z: [f64; D], s: f64) -> [f64; D] {
+/// State of a Γ3 node at a solution, as the laws decide it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NodeStatus {
+    /// σ_ν = 0: no contact force.
+    Separated,
+    /// σ_ν < 0 in PV1.
+    Contact,
+    /// PV2, σ_ν < 0 and ‖λ_f‖ < s: u_τ = 0.
+    Stick,
+    /// PV2, σ_ν < 0 and ‖λ_f‖ = s.
+    Slip,
+}
+
+impl NodeStatus {
+    /// The name used in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Separated => "separated",
+            Self::Contact => "contact",
+            Self::Stick => "stick",
+            Self::Slip => "slip",
+        }
+    }
+
+    /// The status of a node with normal stress σ_ν \[stress\] whose friction law said
+    /// `friction` ([`coulomb`]'s status; `None` without friction): separated where σ_ν ≥ 0,
+    /// else in contact (PV1) or sticking or slipping as the friction law says (PV2).
+    pub fn at(sigma_nu: f64, friction: Option<NodeStatus>) -> Self {
+        match friction {
+            _ if sigma_nu >= 0.0 => Self::Separated,
+            None => Self::Contact,
+            Some(status) => status,
+        }
+    }
+}
+
+/// The rigid stop's complementarity at a node, \[P\] (2.5) written as a projection with a
+/// constant c > 0 (model §10):
+///
+/// ```text
+/// λ_c ≥ 0,  u_ν ≤ ρ,  λ_c (u_ν − ρ) = 0   ⇔   λ_c = max(0, λ_c + c(u_ν − ρ))
+/// ```
+///
+/// Step 3 of Algorithms 2 and 4 with c = r, the exact solver's E_n, and the KKT residual's
+/// contact part.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StopComplementarity {
+    /// c(u_ν − ρ) \[stress\].
+    pub overlap: f64,
+    /// max(0, λ_c + c(u_ν − ρ)) \[stress\].
+    pub projected: f64,
+    /// Whether λ_c + c(u_ν − ρ) > 0: the stop holds the node (u_ν = ρ at a solution).
+    pub at_stop: bool,
+}
+
+/// [`StopComplementarity`] of a node with multiplier λ_c \[stress\], normal displacement u_ν
+/// and stop ρ \[length\], with the constant c [stress/length].
+pub fn stop_complementarity(lambda_c: f64, c: f64, u_nu: f64, rho: f64) -> StopComplementarity {
+    let overlap = c * (u_nu - rho);
+    let sum = lambda_c + overlap;
+    StopComplementarity { overlap, projected: sum.max(0.0), at_stop: sum > 0.0 }
+}
+
+/// The Coulomb law at a node written as a projection on the ball of radius s (model §10),
+/// with z = λ_f + c u_τ (Steps 2–3 of Algorithm 2 with c = r):
+///
+/// ```text
+/// λ_f = P_{B(0,s)}(z) = z (‖z‖ ≤ s),  s z/‖z‖ (‖z‖ > s);    stick where ‖z‖ < s, else slip
+/// ```
+///
+/// Returns P(z), any dimension, and the node's status ([`NodeStatus::Stick`] or
+/// [`NodeStatus::Slip`]).
+pub fn coulomb<const D: usize>(z: [f64; D], s: f64) -> ([f64; D], NodeStatus) {
     let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
-    if norm > s { z.map(|v| v * s / norm) } else { z }
+    let status = if norm < s { NodeStatus::Stick } else { NodeStatus::Slip };
+    let projected = if norm > s { z.map(|v| v * s / norm) } else { z };
+    (projected, status)
 }
 
 #[cfg(test)]
@@ -200,10 +272,35 @@ mod tests {
 
     #[test]
     fn ball_projection() {
-        assert_eq!(project_ball([3.0, 4.0], 10.0), [3.0, 4.0]);
-        let p = project_ball([3.0, 4.0], 1.0);
+        assert_eq!(coulomb([3.0, 4.0], 10.0), ([3.0, 4.0], NodeStatus::Stick));
+        let (p, status) = coulomb([3.0, 4.0], 1.0);
         assert!((p[0] - 0.6).abs() < 1e-15 && (p[1] - 0.8).abs() < 1e-15);
-        assert_eq!(project_ball([-2.0], 0.5), [-0.5]);
-        assert_eq!(project_ball([1.0, 1.0, 1.0], 0.0), [0.0; 3]);
+        assert_eq!(status, NodeStatus::Slip);
+        assert_eq!(coulomb([-2.0], 0.5), ([-0.5], NodeStatus::Slip));
+        assert_eq!(coulomb([1.0, 1.0, 1.0], 0.0), ([0.0; 3], NodeStatus::Slip));
+        // On the ball's boundary the node slips, and z is its own projection.
+        assert_eq!(coulomb([3.0, 4.0], 5.0), ([3.0, 4.0], NodeStatus::Slip));
+        // Without a bound a node at rest slips; with one it sticks.
+        assert_eq!(coulomb([0.0; 2], 0.0).1, NodeStatus::Slip);
+        assert_eq!(coulomb([0.0; 2], 1e-300).1, NodeStatus::Stick);
+    }
+
+    #[test]
+    fn stop_complementarity_is_max_of_zero_and_the_shifted_multiplier() {
+        // Held by the stop: λ_c + c(u_ν − ρ) = 2 + 10 (0.5 − 0.6) = 1 > 0.
+        let held = stop_complementarity(2.0, 10.0, 0.5, 0.6);
+        assert!((held.overlap + 1.0).abs() < 1e-15 && (held.projected - 1.0).abs() < 1e-15);
+        assert!(held.at_stop);
+        // Off the stop: 0.5 + 10 (0.5 − 0.6) < 0, so λ_c = 0 by the law.
+        let free = stop_complementarity(0.5, 10.0, 0.5, 0.6);
+        assert_eq!((free.projected, free.at_stop), (0.0, false));
+    }
+
+    #[test]
+    fn the_status_is_separated_without_a_compressive_stress() {
+        assert_eq!(NodeStatus::at(0.0, Some(NodeStatus::Stick)), NodeStatus::Separated);
+        assert_eq!(NodeStatus::at(-1.0, None), NodeStatus::Contact);
+        assert_eq!(NodeStatus::at(-1.0, Some(NodeStatus::Slip)), NodeStatus::Slip);
+        assert_eq!(NodeStatus::Slip.name(), "slip");
     }
 }

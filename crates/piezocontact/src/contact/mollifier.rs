@@ -1,8 +1,7 @@
 //! The regularisation R of the friction bound µ|Rσ_ν| (2.7) on the Γ3 nodes (model §4).
 
-use super::ContactSurface;
-use super::law::{Friction, Regularization};
-use super::model::ContactModel;
+use super::law::Regularization;
+use super::surface::ContactSurface;
 use crate::error::{Error, Result};
 use crate::problem::Problem;
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
@@ -14,11 +13,13 @@ pub struct Mollifier {
 }
 
 impl Mollifier {
-    /// R for the model's friction: identity, or the mollifier of its radius.
-    pub fn new(problem: &Problem, surface: &ContactSurface, model: &ContactModel) -> Result<Self> {
-        let Some((Friction { regularization: Regularization::Mollifier { radius }, .. }, _)) =
-            &model.pv2
-        else {
+    /// R on `surface`: identity, or the mollifier of its radius.
+    pub fn new(
+        problem: &Problem,
+        surface: &ContactSurface,
+        regularization: Regularization,
+    ) -> Result<Self> {
+        let Regularization::Mollifier { radius } = regularization else {
             return Ok(Self { rows: Vec::new() });
         };
         // Neighbourhoods by radius queries in a k-d tree of the Γ3 nodes, not all pairs.

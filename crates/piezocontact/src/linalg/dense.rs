@@ -1,6 +1,6 @@
 //! Dense square matrices, for the condensed contact problem (model §11).
 
-use super::{check_length, column};
+use super::vectors::{check_length, column, parallelism};
 use crate::error::{Error, Result};
 use std::sync::OnceLock;
 
@@ -83,7 +83,7 @@ impl DenseMatrix {
     /// singular).
     pub fn inverse(&self) -> Result<DenseMatrix> {
         use faer::linalg::solvers::DenseSolveCore;
-        super::parallelism(); // faer's LU reads its global parallelism: the run's split.
+        parallelism(); // faer's LU reads its global parallelism: the run's split.
         let inverse = self.mat.partial_piv_lu().inverse();
         for j in 0..self.n() {
             if let Some(i) = (0..self.n()).find(|&i| !inverse[(i, j)].is_finite()) {
@@ -100,7 +100,7 @@ impl DenseMatrix {
     /// The factors to solve Aᵀ x = b with, again and again ([`TransposedLu`]): the LU factors
     /// (partial pivoting) of A in single precision, kept with A.
     pub fn lu_transposed(self) -> TransposedLu {
-        super::parallelism(); // As in `inverse`.
+        parallelism(); // As in `inverse`.
         let n = self.n();
         let single = matrix_on_threads(n, n, |i, j| self.mat[(i, j)] as f32);
         // The LU of A, whose transposed solves solve Aᵀ x = b.
@@ -253,7 +253,7 @@ impl<T: faer::traits::ComplexField> PackedLu<T> {
     fn new(mut matrix: faer::Mat<T>) -> Self {
         use faer::dyn_stack::{MemBuffer, MemStack};
         use faer::linalg::lu::partial_pivoting::factor;
-        let (n, par) = (matrix.nrows(), super::parallelism());
+        let (n, par) = (matrix.nrows(), parallelism());
         let (mut forward, mut inverse) = (vec![0; n], vec![0; n]);
         let scratch = factor::lu_in_place_scratch::<usize, T>(n, n, par, Default::default());
         let mut stack = MemBuffer::new(scratch);
@@ -272,7 +272,7 @@ impl<T: faer::traits::ComplexField> PackedLu<T> {
     /// Solves Aᵀ x = v in place: with Uᵀ, then Lᵀ, then the rows back to the order of A.
     fn solve_transposed(&self, v: &mut [T]) {
         use faer::linalg::triangular_solve as triangular;
-        let (par, lu) = (super::parallelism(), self.lu.transpose());
+        let (par, lu) = (parallelism(), self.lu.transpose());
         triangular::solve_lower_triangular_in_place(lu, column(v), par);
         triangular::solve_unit_upper_triangular_in_place(lu, column(v), par);
         let permuted: Vec<T> = self.inverse.iter().map(|&k| v[k].clone()).collect();
@@ -300,7 +300,7 @@ fn product(a: faer::MatRef<'_, f64>, x: &[f64]) -> Vec<f64> {
         a,
         faer::MatRef::from_column_major_slice(x, n, 1),
         1.0,
-        super::parallelism(),
+        parallelism(),
     );
     y
 }

@@ -2,20 +2,19 @@
 //! [`LinearSolver`] seam, with the [`SchurComplement`] capability read off the factor's
 //! trailing block.
 
-use super::dense::matrix_on_threads;
+use super::dense::{DenseMatrix, matrix_on_threads};
 use super::ordering;
-use super::{DenseMatrix, LinearSolver, Ordering, SchurComplement, SolverStats, SymmetricMatrix};
-use super::{SymmetricPattern, check_length};
+use super::seam::{LinearSolver, Ordering, SchurComplement, SolverStats};
+use super::sparse::{SymmetricMatrix, SymmetricPattern, symbolic_cholesky};
+use super::vectors::{check_length, column, column_count, parallelism};
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::perm::PermRef;
-use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLdltRef;
 use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
-    factorize_symbolic_cholesky,
+    LdltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::{Accum, Conj, MatMut, Par, Side};
 use rayon::iter::ParallelExtend;
@@ -26,23 +25,6 @@ const PIVOT_THRESHOLD: f64 = 1e-12;
 /// faer replaces a tiny or wrongly signed pivot by ±this marker, which no pivot of a scaled
 /// matrix can reach; finding it in the factor reports the failure.
 const PIVOT_MARKER: f64 = 1e300;
-
-pub(super) fn symbolic_cholesky(
-    pattern: faer::sparse::SymbolicSparseColMatRef<'_, usize>,
-    ordering: SymmetricOrdering<'_, usize>,
-    supernodal: bool,
-) -> Result<SymbolicCholesky<usize>> {
-    let params = CholeskySymbolicParams {
-        supernodal_flop_ratio_threshold: if supernodal {
-            SupernodalThreshold::FORCE_SUPERNODAL
-        } else {
-            SupernodalThreshold::AUTO
-        },
-        ..Default::default()
-    };
-    factorize_symbolic_cholesky(pattern, Side::Lower, ordering, params)
-        .map_err(|e| Error::LinearAlgebra(format!("symbolic analysis: {e:?}")))
-}
 
 /// Sparse LDLᵀ of a symmetric quasi-definite matrix (faer's supernodal or simplicial LDLᵀ).
 #[derive(Debug, Default)]
@@ -90,7 +72,7 @@ impl LdltSolver {
     fn par(&self) -> Par {
         match self.threads {
             Some(threads) if threads > 1 => Par::rayon(threads),
-            None if self.three_dimensional => super::parallelism(),
+            None if self.three_dimensional => parallelism(),
             _ => Par::Seq,
         }
     }
@@ -346,7 +328,7 @@ impl LinearSolver for LdltSolver {
             return Err(Error::LinearAlgebra("solve before a successful factorisation".into()));
         }
         check_length("right-hand side column", self.signs.len(), n)?;
-        let (t, k) = (Instant::now(), super::column_count(rhs.len(), n)?);
+        let (t, k) = (Instant::now(), column_count(rhs.len(), n)?);
         let (symbolic, par) = (self.symbolic()?, self.par());
         let scale = |rhs: &mut [f64]| {
             let scaling = self.scaling.iter().cycle();
@@ -418,7 +400,7 @@ impl SchurComplement for LdltSolver {
             l22.transpose(),
             BlockStructure::TriangularUpper,
             1.0,
-            super::parallelism(),
+            parallelism(),
         );
         let mut schur = DenseMatrix { mat: schur };
         schur.mirror_lower();
@@ -485,7 +467,7 @@ impl LdltSolver {
             .map_err(|_| Error::LinearAlgebra("out of memory for the solve workspace".into()))?;
         LdltRef::new(symbolic, &l_values).solve_in_place_with_conj(
             Conj::No,
-            super::column(&mut x),
+            column(&mut x),
             par,
             MemStack::new(&mut mem),
         );

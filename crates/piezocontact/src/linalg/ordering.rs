@@ -7,7 +7,7 @@
 //!
 //! An ordering is a permutation `order` of 0..n: `order[k]` is the unknown eliminated k-th.
 
-use super::SymmetricPattern;
+use super::sparse::SymmetricPattern;
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;

@@ -1,12 +1,14 @@
 //! Sparse symmetric matrices by their lower triangle: the pattern, built once, into which the
 //! assembly writes new values, and the matrices with it.
 
-use super::check_length;
-use super::ldlt::symbolic_cholesky;
+use super::vectors::{check_length, column};
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::cholesky::SymmetricOrdering;
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
+};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, SymbolicSparseColMatRef, Triplet};
 use faer::{Par, Side};
 
@@ -215,7 +217,24 @@ impl SymmetricMatrix {
         let t_numeric = t.elapsed().as_secs_f64();
         let mut x = rhs.to_vec();
         let t = std::time::Instant::now();
-        lu.solve_in_place(super::column(&mut x));
+        lu.solve_in_place(column(&mut x));
         Ok([t_symbolic, t_numeric, t.elapsed().as_secs_f64()])
     }
+}
+
+pub(super) fn symbolic_cholesky(
+    pattern: faer::sparse::SymbolicSparseColMatRef<'_, usize>,
+    ordering: SymmetricOrdering<'_, usize>,
+    supernodal: bool,
+) -> Result<SymbolicCholesky<usize>> {
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: if supernodal {
+            SupernodalThreshold::FORCE_SUPERNODAL
+        } else {
+            SupernodalThreshold::AUTO
+        },
+        ..Default::default()
+    };
+    factorize_symbolic_cholesky(pattern, Side::Lower, ordering, params)
+        .map_err(|e| Error::LinearAlgebra(format!("symbolic analysis: {e:?}")))
 }

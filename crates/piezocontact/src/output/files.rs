@@ -8,10 +8,10 @@
 //!   forced) and clears our own earlier output there, so that a rerun replaces it whole. The
 //!   files written are listed in the directory's [`MARKER`] file.
 
+use super::vtu::{Field, to_vtu};
 use crate::assembly::element_fields;
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
-use crate::output::vtu::{Field, to_vtu};
 use crate::problem::Problem;
 use std::io::Write;
 use std::path::{Path, PathBuf};

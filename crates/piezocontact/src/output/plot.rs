@@ -1,11 +1,12 @@
 //! Figures drawn by the program with plotters, as PNG and SVG. Text uses DejaVu Sans
 //! embedded in the binary (the `dejavu` crate), so labels render on machines without fonts.
 
-use crate::contact::Foundation;
-use crate::contact::NodeStatus;
+use super::files::write_atomic;
+use crate::algorithm::ContactSolution;
+use crate::contact::{ContactModel, Foundation, NodeStatus};
 use crate::error::{Error, Result};
-use crate::output::files::write_atomic;
-use crate::run::ContactRun;
+use crate::problem::Problem;
+use crate::report::Row;
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -75,13 +76,13 @@ macro_rules! both_backends {
         write_atomic(&stem.with_extension("svg"), svg.as_bytes())?;
         // plotters encodes the PNG into a file: a temporary one, renamed when complete.
         let png = stem.with_extension("png");
-        let tmp = crate::output::files::temporary(&png);
+        let tmp = super::files::temporary(&png);
         {
             let root = BitMapBackend::new(&tmp, size).into_drawing_area();
             $draw(&root)?;
             root.present().map_err(err)?;
         }
-        crate::output::files::commit(&tmp, &png)
+        super::files::commit(&tmp, &png)
     }};
 }
 
@@ -229,6 +230,19 @@ pub fn colormap(t: f64) -> RGBColor {
     RGBColor(c(0), c(1), c(2))
 }
 
+/// What the figures of a contact solution draw: the problem's mesh and Γ3, the model's stop
+/// and foundation, the solution and its Γ3 rows.
+pub struct ContactView<'a> {
+    /// The problem solved.
+    pub problem: &'a Problem,
+    /// Its contact model (at the step drawn, on a loading path).
+    pub model: &'a ContactModel,
+    /// The solution.
+    pub solution: &'a ContactSolution,
+    /// Its Γ3 rows.
+    pub rows: &'a [Row],
+}
+
 /// Labels of the body figure.
 pub struct BodyLabels<'a> {
     pub title: &'a str,
@@ -239,17 +253,17 @@ pub struct BodyLabels<'a> {
 
 /// The deformed body (displacements to scale) coloured by ϕ with a colour bar, the contact
 /// force on Γ3 as arrows, the rigid stop, and for PV2 the stick and slip nodes.
-pub fn body_plot(run: &ContactRun, labels: &BodyLabels, stem: &Path) -> Result<()> {
-    both_backends!(stem, (1200, 520), |root: &DrawingArea<_, Shift>| draw_body(root, run, labels))
+pub fn body_plot(view: &ContactView, labels: &BodyLabels, stem: &Path) -> Result<()> {
+    both_backends!(stem, (1200, 520), |root: &DrawingArea<_, Shift>| draw_body(root, view, labels))
 }
 
 fn draw_body<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    run: &ContactRun,
+    view: &ContactView,
     labels: &BodyLabels,
 ) -> Result<()> {
     root.fill(&WHITE).map_err(err)?;
-    let (problem, solution) = (&run.problem, &run.solution);
+    let (problem, solution) = (&view.problem, &view.solution);
     let mesh = &problem.mesh;
     let (dofs, x) = (&solution.dofs, &solution.x);
     let deformed =
@@ -263,7 +277,7 @@ fn draw_body<DB: DrawingBackend>(
     let stop: Vec<(f64, f64)> = (0..surface.len())
         .filter_map(|i| {
             let (p, rho) =
-                (surface.position(problem, i), run.model.compliance.stop(surface.gap[i]));
+                (surface.position(problem, i), view.model.compliance.stop(surface.gap[i]));
             rho.is_finite()
                 .then(|| (p[0] + rho * surface.normal[i][0], p[1] + rho * surface.normal[i][1]))
         })
@@ -298,26 +312,26 @@ fn draw_body<DB: DrawingBackend>(
             )
         }))
         .map_err(err)?;
-    draw_stop(&mut chart, run, stop, labels.length)?;
-    let peak = run.rows.iter().map(|r| r.sigma_nu.abs().hypot(r.sigma_tau[0])).fold(0.0, f64::max);
+    draw_stop(&mut chart, view, stop, labels.length)?;
+    let peak = view.rows.iter().map(|r| r.sigma_nu.abs().hypot(r.sigma_tau[0])).fold(0.0, f64::max);
     let arrow_length = 0.12 * (y1 - y0) / peak.max(f64::MIN_POSITIVE);
-    draw_forces(&mut chart, run, &deformed, arrow_length)?;
-    if run.model.pv2.is_some() {
-        draw_statuses(&mut chart, run, &deformed)?;
+    draw_forces(&mut chart, view, &deformed, arrow_length)?;
+    if view.model.friction.is_some() {
+        draw_statuses(&mut chart, view, &deformed)?;
     }
     force_legend(&mut chart, (x0, y0), &format!("{peak:.3} {}", labels.stress))?;
-    color_bar(&bar, phi_lo, phi_hi, &format!("ϕ [{}]", labels.potential))
+    colour_bar(&bar, (phi_lo, phi_hi), &format!("ϕ [{}]", labels.potential), false)
 }
 
 /// The rigid stop as a line through `stop`, with its legend entry.
 fn draw_stop<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
-    run: &ContactRun,
+    view: &ContactView,
     stop: Vec<(f64, f64)>,
     length: &str,
 ) -> Result<()> {
-    let compliance = &run.model.compliance;
-    let label = match run.model.foundation {
+    let compliance = &view.model.compliance;
+    let label = match view.model.foundation {
         Foundation::ConstantGap => {
             format!("rigid stop (gap + penetration = {} {length})", compliance.stop(compliance.gap))
         }
@@ -377,14 +391,14 @@ type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoor
 /// at every few Γ3 nodes, `arrow_length` per unit of stress.
 fn draw_forces<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
-    run: &ContactRun,
+    view: &ContactView,
     deformed: &dyn Fn(usize) -> (f64, f64),
     arrow_length: f64,
 ) -> Result<()> {
-    let surface = &run.solution.surface;
+    let surface = &view.solution.surface;
     let step = (surface.len() / 24).max(1);
     for i in (0..surface.len()).step_by(step) {
-        let (row, n) = (&run.rows[i], surface.normal[i]);
+        let (row, n) = (&view.rows[i], surface.normal[i]);
         let t = surface.tangent(i);
         let force = (
             row.sigma_nu * n[0] + row.sigma_tau[0] * t[0],
@@ -403,16 +417,16 @@ fn draw_forces<DB: DrawingBackend>(
 /// The stick and slip nodes of Γ3 as dots, with their legend entries.
 fn draw_statuses<DB: DrawingBackend>(
     chart: &mut Chart<'_, DB>,
-    run: &ContactRun,
+    view: &ContactView,
     deformed: &dyn Fn(usize) -> (f64, f64),
 ) -> Result<()> {
-    let surface = &run.solution.surface;
+    let surface = &view.solution.surface;
     for (status, color, name) in [
         (NodeStatus::Stick, RGBColor(31, 119, 180), "stick"),
         (NodeStatus::Slip, RGBColor(255, 127, 14), "slip"),
     ] {
         let nodes: Vec<(f64, f64)> = (0..surface.len())
-            .filter(|&i| run.rows[i].status == status)
+            .filter(|&i| view.rows[i].status == status)
             .map(|i| deformed(surface.nodes[i]))
             .collect();
         chart
@@ -433,41 +447,6 @@ fn arrow(tail: (f64, f64), head: (f64, f64), color: RGBColor) -> PathElement<(f6
     PathElement::new(vec![tail, head, left, head, right], color.stroke_width(2))
 }
 
-fn color_bar<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    lo: f64,
-    hi: f64,
-    label: &str,
-) -> Result<()> {
-    let hi = if hi > lo { hi } else { lo + 1.0 };
-    let mut chart = ChartBuilder::on(area)
-        .margin_top(60)
-        .margin_bottom(60)
-        .margin_right(10)
-        .y_label_area_size(70)
-        .build_cartesian_2d(0.0..1.0, lo..hi)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .y_desc(label)
-        .y_label_formatter(&|v| format!("{v:.3}"))
-        .label_style((FONT, 13))
-        .axis_desc_style((FONT, 15))
-        .draw()
-        .map_err(err)?;
-    let n = 100;
-    chart
-        .draw_series((0..n).map(|k| {
-            let (a, b) =
-                (lo + (hi - lo) * k as f64 / n as f64, lo + (hi - lo) * (k + 1) as f64 / n as f64);
-            Rectangle::new([(0.0, a), (1.0, b)], colormap((k as f64 + 0.5) / n as f64).filled())
-        }))
-        .map_err(err)?;
-    Ok(())
-}
-
 /// Labels of the Γ3 map.
 pub struct MapLabels<'a> {
     pub title: &'a str,
@@ -478,8 +457,8 @@ pub struct MapLabels<'a> {
 /// The contact face of a 3D run seen along its mean normal: the contact pressure −σ_ν as a
 /// field over the Γ3 triangles (left, with its colour bar in the case's units) and the
 /// status of each Γ3 node (right: separated, stick or contact, slip).
-pub fn contact_map(run: &ContactRun, labels: &MapLabels, stem: &Path) -> Result<()> {
-    both_backends!(stem, (1300, 640), |root: &DrawingArea<_, Shift>| draw_map(root, run, labels))
+pub fn contact_map(view: &ContactView, labels: &MapLabels, stem: &Path) -> Result<()> {
+    both_backends!(stem, (1300, 640), |root: &DrawingArea<_, Shift>| draw_map(root, view, labels))
 }
 
 /// A number as people read it: three significant digits, plain decimals between 1e−3 and
@@ -509,23 +488,23 @@ fn fitted(text: &str, width: u32, size: u32) -> String {
 }
 
 /// The Γ3 nodes projected on the plane of the mean normal's tangents.
-fn map_points(run: &ContactRun) -> Vec<(f64, f64)> {
-    let surface = &run.solution.surface;
+fn map_points(view: &ContactView) -> Vec<(f64, f64)> {
+    let surface = &view.solution.surface;
     let mut mean = [0.0; 3];
     surface.normal.iter().for_each(|n| (0..3).for_each(|k| mean[k] += n[k]));
     let norm = mean.iter().map(|v| v * v).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
     let frame = crate::contact::frame(mean.map(|v| v / norm), 3);
     let along = |x: [f64; 3], t: [f64; 3]| (0..3).map(|k| x[k] * t[k]).sum::<f64>();
-    run.rows.iter().map(|r| (along(r.x, frame[1]), along(r.x, frame[2]))).collect()
+    view.rows.iter().map(|r| (along(r.x, frame[1]), along(r.x, frame[2]))).collect()
 }
 
 /// The Γ3 triangles as triples of Γ3 node indices (the facets of the contact parts).
-fn map_triangles(run: &ContactRun) -> Vec<[usize; 3]> {
-    let nodes = &run.solution.surface.nodes;
+fn map_triangles(view: &ContactView) -> Vec<[usize; 3]> {
+    let nodes = &view.solution.surface.nodes;
     let index: std::collections::HashMap<usize, usize> =
         nodes.iter().enumerate().map(|(i, &n)| (n, i)).collect();
-    let mesh = &run.problem.mesh;
-    run.problem
+    let mesh = &view.problem.mesh;
+    view.problem
         .boundary
         .contact
         .iter()
@@ -573,16 +552,16 @@ fn fill_triangles<DB: DrawingBackend>(
 
 fn draw_map<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    run: &ContactRun,
+    view: &ContactView,
     labels: &MapLabels,
 ) -> Result<()> {
     root.fill(&WHITE).map_err(err)?;
     let width = root.dim_in_pixel().0;
     let title = root.titled(&fitted(labels.title, width - 40, 20), (FONT, 20)).map_err(err)?;
-    let points = map_points(run);
+    let points = map_points(view);
     let (x0, x1) = range(points.iter().map(|p| p.0), 0.05);
     let (y0, y1) = range(points.iter().map(|p| p.1), 0.05);
-    let peak = run.rows.iter().map(|r| -r.sigma_nu).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+    let peak = view.rows.iter().map(|r| -r.sigma_nu).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
     let (field, right) = title.split_horizontally(560);
     let (bar, status) = right.split_horizontally(130);
     let chart = |area: &DrawingArea<DB, Shift>, caption: &str| {
@@ -610,9 +589,9 @@ fn draw_map<DB: DrawingBackend>(
         &format!("contact pressure −σ_ν, up to {} {}", readable(peak), labels.stress),
     )?;
     axes(&mut left)?;
-    let values: Vec<f64> = run.rows.iter().map(|r| (-r.sigma_nu / peak).clamp(0.0, 1.0)).collect();
-    fill_triangles(&mut left, (&points, &values), &map_triangles(run))?;
-    colour_bar(&bar, peak, labels.stress)?;
+    let values: Vec<f64> = view.rows.iter().map(|r| (-r.sigma_nu / peak).clamp(0.0, 1.0)).collect();
+    fill_triangles(&mut left, (&points, &values), &map_triangles(view))?;
+    colour_bar(&bar, (0.0, peak), &format!("−σ_ν [{}]", labels.stress), true)?;
     let mut right =
         chart(&status, "status: separated (grey), stick or contact (blue), slip (red)")?;
     axes(&mut right)?;
@@ -623,40 +602,46 @@ fn draw_map<DB: DrawingBackend>(
     };
     right
         .draw_series(
-            points.iter().zip(&run.rows).map(|(&p, r)| Circle::new(p, 3, color(r).filled())),
+            points.iter().zip(view.rows).map(|(&p, r)| Circle::new(p, 3, color(r).filled())),
         )
         .map_err(err)?;
     Ok(())
 }
 
-/// The colour bar of the pressure: 0 to `peak` in the case's `unit`.
+/// A vertical colour bar of [`colormap`] from `lo` to `hi` with its `label`, the ticks on the
+/// right or on the left of the bar.
 fn colour_bar<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    peak: f64,
-    unit: &str,
+    (lo, hi): (f64, f64),
+    label: &str,
+    right: bool,
 ) -> Result<()> {
+    let hi = if hi > lo { hi } else { lo + 1.0 };
+    let (left_size, right_size, margin) = if right { (0, 60, 60) } else { (70, 0, 10) };
     let mut chart = ChartBuilder::on(area)
-        .margin_top(40)
-        .margin_bottom(52)
-        .margin_right(60)
-        .y_label_area_size(0)
-        .right_y_label_area_size(60)
-        .build_cartesian_2d(0.0..1.0, 0.0..peak)
+        .margin_top(50)
+        .margin_bottom(56)
+        .margin_right(margin)
+        .y_label_area_size(left_size)
+        .right_y_label_area_size(right_size)
+        .build_cartesian_2d(0.0..1.0, lo..hi)
         .map_err(err)?;
     chart
         .configure_mesh()
         .disable_x_mesh()
         .disable_y_mesh()
         .disable_x_axis()
-        .y_desc(format!("−σ_ν [{unit}]"))
-        .y_label_formatter(&|v| tick(*v, 0.0, peak))
+        .y_desc(label)
+        .y_label_formatter(&|v| tick(*v, lo, hi))
         .label_style((FONT, 13))
+        .axis_desc_style((FONT, 15))
         .draw()
         .map_err(err)?;
     const STEPS: usize = 64;
     let band = |k: usize| {
-        let (lo, hi) = (k as f64 / STEPS as f64, (k + 1) as f64 / STEPS as f64);
-        Rectangle::new([(0.0, lo * peak), (1.0, hi * peak)], colormap((lo + hi) / 2.0).filled())
+        let (a, b) = (k as f64 / STEPS as f64, (k + 1) as f64 / STEPS as f64);
+        let (y0, y1) = (lo + a * (hi - lo), lo + b * (hi - lo));
+        Rectangle::new([(0.0, y0), (1.0, y1)], colormap((a + b) / 2.0).filled())
     };
     chart.draw_series((0..STEPS).map(band)).map_err(err)?;
     Ok(())

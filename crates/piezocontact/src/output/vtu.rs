@@ -1,5 +1,6 @@
 //! ASCII VTK UnstructuredGrid (`.vtu`) output that ParaView opens: nodes (padded to 3D),
-//! cells (VTK_TRIANGLE = 5, VTK_TETRA = 10), point data and cell data.
+//! cells (VTK_TRIANGLE = 5, VTK_TETRA = 10), point data and cell data; and the collection
+//! (`.pvd`) of a loading path's files.
 
 use crate::mesh::Mesh;
 use std::fmt::Write;
@@ -66,4 +67,15 @@ fn write_data(s: &mut String, tag: &str, fields: &[Field]) {
         let _ = writeln!(s, "</DataArray>");
     }
     let _ = writeln!(s, "</{tag}>");
+}
+
+/// A ParaView collection of the steps' files, the step number as its time.
+pub fn pvd(files: &[(usize, String)]) -> String {
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n",
+    );
+    for (step, name) in files {
+        s += &format!("<DataSet timestep=\"{step}\" group=\"\" part=\"0\" file=\"{name}\"/>\n");
+    }
+    s + "</Collection>\n</VTKFile>\n"
 }

@@ -1,14 +1,16 @@
 use piezocontact::algorithm::Settings;
 use piezocontact::algorithm::uzawa::{self, Uzawa};
-use piezocontact::case::Case;
+use piezocontact::case::{Built, Case};
 use piezocontact::contact::ContactModel;
 use piezocontact::contact::law::{Conduction, Friction, NormalCompliance, Regularization};
+use piezocontact::linalg::{LinearSolver, default_solver};
 use piezocontact::material::{
     ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants,
 };
 use piezocontact::mesh::rectangle::{Diagonal, Rectangle, Segment};
 use piezocontact::mesh::{Mesh, gmsh};
 use piezocontact::problem::{BodyLoads, Boundary, Problem, constant_vector};
+use piezocontact::run::{ContactRun, PathRun, Run};
 use std::path::PathBuf;
 
 /// ε0 in the paper cases' units (m, GPa, C, GV): 8.885e−12 C/(V m) = 8.885e−3 C/(GV m).
@@ -38,6 +40,28 @@ pub fn committed_case(name: &str, sets: &[&str]) -> Case {
     Case::load(&file, &overrides).unwrap()
 }
 
+/// `built` solved as `piezocontact run` solves it, with the linear `solver`.
+pub fn run_with(built: &Built, solver: Box<dyn LinearSolver>) -> Run {
+    Run::solve(built, solver, &|_| {}).unwrap()
+}
+
+/// The contact run of `built` (which has a `[contact]` table and no `[loading]` path).
+pub fn contact_run(built: &Built) -> ContactRun {
+    match run_with(built, default_solver()) {
+        Run::Contact(run) => run,
+        _ => panic!("{}: not one contact run", built.origin.path.display()),
+    }
+}
+
+/// The loading path of `built` (which has `[contact]` and `[loading]` tables).
+pub fn path_run(built: &Built) -> PathRun {
+    match run_with(built, default_solver()) {
+        Run::Path(path) => path,
+        _ => panic!("{}: not a loading path", built.origin.path.display()),
+    }
+}
+
+/// A committed test mesh read.
 pub fn read_mesh(name: &str) -> Mesh {
     gmsh::read(&std::fs::read(mesh_file(name)).unwrap()).unwrap()
 }
@@ -175,7 +199,8 @@ pub fn paper_model(pv2: Option<(f64, f64)>, penetration: f64, units: Units) -> C
             },
         )
     });
-    ContactModel { compliance, pv2, foundation: Default::default(), phi0 }
+    let (friction, conduction) = pv2.unzip();
+    ContactModel { compliance, friction, conduction, foundation: Default::default(), phi0 }
 }
 
 /// The paper's settings (r = 0.25 E) with tolerances `eps` = `eps_fp`.

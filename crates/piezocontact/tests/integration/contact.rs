@@ -13,7 +13,7 @@ use piezocontact::problem::Problem;
 
 fn solve(problem: &Problem, model: &ContactModel, settings: &Settings) -> ContactSolution {
     let solution = solve_contact(problem, model, settings).unwrap();
-    assert!(solution.converged, "{:?}", solution.failure);
+    assert!(solution.converged(), "{:?}", solution.failure);
     solution
 }
 
@@ -51,7 +51,7 @@ fn assert_kkt(
             "node {i}: |lambda_f| {} > s {s}",
             norm(lambda_f)
         );
-        match solution.status(i, model.pv2.is_some()) {
+        match solution.status[i] {
             NodeStatus::Stick => {
                 stick += 1;
                 assert!(norm(u_tau) <= tol, "stick node {i} slides by {}", norm(u_tau));
@@ -72,7 +72,8 @@ fn assert_kkt(
     }
     assert!(stick + slip + contact > 0, "no node in contact");
     let (kkt, balance) =
-        assess(problem, model, settings.method.complementarity_constant(), solution).unwrap();
+        assess(problem, model, settings.method.complementarity_constant(), &solution.view())
+            .unwrap();
     assert!(kkt.max < 1e-5, "{kkt:?}");
     assert!(balance.imbalance < 1e-6, "{balance:?}");
     let applied = balance.applied[1];
@@ -112,8 +113,7 @@ fn kkt_conditions_hold_on_a_curved_contact_face() {
     // The normals follow the arc: tilted near the ends, vertical in the middle.
     let tilt = solution.surface.normal.iter().map(|n| n[0].abs()).fold(0.0, f64::max);
     assert!(tilt > 0.4, "normals do not follow the arc ({tilt})");
-    let statuses: Vec<NodeStatus> =
-        (0..solution.surface.len()).map(|i| solution.status(i, true)).collect();
+    let statuses: Vec<NodeStatus> = solution.status.clone();
     assert!(
         statuses.contains(&NodeStatus::Separated)
             && statuses.iter().any(|s| *s != NodeStatus::Separated)
@@ -195,7 +195,8 @@ fn an_active_conduction_layer_pulls_phi_towards_phi0() {
     assert!(conducting > 10, "only {conducting} conducting nodes");
     for (model, solution) in &runs {
         let (kkt, balance) =
-            assess(&problem, model, settings.method.complementarity_constant(), solution).unwrap();
+            assess(&problem, model, settings.method.complementarity_constant(), &solution.view())
+                .unwrap();
         assert!(kkt.max < 1e-5 && balance.imbalance < 1e-6, "{kkt:?} {balance:?}");
     }
 }
@@ -232,12 +233,15 @@ fn the_hencky_law_converges_to_the_true_nonlinear_equations() {
             "{}: {softened} softened elements, t_max/t0 = {:.2}, {} outer steps, {} factorisations",
             model.name(),
             t_max / t0,
-            solution.outer_iterations,
-            t.numeric_count
+            solution.outer_iterations(),
+            t.solver.numeric_count
         );
-        assert!(t.numeric_count > 1 && t.numeric_count <= solution.outer_iterations, "{t:?}");
+        assert!(
+            t.solver.numeric_count > 1 && t.solver.numeric_count <= solution.outer_iterations(),
+            "{t:?}"
+        );
         let (kkt, _) =
-            assess(&problem, &model, settings.method.complementarity_constant(), &solution)
+            assess(&problem, &model, settings.method.complementarity_constant(), &solution.view())
                 .unwrap();
         assert!(kkt.equilibrium_u < 1e-6 && kkt.max < 1e-5, "{kkt:?}");
     }
@@ -252,8 +256,8 @@ fn one_factorisation_serves_the_whole_linear_run() {
     for pv2 in [None, Some((0.6, 1.0))] {
         let solution = solve(&problem, &paper_model(pv2, 0.0, PAPER_UNITS), &settings);
         let t = solution.timings;
-        assert_eq!(t.numeric_count, 1);
-        assert_eq!(t.solve_count, solution.inner_iterations.iter().sum::<usize>());
+        assert_eq!(t.solver.numeric_count, 1);
+        assert_eq!(t.solver.solve_count, solution.inner_iterations.iter().sum::<usize>());
     }
 }
 
@@ -314,19 +318,19 @@ fn iteration_counts_at_three_mesh_sizes() {
                 "{:>8} {:>4} {:>6} {:>30}",
                 format!("{nx}x{ny}"),
                 model.name(),
-                solution.outer_iterations,
+                solution.outer_iterations(),
                 format!("{inner:?}")
             );
-            assert_eq!(inner.len(), solution.outer_iterations);
+            assert_eq!(inner.len(), solution.outer_iterations());
             assert!(*solution.outer_history.last().unwrap() < 1e-4);
             for history in &solution.inner_history {
                 assert!(*history.last().unwrap() < 1e-4, "an inner loop stopped early");
             }
             if pv2.is_none() {
-                assert_eq!(solution.outer_iterations, 2);
+                assert_eq!(solution.outer_iterations(), 2);
                 assert_eq!(inner[0], inner[1], "the second step is nearly the first one again");
             } else {
-                counts.push((solution.outer_iterations, *inner.iter().max().unwrap()));
+                counts.push((solution.outer_iterations(), *inner.iter().max().unwrap()));
             }
         }
     }
@@ -346,7 +350,7 @@ fn nonlocal_friction_and_friction_per_part() {
     let local = solve(&problem, &local_model, &settings);
     let with = |regularization| {
         let mut model = local_model.clone();
-        model.pv2.as_mut().unwrap().0.regularization = regularization;
+        model.friction.as_mut().unwrap().regularization = regularization;
         (solve(&problem, &model, &settings), model)
     };
     let (tiny, _) = with(Regularization::Mollifier { radius: 0.1 }); // h = 0.25
@@ -377,12 +381,12 @@ fn nonlocal_friction_and_friction_per_part() {
     // µ per part: a part covering all of Γ3 with µ = 0.6 is the constant µ = 0.6.
     let mut per_part = local_model.clone();
     let contact = problem.mesh.part_index("contact").unwrap();
-    per_part.pv2.as_mut().unwrap().0 = piezocontact::contact::law::Friction {
+    per_part.friction = Some(piezocontact::contact::law::Friction {
         mu: 0.0,
         mu_parts: vec![(contact, 0.6)],
         regularization: Regularization::Identity,
         path: Default::default(),
-    };
+    });
     let by_part = solve(&problem, &per_part, &settings);
     assert!(distance(&problem, &by_part.x, &local.x) < 1e-12);
 }
@@ -395,7 +399,7 @@ fn a_nan_in_an_iterate_is_a_numerical_failure() {
     let mut model = paper_model(Some((0.2, 0.2)), 0.05, PAPER_UNITS);
     model.phi0 = f64::NAN;
     let solution = solve_contact(&problem, &model, &paper_settings(PAPER_UNITS, 1e-4)).unwrap();
-    assert!(!solution.converged);
+    assert!(!solution.converged());
     let failure = solution.failure.expect("a failure").to_string();
     assert!(
         failure.contains("Uzawa loop (Algorithm 2) of outer step")
@@ -410,7 +414,6 @@ fn a_nan_in_an_iterate_is_a_numerical_failure() {
 /// message names the exact solver, which solves the same problem to its KKT conditions.
 #[test]
 fn a_fixed_point_that_stalls_names_the_exact_solver() {
-    use piezocontact::run::ContactRun;
     let run = |method: &str| {
         let sets = [
             "mesh.nx=24",
@@ -419,13 +422,14 @@ fn a_fixed_point_that_stalls_names_the_exact_solver() {
             "friction.radius=12.0",
             &format!("solver.method=\"{method}\""),
         ];
-        ContactRun::solve(&super::common::committed_case("paper-7.2.toml", &sets)).unwrap()
+        let built = super::common::committed_case("paper-7.2.toml", &sets).build().unwrap();
+        (super::common::contact_run(&built), built)
     };
-    let uzawa = run("uzawa");
+    let (uzawa, _) = run("uzawa");
     let failure = uzawa.solution.failure.map(|e| e.to_string()).unwrap_or_default();
     assert!(failure.contains("solver.method = \"newton\" (the exact solver)"), "{failure}");
-    let newton = run("newton");
-    assert!(newton.solution.converged, "{:?}", newton.solution.failure);
-    let (problem, model, settings) = (&newton.problem, &newton.model, &newton.settings);
+    let (newton, built) = run("newton");
+    assert!(newton.solution.converged(), "{:?}", newton.solution.failure);
+    let (problem, model, settings) = (&built.problem, &newton.model, &built.settings);
     assert_kkt(problem, model, settings, &newton.solution);
 }

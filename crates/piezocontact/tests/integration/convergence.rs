@@ -14,7 +14,7 @@ use piezocontact::element::{Simplex, point_at, quadrature};
 use piezocontact::linalg::default_solver;
 use piezocontact::material::{ElasticLaw, Material};
 use piezocontact::problem::{BodyLoads, Boundary, Problem};
-use piezocontact::solver::solve_without_contact;
+use piezocontact::system::solve_without_contact;
 use std::f64::consts::PI;
 use std::sync::Arc;
 

@@ -17,7 +17,7 @@ use piezocontact::dofs::DofMap;
 use piezocontact::linalg::default_solver;
 use piezocontact::material::ElasticLaw;
 use piezocontact::problem::{BodyLoads, Boundary, Problem, constant_vector};
-use piezocontact::solver::CoupledSystem;
+use piezocontact::system::CoupledSystem;
 
 /// Newton with the KKT tolerance 1e−10 and r = `r_per_young`·E.
 fn newton(r_per_young: f64) -> Settings {
@@ -40,7 +40,7 @@ fn condensing(r_per_young: f64, max_condensed: usize) -> Settings {
 
 fn solve(problem: &Problem, model: &ContactModel, settings: &Settings) -> ContactSolution {
     let solution = solve_contact(problem, model, settings).unwrap();
-    assert!(solution.converged, "{:?}", solution.failure);
+    assert!(solution.converged(), "{:?}", solution.failure);
     solution
 }
 
@@ -119,7 +119,7 @@ fn agree_on_the_bar(nx: usize, ny: usize) {
     let pv2 = paper_model(Some((0.6, 1.0)), 0.0, PAPER_UNITS);
     assert_agree(&problem, &pv2, &format!("{mesh} PV2, R = identity"));
     let mut mollified = pv2.clone();
-    mollified.pv2.as_mut().unwrap().0.regularization = Regularization::Mollifier { radius: 1.0 };
+    mollified.friction.as_mut().unwrap().regularization = Regularization::Mollifier { radius: 1.0 };
     assert_agree(&problem, &mollified, &format!("{mesh} PV2, R = mollifier"));
     // µ per part: 0.6 on [2,6]×{0}, 0.1 on [6,10]×{0}.
     let split = paper_problem_with_contact(
@@ -131,7 +131,7 @@ fn agree_on_the_bar(nx: usize, ny: usize) {
     );
     let mut per_part = pv2.clone();
     let part = |name: &str| split.mesh.part_index(name).unwrap();
-    per_part.pv2.as_mut().unwrap().0.mu_parts = vec![(part("left"), 0.6), (part("right"), 0.1)];
+    per_part.friction.as_mut().unwrap().mu_parts = vec![(part("left"), 0.6), (part("right"), 0.1)];
     assert_agree(&split, &per_part, &format!("{mesh} PV2, µ per part"));
 }
 
@@ -248,12 +248,12 @@ fn a_continuation_that_stops_short_names_the_fraction_its_iterate_solves() {
         .nth(1)
         .and_then(|rest| rest.split(' ').next()?.parse().ok())
         .unwrap_or_else(|| panic!("no θ in: {failure}"));
-    assert!(!solution.converged && 0.0 < theta && theta < 1.0, "{failure}");
+    assert!(!solution.converged() && 0.0 < theta && theta < 1.0, "{failure}");
     let c = built.settings.method.complementarity_constant();
     let mut part = model.clone();
-    part.pv2.as_mut().unwrap().1.ke *= theta;
-    let (at_part, _) = assess(problem, &part, c, &solution).unwrap();
-    let (at_whole, _) = assess(problem, model, c, &solution).unwrap();
+    part.conduction.as_mut().unwrap().ke *= theta;
+    let (at_part, _) = assess(problem, &part, c, &solution.view()).unwrap();
+    let (at_whole, _) = assess(problem, model, c, &solution.view()).unwrap();
     println!(
         "θ = {theta}: KKT residual {:.1e} with θ k_e, {:.1e} with k_e",
         at_part.max, at_whole.max
@@ -303,7 +303,11 @@ fn hencky_s_law_by_newton_converges_quadratically() {
         let history = &solution.outer_history;
         println!("{}: {softened} softened elements, criteria {history:?}", model.name());
         assert!(softened > 0 && positive, "{softened} softened, tangent positive: {positive}");
-        assert!(solution.timings.numeric_count <= 6, "{}", solution.timings.numeric_count);
+        assert!(
+            solution.timings.solver.numeric_count <= 6,
+            "{}",
+            solution.timings.solver.numeric_count
+        );
         assert_eq!(solution.floored_steps, 0, "the tangent is not floored where it is positive");
         assert!(solution.kkt.max <= 1e-10, "{:?}", solution.kkt);
         // Past 1e−11 the criterion is round-off.
@@ -337,7 +341,7 @@ fn hencky_s_whole_tangent_converges_beyond_e_t0() {
     let problem = paper_problem(48, 8, PAPER_UNITS, ElasticLaw::Hencky { t0: 1e-3 });
     let solution = solve(&problem, &paper_model(None, 0.0, PAPER_UNITS), &newton(0.25));
     let (beyond, history) = (beyond_e_t0(&problem, &solution), &solution.outer_history);
-    let count = solution.timings.numeric_count;
+    let count = solution.timings.solver.numeric_count;
     println!("{beyond} elements beyond e·t0, {count} factorisations, criteria {history:?}");
     assert!(beyond > 0 && solution.floored_steps == 0, "{beyond}, {}", solution.floored_steps);
     assert!(count <= 12 && solution.kkt.max <= 1e-10, "{count}, {:?}", solution.kkt);
@@ -362,7 +366,7 @@ fn newton_on_hencky_s_law_falls_back_to_the_floored_tangent() {
     ] {
         let problem = paper_problem(48, 8, PAPER_UNITS, ElasticLaw::Hencky { t0 });
         let solution = solve(&problem, &model, &newton(0.25));
-        let (outer, count) = (solution.outer_iterations, solution.timings.numeric_count);
+        let (outer, count) = (solution.outer_iterations(), solution.timings.solver.numeric_count);
         let (floored, chords) = (solution.floored_steps, solution.chord_steps);
         println!(
             "t0 = {t0}: {outer} steps, {floored} floored, {chords} chord, {count} factorisations"
@@ -372,7 +376,7 @@ fn newton_on_hencky_s_law_falls_back_to_the_floored_tangent() {
         assert!(t0 > 1e-4 || count > factorising, "no factorisation refused: {count}, {outer}");
         assert!(t0 > 1e-4 || 3 * count <= outer, "{count} factorisations in {outer} steps");
         assert!(t0 < 1e-3 || chords == 0, "a chord step before the floor stays: {chords}");
-        let tangent = piezocontact::report::hencky_tangent(&solution, false);
+        let tangent = piezocontact::report::summary::hencky_tangent(&solution, false);
         let said = tangent.contains(&format!("{chords} of them chord steps"));
         assert!(t0 > 1e-4 || said, "{tangent}");
         assert!(solution.kkt.max <= 1e-10, "{:?}", solution.kkt);
@@ -395,12 +399,12 @@ fn the_exact_solver_converges_with_hencky_active() {
         println!(
             "{}: {softened} softened elements, {} outer steps, {} factorisations, KKT {:.1e}",
             model.name(),
-            solution.outer_iterations,
-            solution.timings.numeric_count,
+            solution.outer_iterations(),
+            solution.timings.solver.numeric_count,
             solution.kkt.max
         );
         assert!(softened > problem.mesh.n_cells() / 10, "Hencky is not active ({softened})");
-        assert!(solution.timings.numeric_count > 1);
+        assert!(solution.timings.solver.numeric_count > 1);
         assert!(solution.kkt.max <= 1e-10, "{:?}", solution.kkt);
     }
 }
@@ -430,15 +434,16 @@ fn a_grown_condensation_gives_the_whole_condensation_s_solution() {
             "{}: {touching} of {n3} touch; {} condensed, {} factorisations and {} solves (whole: {}, {}), differences {}",
             model.name(),
             grown.condensed_nodes,
-            grown.timings.numeric_count,
-            grown.timings.solve_count,
-            whole.timings.numeric_count,
-            whole.timings.solve_count,
+            grown.timings.solver.numeric_count,
+            grown.timings.solver.solve_count,
+            whole.timings.solver.numeric_count,
+            whole.timings.solver.solve_count,
             show(&d)
         );
         assert!(grown.condensed_nodes < n3 && grown.kkt.max <= 1e-10, "{:?}", grown.kkt);
         // A growth costs a factorisation, or a solve per new unknown where that is cheaper.
-        let counts = |s: &ContactSolution| (s.timings.numeric_count, s.timings.solve_count);
+        let counts =
+            |s: &ContactSolution| (s.timings.solver.numeric_count, s.timings.solver.solve_count);
         let ((numeric, solves), (whole_numeric, whole_solves)) = (counts(&grown), counts(&whole));
         assert!(numeric > whole_numeric || solves > whole_solves + 2);
         assert!(d.iter().all(|v| *v < 1e-9), "{d:?}");

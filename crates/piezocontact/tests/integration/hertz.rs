@@ -66,7 +66,8 @@ fn indent(mesh_name: &str, depth: f64) -> (f64, f64) {
             n_nu: 1.0,
             h_nu_range: 128.0,
         },
-        pv2: None,
+        friction: None,
+        conduction: None,
         foundation: Foundation::Sphere { center, radius: 1.0 },
         phi0: 0.0,
     };
@@ -79,7 +80,7 @@ fn indent(mesh_name: &str, depth: f64) -> (f64, f64) {
     };
     let settings = Settings::new(Newton::new(parameters), 10);
     let solution = solve_contact(&problem, &model, &settings).unwrap();
-    assert!(solution.converged && solution.kkt.max <= 1e-10, "{:?}", solution.failure);
+    assert!(solution.converged() && solution.kkt.max <= 1e-10, "{:?}", solution.failure);
     // The foundation pushes the body down: P is the magnitude of that force.
     let load = -solution.balance.contact[dim - 1];
     let (mu1, k0) = (elasticity.mu1, elasticity.k0);

@@ -1,19 +1,23 @@
 //! Indentation experiments (model §14): the charge on the electrodes, loading paths, the
 //! cone and the punch against Sneddon and Boussinesq.
 
-use super::common::{EPS0, PAPER_UNITS, committed_case, mesh_file, paper_model, perturbed_square};
+use super::common::{
+    EPS0, PAPER_UNITS, committed_case, contact_run, mesh_file, paper_model, path_run,
+    perturbed_square,
+};
 use piezocontact::algorithm::condensed::Guess;
 use piezocontact::algorithm::newton::{self, Newton};
-use piezocontact::algorithm::{Settings, solve_contact};
+use piezocontact::algorithm::{ContactSolver, Settings, solve_contact};
 use piezocontact::case::{Built, Case};
 use piezocontact::linalg::default_solver;
 use piezocontact::material::{
     ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants,
 };
 use piezocontact::oracles;
-use piezocontact::path::{CurveRow, PathRun};
 use piezocontact::problem::{BodyLoads, Boundary, Problem};
+use piezocontact::report::CurveRow;
 use piezocontact::run::ContactRun;
+use piezocontact::run::{PathRun, Run};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -57,7 +61,7 @@ fn the_electrodes_of_a_capacitor_hold_its_charge() {
     let mut model = paper_model(None, 0.0, PAPER_UNITS);
     model.compliance.gap = 10.0; // the foundation is far: no contact
     let solution = solve_contact(&problem, &model, &newton()).unwrap();
-    assert!(solution.converged, "{:?}", solution.failure);
+    assert!(solution.converged(), "{:?}", solution.failure);
     let charges = &solution.balance.charges;
     let expected = beta33 * volts;
     println!("charges {charges:?}, expected ±{expected}");
@@ -111,8 +115,7 @@ max_condensed = 3000
 
 /// The path's steps: (depth, force on the indenter along +z), every step converged.
 fn force_depth(case: &Case) -> Vec<(f64, f64)> {
-    let path =
-        PathRun::solve_built(case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
+    let path = path_run(&case.build().unwrap());
     assert!(path.converged(), "{:?}", path.failure);
     path.curve.iter().map(|r| (r.depth, r.force[2])).collect()
 }
@@ -193,22 +196,24 @@ fn curve_case(overrides: &[&str]) -> Case {
 fn cold(depth: f64) -> ContactRun {
     let center = format!("foundation.center=[0.0, 0.0, {}]", 1.0 - depth);
     let case = curve_case(&[&center]);
-    let built = Built { loading: None, ..case.build().unwrap() };
-    let run = ContactRun::solve_built(&case, built, default_solver(), &|_| {}).unwrap();
-    assert!(run.solution.converged, "{:?}", run.solution.failure);
+    let run = contact_run(&Built { loading: None, ..case.build().unwrap() });
+    assert!(run.solution.converged(), "{:?}", run.solution.failure);
     run
 }
 
-/// One run of a case with a loading path is refused, naming [loading] and its line: it
-/// would solve the ball where [foundation] puts it (just touching: no contact at all). Without
-/// the path, the same case is one run.
+/// A command that solves one position per case (sweep, bench --contact) refuses a case with
+/// a loading path, naming [loading] and its line: it would solve the ball where [foundation]
+/// puts it (just touching: no contact at all). A run follows the path; without the path,
+/// the same case is one contact run.
 #[test]
-fn one_run_refuses_a_loading_path() {
-    let case = curve_case(&[]);
-    let refused = ContactRun::solve(&case).err().map(|e| e.to_string()).unwrap_or_default();
+fn one_position_refuses_a_loading_path() {
+    let case = curve_case(&["loading.depths=[0.01]"]);
+    let refused = case.one_position().err().map(|e| e.to_string()).unwrap_or_default();
     assert!(refused.contains("indentation-curve.toml:") && refused.contains("[loading] path"));
-    let built = Built { loading: None, ..case.build().unwrap() };
-    assert!(ContactRun::solve_built(&case, built, default_solver(), &|_| {}).is_ok());
+    let built = case.build().unwrap();
+    assert!(matches!(Run::solve(&built, default_solver(), &|_| {}), Ok(Run::Path(_))));
+    let built = Built { loading: None, ..built };
+    assert!(matches!(Run::solve(&built, default_solver(), &|_| {}), Ok(Run::Contact(_))));
 }
 
 /// The largest difference of two solutions relative to the largest |x|.
@@ -226,20 +231,20 @@ fn difference(a: &[f64], b: &[f64]) -> f64 {
 #[test]
 fn the_steps_of_a_path_are_the_solves_of_their_problems() {
     let depths = [0.015, 0.01, 0.005];
-    let case = curve_case(&["loading.depths=[0.015, 0.01, 0.005]"]);
-    let path =
-        PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
+    let built = curve_case(&["loading.depths=[0.015, 0.01, 0.005]"]).build().unwrap();
+    let path = path_run(&built);
     assert!(path.converged() && path.curve.len() == 3, "{:?}", path.failure);
     let last = &path.last.solution;
     println!(
         "path: {} factorisations, Newton steps {:?}",
-        last.timings.numeric_count,
+        last.timings.solver.numeric_count,
         path.curve.iter().map(|r| r.newton_steps).collect::<Vec<_>>()
     );
-    assert_eq!(last.timings.numeric_count, 1);
+    assert_eq!(last.timings.solver.numeric_count, 1);
     for (k, depth) in depths.iter().enumerate() {
         let run = cold(*depth);
-        let row = CurveRow::new(k + 1, &path.loading.steps[k], &run.solution, &run.rows);
+        let step = &built.loading.as_ref().unwrap().steps[k];
+        let row = CurveRow::new(k + 1, step, &run.solution, &run.rows);
         let d = (row.force[2] - path.curve[k].force[2]).abs() / row.force[2];
         println!(
             "step {}: force {:.6e} (cold {:.6e}), relative difference {d:.1e}",
@@ -252,8 +257,7 @@ fn the_steps_of_a_path_are_the_solves_of_their_problems() {
     let d = difference(&last.x, &cold(0.005).solution.x);
     assert!(d < 1e-9, "the last step differs from its cold solve by {d}");
     let one = curve_case(&["loading.depths=[0.01]"]);
-    let single =
-        PathRun::solve_built(&one, one.build().unwrap(), default_solver(), &|_| {}).unwrap();
+    let single = path_run(&one.build().unwrap());
     let d = difference(&single.last.solution.x, &cold(0.01).solution.x);
     assert!(d < 1e-12, "a path of one step differs from run by {d}");
 }
@@ -267,8 +271,7 @@ fn the_steps_of_a_path_are_the_solves_of_their_problems() {
 fn a_path_back_to_the_unloaded_state_ends_at_zero() {
     for extra in [&[][..], &["conductivity.ke=0.5", "contact.penetration=0.01"][..]] {
         let case = curve_case(&[&["loading.depths=[0.002, 0.0]"], extra].concat());
-        let path =
-            PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
+        let path = path_run(&case.build().unwrap());
         assert!(path.converged(), "{extra:?}: {:?}", path.failure);
         let last = &path.last.solution;
         assert_eq!(path.curve[1].newton_steps, 1, "{extra:?}");
@@ -286,15 +289,17 @@ fn a_path_back_to_the_unloaded_state_ends_at_zero() {
 fn a_condensation_grown_by_solves_is_ordered_last_before_the_next_factorisation() {
     let case =
         curve_case(&["material.law=\"hencky\"", "material.t0=1e-4", "loading.depths=[0.01, 0.02]"]);
-    let path =
-        PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
+    let path = path_run(&case.build().unwrap());
     assert!(path.converged(), "{:?}", path.failure);
     let last = &path.last.solution;
     let t = &last.timings;
     let unknowns = 3 * last.condensed_nodes;
-    println!("{} factorisations, {} solves, {unknowns} condensed", t.numeric_count, t.solve_count);
-    assert!(t.numeric_count > 4, "Hencky's law is not active: {t:?}");
-    assert!(t.solve_count <= 2 * t.numeric_count + unknowns, "{t:?}");
+    println!(
+        "{} factorisations, {} solves, {unknowns} condensed",
+        t.solver.numeric_count, t.solver.solve_count
+    );
+    assert!(t.solver.numeric_count > 4, "Hencky's law is not active: {t:?}");
+    assert!(t.solver.solve_count <= 2 * t.solver.numeric_count + unknowns, "{t:?}");
 }
 
 /// No charge enters the block but through its electrodes (the ball does not conduct, no
@@ -303,8 +308,7 @@ fn a_condensation_grown_by_solves_is_ordered_last_before_the_next_factorisation(
 #[test]
 fn the_electrodes_charges_cancel_and_grow_with_the_depth() {
     let case = curve_case(&["loading.depths=[0.005, 0.01, 0.015]"]);
-    let path =
-        PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
+    let path = path_run(&case.build().unwrap());
     let mut previous = 0.0;
     for r in &path.curve {
         let (bottom, top) = (r.charges[0], r.charges[1]);
@@ -332,9 +336,7 @@ fn a_ball_on_a_piezoelectric_half_space_follows_its_indentation_modulus() {
     let (mut phi_errors, mut ratios) = (Vec::new(), Vec::new());
     for mesh in ["indent-halfspace-coarse.msh", "indent-halfspace-fine.msh"] {
         let coupled = indentation_case(mesh, ball, &depths, true);
-        let path =
-            PathRun::solve_built(&coupled, coupled.build().unwrap(), default_solver(), &|_| {})
-                .unwrap();
+        let path = path_run(&coupled.build().unwrap());
         assert!(path.converged(), "{:?}", path.failure);
         let uncoupled = force_depth(&indentation_case(mesh, ball, &depths, false));
         for (k, row) in path.curve.iter().enumerate() {
@@ -385,8 +387,7 @@ fn incremental_friction_makes_loading_and_unloading_differ() {
     let depths = "loading.depths=[0.005, 0.01, 0.015, 0.02, 0.015, 0.01, 0.005]";
     let run = |law: &str| {
         let case = curve_case(&[depths, &format!("friction.path={law:?}"), "friction.mu=0.1"]);
-        let path =
-            PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
+        let path = path_run(&case.build().unwrap());
         assert!(path.converged(), "{law}: {:?}", path.failure);
         path
     };
@@ -487,15 +488,16 @@ fn a_path_of_load_factors_scales_the_loads() {
     let sets = ["mesh.nx=24", "mesh.ny=4", "solver.method=\"newton\""];
     let bar = |extra: &[&str]| committed_case("paper-7.1.toml", &[&sets, extra].concat());
     let case = bar(&["loading.load_factors=[0.5, 0.5, 1.0]"]);
-    let path =
-        PathRun::solve_built(&case, case.build().unwrap(), default_solver(), &|_| {}).unwrap();
+    let path = path_run(&case.build().unwrap());
     assert!(path.converged() && path.curve.len() == 3, "{:?}", path.failure);
     let single = bar(&[]);
+    let built = single.build().unwrap();
+    let (problem, model) = (&built.problem, built.model.as_ref().unwrap());
     for (k, factor) in [0.5, 0.5, 1.0].into_iter().enumerate() {
-        let mut built = single.build().unwrap();
-        built.problem.load_factor = factor;
-        let run = ContactRun::solve_built(&single, built, default_solver(), &|_| {}).unwrap();
-        let (ours, theirs) = (path.curve[k].force[1], -run.solution.balance.contact[1]);
+        let mut solver =
+            ContactSolver::new(problem, model, &built.settings, default_solver()).unwrap();
+        let solution = solver.solve(problem, model, factor, &|_| {}).unwrap();
+        let (ours, theirs) = (path.curve[k].force[1], -solution.balance.contact[1]);
         println!("step {}: factor {factor}, force {ours:.6e} (single run {theirs:.6e})", k + 1);
         assert!(
             (ours - theirs).abs() <= 1e-9 * theirs.abs(),

@@ -6,7 +6,7 @@ use piezocontact::algorithm::{ContactSolution, solve_contact_with};
 use piezocontact::case::Built;
 use piezocontact::dofs::DofMap;
 use piezocontact::linalg::{LdltSolver, Ordering};
-use piezocontact::solver::CoupledSystem;
+use piezocontact::system::CoupledSystem;
 
 /// cases/indentation-3d.toml on its coarse committed mesh.
 fn indentation() -> Built {
@@ -19,7 +19,7 @@ fn solve(built: &Built, ordering: Ordering, threads: usize) -> ContactSolution {
     let model = built.model.as_ref().unwrap();
     let solution =
         solve_contact_with(&built.problem, model, &built.settings, solver, &|_| {}).unwrap();
-    assert!(solution.converged, "{:?}", solution.failure);
+    assert!(solution.converged(), "{:?}", solution.failure);
     solution
 }
 

@@ -8,7 +8,7 @@ use piezocontact::linalg::default_solver;
 use piezocontact::material::ElasticLaw;
 use piezocontact::mesh::Mesh;
 use piezocontact::problem::{BodyLoads, Boundary, Problem, ScalarField, VectorField};
-use piezocontact::solver::solve_without_contact;
+use piezocontact::system::solve_without_contact;
 use std::sync::Arc;
 
 /// u = A x + a, ϕ = c·x + c0 with coefficients of the natural sizes of the paper's units.

@@ -24,9 +24,10 @@ mod ffi;
 
 pub use ffi::{abort, gather, initialize, rank_and_size, sum_over_processes};
 
-use super::SymmetricMatrix;
-use super::{DenseMatrix, Distributed, LinearSolver, SchurComplement, SolverStats};
-use super::{SymmetricPattern, check_length};
+use super::dense::DenseMatrix;
+use super::seam::{Distributed, LinearSolver, SchurComplement, SolverStats};
+use super::sparse::{SymmetricMatrix, SymmetricPattern};
+use super::vectors::check_length;
 use crate::error::{Error, Result};
 use ffi::{Factor, Gather, Matrix, PetscInt, Vector};
 use std::time::Instant;

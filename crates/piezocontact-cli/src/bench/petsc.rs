@@ -3,17 +3,14 @@
 //! matrix (nested dissection on every thread) in a process of its own started by process 0
 //! after PETSc's part, so that the two do not share the cores.
 
-use crate::bench::{mesh_case, peak_mb};
+use super::mesh_case;
+use super::{factorised_once, in_child, peak_mb, print_figures};
 use crate::{processes, say};
-use anyhow::{Result, anyhow, bail};
-use piezocontact::assembly::secant_moduli;
-use piezocontact::dofs::DofMap;
+use anyhow::Result;
 use piezocontact::linalg::petsc::{self, PetscSolver};
 use piezocontact::linalg::{LdltSolver, LinearSolver, Ordering};
 use piezocontact::problem::Problem;
-use piezocontact::solver::CoupledSystem;
 use std::path::Path;
-use std::time::Instant;
 
 /// The phases of one backend: pattern, assembly, analysis, factorisation, solve [s], the
 /// factor's entries and the peak memory of each process [MB].
@@ -92,22 +89,15 @@ fn measure_petsc(mesh: &Path) -> Result<(Phases, usize)> {
 
 /// Pattern, assembly, analysis, one factorisation and one solve with `solver`.
 fn measure(problem: &Problem, solver: Box<dyn LinearSolver>) -> Result<(Phases, usize)> {
-    let t = Instant::now();
-    let dofs = DofMap::new(problem)?;
-    let dof_map = t.elapsed().as_secs_f64();
-    let mut system = CoupledSystem::new(problem, dofs, &[], solver)?;
-    let zero = vec![0.0; system.dofs().n_total()];
-    let g = secant_moduli(problem, system.dofs(), &zero)?;
-    system.factorize(problem, &g, &[])?;
-    system.solve(None)?;
-    let (timings, stats) = (system.timings(), system.solver_stats());
+    let (system, dof_map) = factorised_once(problem, solver)?;
+    let timings = system.timings();
     let phases = Phases {
         pattern: dof_map + timings.pattern,
         assembly: timings.assembly,
-        analysis: timings.symbolic,
-        numeric: timings.numeric,
-        solve: timings.solve,
-        factor_len: stats.factor_len,
+        analysis: timings.solver.symbolic_seconds,
+        numeric: timings.solver.numeric_seconds,
+        solve: timings.solver.solve_seconds,
+        factor_len: timings.solver.factor_len,
         peak_mb: vec![peak_mb()],
     };
     Ok((phases, system.dofs().n_free()))
@@ -116,33 +106,15 @@ fn measure(problem: &Problem, solver: Box<dyn LinearSolver>) -> Result<(Phases, 
 /// faer's phases on the same mesh, in a process of its own (`bench --one faer,MESH`), its
 /// environment cleared of mpirun's so that it runs alone.
 fn measure_faer_apart(mesh: &Path) -> Result<Phases> {
-    let exe = std::env::current_exe()?;
-    let mut command = std::process::Command::new(exe);
-    command.args(["bench", "--one", &format!("faer,{}", mesh.display())]);
-    for (key, _) in std::env::vars() {
-        if key.starts_with("OMPI_") || key.starts_with("PMIX_") || key.starts_with("OPAL_") {
-            command.env_remove(key);
-        }
-    }
-    let output = command.output()?;
-    if !output.status.success() {
-        bail!("faer's measurement failed: {}", String::from_utf8_lossy(&output.stderr));
-    }
-    let text = String::from_utf8_lossy(&output.stdout);
-    let value = |key: &str| -> Result<f64> {
-        text.split_whitespace()
-            .find_map(|kv| kv.strip_prefix(&format!("{key}=")))
-            .and_then(|v| v.parse().ok())
-            .ok_or_else(|| anyhow!("faer's measurement did not say {key}: {text}"))
-    };
+    let figures = in_child(&format!("faer,{}", mesh.display()), true)?;
     Ok(Phases {
-        pattern: value("pattern")?,
-        assembly: value("assembly")?,
-        analysis: value("analysis")?,
-        numeric: value("numeric")?,
-        solve: value("solve")?,
-        factor_len: value("factor_len")? as usize,
-        peak_mb: vec![value("peak_mb")?],
+        pattern: figures.get("pattern")?,
+        assembly: figures.get("assembly")?,
+        analysis: figures.get("analysis")?,
+        numeric: figures.get("numeric")?,
+        solve: figures.get("solve")?,
+        factor_len: figures.get("factor_len")? as usize,
+        peak_mb: vec![figures.get("peak_mb")?],
     })
 }
 
@@ -152,15 +124,14 @@ pub fn measure_faer(mesh: &Path) -> Result<()> {
     let problem = mesh_case(mesh)?.problem()?;
     let solver = LdltSolver::with_ordering(Ordering::NestedDissection);
     let (p, _) = measure(&problem, Box::new(solver))?;
-    say!(
-        "pattern={} assembly={} analysis={} numeric={} solve={} factor_len={} peak_mb={}",
-        p.pattern,
-        p.assembly,
-        p.analysis,
-        p.numeric,
-        p.solve,
-        p.factor_len,
-        peak_mb()
-    );
+    print_figures(&[
+        ("pattern", p.pattern.to_string()),
+        ("assembly", p.assembly.to_string()),
+        ("analysis", p.analysis.to_string()),
+        ("numeric", p.numeric.to_string()),
+        ("solve", p.solve.to_string()),
+        ("factor_len", p.factor_len.to_string()),
+        ("peak_mb", peak_mb().to_string()),
+    ]);
     Ok(())
 }

@@ -1,10 +1,10 @@
-//! Reports of a contact run: `contact.csv` (one row per Γ3 node, ordered along Γ3) and the
-//! `summary.json` fields of Algorithms 1–4.
+//! `contact.csv`: one row per Γ3 node, ordered along Γ3, with what the laws say of it; the
+//! zones it gives, and what summary.json says of values that are not finite.
 
+use super::csv::csv_number;
 use crate::algorithm::ContactSolution;
 use crate::contact::{ContactModel, NodeStatus};
 use crate::problem::Problem;
-use crate::solver::Timings;
 use serde_json::{Value, json};
 use std::fmt::Write;
 
@@ -59,7 +59,7 @@ pub fn rows(problem: &Problem, model: &ContactModel, solution: &ContactSolution)
                 gap,
                 phi: surface.phi(dofs, &solution.x, i),
                 s: solution.s[i],
-                status: solution.status(i, model.pv2.is_some()),
+                status: solution.status[i],
             }
         })
         .collect()
@@ -111,13 +111,6 @@ pub fn contact_csv(rows: &[Row], dim: usize) -> String {
         let _ = writeln!(s, "{}", r.status.name());
     }
     s
-}
-
-/// A number for a CSV cell: `{:e}`, or an empty cell when it is not finite (every CSV
-/// reader takes an empty cell as missing; no NaN or inf token is ever written). The
-/// summary.json of the run says why ([`non_finite`]).
-pub fn csv_number(v: f64) -> String {
-    if v.is_finite() { format!("{v:e}") } else { String::new() }
 }
 
 /// The `non_finite` object of summary.json: for each output field that holds values that are
@@ -187,88 +180,6 @@ pub fn zone_measures(solution: &ContactSolution, rows: &[Row]) -> (f64, f64, f64
     m
 }
 
-/// How the outer loop linearised Hencky's law (model §7, §13): "secant" (the paper's fixed
-/// point, with the Uzawa method), "whole" (the exact solver's Newton iteration with the whole
-/// tangent, also beyond e·t0, where the law's modulus along ε^D is not positive; the word for
-/// a linear law too), or "floored in k of n outer steps" where that iteration cycled or made
-/// a pivot of B̌ change sign, with ", c of them chord steps on a kept factorisation" when
-/// the floor stayed.
-pub fn hencky_tangent(solution: &ContactSolution, lags: bool) -> String {
-    let floored = format!(
-        "floored in {} of {} outer steps",
-        solution.floored_steps, solution.outer_iterations
-    );
-    match (solution.floored_steps, solution.chord_steps) {
-        _ if lags => "secant".into(),
-        (0, _) => "whole".into(),
-        (_, 0) => floored,
-        (_, c) => format!("{floored}, {c} of them chord steps on a kept factorisation"),
-    }
-}
-
-/// The contact part of `summary.json`.
-pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &[Row]) -> Value {
-    let max_abs = |f: &dyn Fn(&Row) -> f64| rows.iter().map(|r| f(r).abs()).fold(0.0, f64::max);
-    let (contact, stick, slip) = zone_measures(solution, rows);
-    let (t, kkt, balance) = (solution.timings, &solution.kkt, &solution.balance);
-    json!({
-        "problem": model.name(),
-        "converged": solution.converged,
-        "failure": solution.failure.as_ref().map(|e| e.to_string()),
-        "outer_iterations": solution.outer_iterations,
-        "inner_iterations": solution.inner_iterations,
-        "outer_criterion_history": solution.outer_history,
-        "inner_criterion_history": solution.inner_history,
-        "kkt_residual": {
-            "max": kkt.max,
-            "equilibrium_u": kkt.equilibrium_u,
-            "equilibrium_phi": kkt.equilibrium_phi,
-            "contact": kkt.contact,
-            "friction": kkt.friction,
-            "max_penetration": kkt.penetration,
-        },
-        "balance": {
-            "applied_load": balance.applied,
-            "contact_force": balance.contact,
-            "clamp_reaction": balance.reaction,
-            "relative_imbalance": balance.imbalance,
-        },
-        "gamma3": {
-            "nodes": rows.len(),
-            "condensed_nodes": solution.condensed_nodes,
-            "max_abs_sigma_nu": max_abs(&|r| r.sigma_nu),
-            "max_abs_sigma_tau": max_abs(&|r| r.sigma_tau[0].hypot(r.sigma_tau[1])),
-            "contact_measure": contact,
-            "stick_measure": stick,
-            "slip_measure": slip,
-        },
-        "timings_seconds": timings(&t),
-        "memory": memory(&t),
-        "non_finite": non_finite(solution, rows),
-    })
-}
-
-/// The `memory` object of summary.json \[bytes\]: the factorisation's size as its symbolic
-/// analysis predicted it, the exact solver's dense condensed matrices (0 without), and the
-/// process's peak resident memory measured when the solve ended (null where the system does
-/// not say).
-pub fn memory(t: &Timings) -> Value {
-    json!({
-        "factor_predicted_bytes": t.factor_bytes,
-        "dense_predicted_bytes": t.dense_bytes,
-        "peak_resident_bytes": t.peak_resident_bytes,
-    })
-}
-
-/// The `timings_seconds` object of summary.json (without the total).
-pub fn timings(t: &Timings) -> Value {
-    json!({
-        "pattern": t.pattern, "assembly": t.assembly, "symbolic": t.symbolic, "numeric": t.numeric,
-        "numeric_count": t.numeric_count, "solve": t.solve, "solve_count": t.solve_count,
-        "dense": t.dense,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -307,7 +218,7 @@ mod tests {
         assert_eq!(lines.next(), Some("x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status"));
         assert_eq!(lines.count(), rows.len());
         assert_eq!((csv_number(f64::NAN), csv_number(-0.5)), (String::new(), "-5e-1".into()));
-        let summary = contact_summary(model, &solution, &rows);
+        let summary = super::super::summary::contact_summary(model, &solution, &rows);
         assert_eq!(summary["gamma3"]["nodes"], rows.len());
         assert_eq!(summary["non_finite"], json!({}));
     }

@@ -11,29 +11,19 @@ use crate::linalg::{DenseMatrix, LinearSolver, SchurComplement, SolverStats, Sym
 use crate::problem::Problem;
 use std::time::Instant;
 
-/// Wall-clock seconds spent in each phase.
+/// Wall-clock seconds spent in each phase, and what the linear solver counted.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Timings {
     /// The sparsity pattern and its gather plan, once per run \[s\].
     pub pattern: f64,
     /// Element matrices summed into the pattern (every refill), and f̌ \[s\].
     pub assembly: f64,
-    /// Symbolic analysis (ordering, elimination tree, the factor's storage) \[s\].
-    pub symbolic: f64,
-    /// All numeric factorisations \[s\].
-    pub numeric: f64,
-    /// Number of numeric factorisations.
-    pub numeric_count: usize,
-    /// All triangular solves \[s\].
-    pub solve: f64,
-    /// Number of solves.
-    pub solve_count: usize,
+    /// The linear solver's counts and times: symbolic analysis, numeric factorisations and
+    /// solves, and the bytes its last analysis predicted for a factorisation.
+    pub solver: SolverStats,
     /// The exact solver's dense condensed problem: its Schur complements (beyond the solves
     /// counted above) and Newton's iterations (0 without one) \[s\].
     pub dense: f64,
-    /// The bytes the last symbolic analysis predicted for a numeric factorisation (0 before
-    /// one, or from a backend that predicts none).
-    pub factor_bytes: f64,
     /// The bytes of the exact solver's dense condensed matrices at the end (0 without).
     pub dense_bytes: f64,
     /// The process's peak resident memory when these timings were taken \[bytes\] (`None`
@@ -44,25 +34,8 @@ pub struct Timings {
 impl Timings {
     /// The phases the system counts: pattern, assembly, symbolic, numeric and solves \[s\].
     pub fn counted(&self) -> f64 {
-        self.pattern + self.assembly + self.symbolic + self.numeric + self.solve
-    }
-
-    /// Assembly time with the solver's counts and times.
-    fn with(pattern: f64, assembly: f64, solver: &dyn LinearSolver) -> Self {
-        let s = solver.stats();
-        Self {
-            pattern,
-            assembly,
-            symbolic: s.symbolic_seconds,
-            numeric: s.numeric_seconds,
-            numeric_count: s.numeric_count,
-            solve: s.solve_seconds,
-            solve_count: s.solve_count,
-            dense: 0.0,
-            factor_bytes: s.factor_bytes,
-            dense_bytes: 0.0,
-            peak_resident_bytes: crate::limits::peak_resident_bytes(),
-        }
+        let s = &self.solver;
+        self.pattern + self.assembly + s.symbolic_seconds + s.numeric_seconds + s.solve_seconds
     }
 }
 
@@ -72,8 +45,10 @@ pub struct CoupledSystem {
     assembler: Assembler,
     solver: Box<dyn LinearSolver>,
     matrix: Option<SymmetricMatrix>,
-    /// f̌ on the free DOFs: assembled once, it does not depend on x_n.
+    /// f̌ on the free DOFs, the loads scaled by `load_factor`: it does not depend on x_n.
     load: Vec<f64>,
+    /// The factor on the applied loads that `load` holds [-].
+    load_factor: f64,
     /// The Dirichlet lifting of the current matrix (with Hencky's tangent, (K_T − K_sec) x_n),
     /// on the free DOFs.
     lifting: Vec<f64>,
@@ -136,13 +111,14 @@ impl CoupledSystem {
         let assembler = Assembler::new(problem, dofs, block_nodes, owned.as_deref())?;
         let pattern_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let load = assembler.restrict(&load_vector(problem, assembler.dofs()));
+        let load = assembler.restrict(&load_vector(problem, assembler.dofs(), 1.0));
         let assembly_seconds = t.elapsed().as_secs_f64();
         Ok(Self {
             assembler,
             solver,
             matrix: None,
             load,
+            load_factor: 1.0,
             lifting: Vec::new(),
             rhs: Vec::new(),
             unloaded: None,
@@ -218,11 +194,17 @@ impl CoupledSystem {
         Ok(())
     }
 
-    /// Assembles f̌ again from `problem` — the same mesh and boundary with other loads (a
-    /// step of a loading path) — keeping the matrix and its factorisation.
-    pub fn reload(&mut self, problem: &Problem) {
+    /// Assembles f̌ again with every load of `problem` scaled by `load_factor` [-] (a step of a
+    /// loading path), keeping the matrix and its factorisation; nothing when f̌ holds that
+    /// factor already.
+    pub fn scale_loads(&mut self, problem: &Problem, load_factor: f64) {
+        if load_factor == self.load_factor {
+            return;
+        }
         let t = Instant::now();
-        self.load = self.assembler.restrict(&load_vector(problem, self.assembler.dofs()));
+        let dofs = self.assembler.dofs();
+        self.load = self.assembler.restrict(&load_vector(problem, dofs, load_factor));
+        self.load_factor = load_factor;
         self.unloaded = None;
         if !self.lifting.is_empty() {
             self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
@@ -310,7 +292,14 @@ impl CoupledSystem {
 
     /// Timings so far.
     pub fn timings(&self) -> Timings {
-        Timings::with(self.pattern_seconds, self.assembly_seconds, self.solver.as_ref())
+        Timings {
+            pattern: self.pattern_seconds,
+            assembly: self.assembly_seconds,
+            solver: self.solver.stats(),
+            dense: 0.0,
+            dense_bytes: 0.0,
+            peak_resident_bytes: crate::limits::peak_resident_bytes(),
+        }
     }
 
     /// Gives up the DOF map (at the end of a solve, for its result).
@@ -336,8 +325,6 @@ pub struct StaticSolution {
     pub x: Vec<f64>,
     /// The DOF numbering of `x`.
     pub dofs: DofMap,
-    /// Number of free DOFs (the order of the system).
-    pub free_dofs: usize,
     /// Relative residual ‖B̌x − f̌‖ / ‖f̌‖ of the linear system on the free DOFs.
     pub relative_residual: f64,
     /// Time spent.
@@ -356,6 +343,6 @@ pub fn solve_without_contact(
     system.factorize(problem, &moduli, &[])?;
     let x = system.solve(None)?;
     let relative_residual = system.relative_residual(&x)?;
-    let (free_dofs, timings) = (system.dofs().n_free(), system.timings());
-    Ok(StaticSolution { x, dofs: system.into_dofs(), free_dofs, relative_residual, timings })
+    let timings = system.timings();
+    Ok(StaticSolution { x, dofs: system.into_dofs(), relative_residual, timings })
 }

@@ -1,0 +1,119 @@
+//! `piezocontact bench --contact`: a contact solve with the exact solver against one plain
+//! factorisation of the same mesh (the floor), in wall time and peak memory, each measured
+//! in a process of its own.
+
+use super::{INDENTATION, PAPER_CASE, PAPER_PV2, in_child, paper_case, parse_size};
+use crate::say;
+use anyhow::{Result, anyhow};
+use piezocontact::case::Case;
+use std::path::Path;
+
+/// The default sizes of the contact benchmark.
+pub const CONTACT_SIZES: [&str; 4] = ["96x16", "192x32", "384x64", "768x128"];
+
+/// What marks a case file among the targets of the contact benchmark.
+const CASE_PREFIX: &str = "case:";
+
+/// The target of `bench --contact --case FILE`.
+pub fn case_target(file: &Path) -> String {
+    format!("{CASE_PREFIX}{}", file.display())
+}
+
+/// The problems of the contact benchmark on a target: the paper's bar at a size "NXxNY"
+/// (PV1, PV2 with µ = k_e = 0.2 and 0.6), a Gmsh mesh with the parts of
+/// meshes/indent-3d.geo in the indentation case, or "case:FILE" (both: PV1, and PV2 with
+/// µ = 0.3).
+pub fn contact_problems(target: &str) -> Result<Vec<(&'static str, Case)>> {
+    let newton = || vec!["solver.method=\"newton\"".to_string()];
+    if let Some(file) = target.strip_prefix(CASE_PREFIX) {
+        let with = |extra: &[&str]| -> Result<Case> {
+            let mut overrides = newton();
+            overrides.extend(extra.iter().map(|s| s.to_string()));
+            let case = Case::load(Path::new(file), &overrides)?;
+            case.one_position()
+                .map_err(|e| anyhow!("{e}; `bench --path --case {file}` times the path"))?;
+            Ok(case)
+        };
+        let pv2 = ["contact.problem=\"PV2\"", "friction.mu=0.3"];
+        return Ok(vec![("PV1", with(&["contact.problem=\"PV1\""])?), ("PV2 mu=0.3", with(&pv2)?)]);
+    }
+    if let Ok((nx, ny)) = parse_size(target) {
+        let pv2 = |mu: f64| {
+            let mut o = newton();
+            o.extend([format!("friction.mu={mu}"), format!("conductivity.ke={mu}")]);
+            o
+        };
+        return Ok(vec![
+            ("PV1", paper_case(PAPER_CASE, nx, ny, &newton())?),
+            ("PV2 mu=0.2", paper_case(PAPER_PV2, nx, ny, &pv2(0.2))?),
+            ("PV2 mu=0.6", paper_case(PAPER_PV2, nx, ny, &pv2(0.6))?),
+        ]);
+    }
+    let file = std::fs::canonicalize(target).map_err(|e| anyhow!("--mesh {target}: {e}"))?;
+    let with = |extra: &[&str]| -> Result<Case> {
+        let mut overrides = newton();
+        overrides.push(format!("mesh.file={:?}", file.display().to_string()));
+        overrides.extend(extra.iter().map(|s| s.to_string()));
+        Ok(Case::from_text(Path::new("cases/indentation-3d.toml"), INDENTATION, &overrides)?)
+    };
+    Ok(vec![("PV1", with(&["contact.problem=\"PV1\""])?), ("PV2 mu=0.3", with(&[])?)])
+}
+
+/// `bench --contact`: every measurement in a process of its own (peak memory per run), on
+/// each target: a size "NXxNY" of the paper's bar or a Gmsh mesh.
+pub fn contact(targets: &[String]) -> Result<()> {
+    let names: Vec<Vec<&str>> = targets
+        .iter()
+        .map(|t| Ok(contact_problems(t)?.into_iter().map(|(name, _)| name).collect()))
+        .collect::<Result<_>>()?;
+    say!(
+        "{:>10} {:>9} {:>11} {:>11} {:>7} {:>12} {:>9} {:>14} {:>8} {:>9} {:>15} {:>9}",
+        "mesh",
+        "DOFs",
+        "problem",
+        "condensed",
+        "newton",
+        "kkt_residual",
+        "wall_s",
+        "factorisation_s",
+        "ratio",
+        "peak_MB",
+        "factorisation_MB",
+        "mem_ratio"
+    );
+    for (target, names) in targets.iter().zip(names) {
+        let plain = in_child(&format!("plain,{target}"), false)?;
+        let (plain_s, plain_mb) = (plain.get("seconds")?, plain.get("peak_mb")?);
+        let size =
+            Path::new(target).file_name().map_or(target.clone(), |n| n.to_string_lossy().into());
+        for (k, name) in names.into_iter().enumerate() {
+            let run = in_child(&format!("contact{k},{target}"), false)?;
+            let (seconds, mb) = (run.get("seconds")?, run.get("peak_mb")?);
+            say!(
+                "{:>10} {:>9} {:>11} {:>11} {:>7} {:>12.3e} {:>9.3} {:>14.3} {:>8.2} {:>9.0} {:>15.0} {:>9.2}",
+                size,
+                run.get("dofs")?,
+                name,
+                format!("{}/{}", run.get("condensed")?, run.get("gamma3")?),
+                run.get("newton")?,
+                run.get("kkt")?,
+                seconds,
+                plain_s,
+                seconds / plain_s,
+                mb,
+                plain_mb,
+                mb / plain_mb
+            );
+        }
+    }
+    say!(
+        "condensed: Γ3 nodes in the exact solver's dense problem / all Γ3 nodes; wall_s: \
+         solve_contact with solver.method = \"newton\" (pattern, ordering, factorisations, \
+         Schur complement, Newton, two solves per factorisation, KKT residual); factorisation_s: one plain \
+         pattern + assembly + symbolic + numeric LDLᵀ of the same mesh, the floor; both with \
+         solver.ordering = \"auto\" (nested dissection in 3D) on {} \
+         threads in 3D (one in 2D); peak_MB: the process's peak resident memory; ratios: contact / factorisation",
+        rayon::current_num_threads()
+    );
+    Ok(())
+}

@@ -1,0 +1,52 @@
+//! `piezocontact bench --one SPEC`: one measurement in a process of its own, printed as
+//! key=value pairs for the parent benchmark — "plain,TARGET" (one factorisation),
+//! "contactK,TARGET" (the K-th contact problem of the target), "faer,MESH" (faer's phases
+//! beside PETSc's; feature `petsc`).
+
+use super::contact::contact_problems;
+use super::{peak_mb, print_figures};
+use anyhow::{Result, anyhow};
+use piezocontact::case::Built;
+use piezocontact::dofs::DofMap;
+use piezocontact::linalg::default_solver;
+use piezocontact::system::CoupledSystem;
+use std::time::Instant;
+
+/// Runs the measurement `spec` names and prints its figures.
+pub fn measure_one(spec: &str) -> Result<()> {
+    let (kind, target) = spec.split_once(',').ok_or_else(|| anyhow!("--one {spec}"))?;
+    #[cfg(feature = "petsc")]
+    if kind == "faer" {
+        return super::petsc::measure_faer(std::path::Path::new(target));
+    }
+    let mut problems = contact_problems(target)?;
+    if kind == "plain" {
+        let problem = problems.swap_remove(0).1.problem()?;
+        let start = Instant::now();
+        let mut system =
+            CoupledSystem::new(&problem, DofMap::new(&problem)?, &[], default_solver())?;
+        let g = vec![problem.material.elasticity.mu1; problem.mesh.n_cells()];
+        system.factorize(&problem, &g, &[])?;
+        let seconds = start.elapsed().as_secs_f64();
+        print_figures(&[("seconds", seconds.to_string()), ("peak_mb", peak_mb().to_string())]);
+        return Ok(());
+    }
+    let k: usize = kind.trim_start_matches("contact").parse()?;
+    let (_, case) = problems.into_iter().nth(k).ok_or_else(|| anyhow!("--one {spec}"))?;
+    let Built { problem, model, settings, .. } = case.build()?;
+    let model = model.ok_or_else(|| anyhow!("no [contact] table"))?;
+    let start = Instant::now();
+    let s = &piezocontact::algorithm::solve_contact(&problem, &model, &settings)?;
+    let seconds = start.elapsed().as_secs_f64();
+    print_figures(&[
+        ("seconds", seconds.to_string()),
+        ("peak_mb", peak_mb().to_string()),
+        ("dofs", s.dofs.n_free().to_string()),
+        ("condensed", s.condensed_nodes.to_string()),
+        ("gamma3", s.surface.len().to_string()),
+        ("newton", s.inner_iterations.iter().sum::<usize>().to_string()),
+        ("kkt", s.kkt.max.to_string()),
+        ("converged", s.converged().to_string()),
+    ]);
+    Ok(())
+}

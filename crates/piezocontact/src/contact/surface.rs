@@ -1,0 +1,214 @@
+//! The contact surface Γ3 (model §6): nodal lumped weights, normals and tangents, and the
+//! nodal kinematics u_ν, u_τ, ϕ. Contact quantities p_c, p_f, λ_c, λ_f, s live on its nodes.
+//!
+//! ```text
+//! w_i = Σ_{e ∋ i} |e| / d                  (facets e of Γ3)
+//! ν_i = Σ_{e ∋ i} |e| ν_e / ‖Σ_{e ∋ i} |e| ν_e‖
+//! u_ν = u·ν,  u_τ = u − u_ν ν;  in 2D τ = ν rotated by +90° (ν = (0,−1) ↦ τ = (1,0))
+//! ```
+
+use super::foundation::Foundation;
+use crate::dofs::{CONSTRAINED, DofMap};
+use crate::error::{Error, Result};
+use crate::problem::Problem;
+use std::collections::BTreeMap;
+
+/// Γ3 with its nodal geometry. Vectors are stored with 3 components (the first d used).
+#[derive(Clone, Debug)]
+pub struct ContactSurface {
+    dim: usize,
+    /// Γ3 nodes, ordered along Γ3 in 2D (from one end to the other).
+    pub nodes: Vec<usize>,
+    /// w_i [length^(d−1)].
+    pub weight: Vec<f64>,
+    /// ν_i, outward unit normals.
+    pub normal: Vec<[f64; 3]>,
+    /// g_a,i: the gap at node i \[length\], where compliance and conduction start; the rigid stop
+    /// is at g_a,i + g_p. +∞ where the node cannot touch the foundation.
+    pub gap: Vec<f64>,
+}
+
+impl ContactSurface {
+    /// Builds Γ3 from the problem's contact parts. Nodes whose displacement is fully
+    /// prescribed (on Γ1) are left out: their contact force would go to the clamp.
+    pub fn new(problem: &Problem, dofs: &DofMap) -> Result<Self> {
+        let mesh = &problem.mesh;
+        let dim = mesh.dim();
+        let mut acc: BTreeMap<usize, (f64, [f64; 3])> = BTreeMap::new();
+        let mut neighbours: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+        for &p in &problem.boundary.contact {
+            for facet in mesh.part_facets(p) {
+                let (measure, n) = mesh.facet_frame(facet);
+                for &node in facet {
+                    let e = acc.entry(node).or_insert((0.0, [0.0; 3]));
+                    e.0 += measure / dim as f64;
+                    (0..3).for_each(|i| e.1[i] += measure * n[i]);
+                    neighbours
+                        .entry(node)
+                        .or_default()
+                        .extend(facet.iter().filter(|&&m| m != node));
+                }
+            }
+        }
+        let free = |node: usize| (0..dim).any(|i| dofs.free_index(dofs.u(node, i)) != CONSTRAINED);
+        let mut order: Vec<usize> = if dim == 2 {
+            chain_order(&neighbours)
+        } else {
+            // In 3D, by coordinates: x, then y, then z.
+            let mut nodes: Vec<usize> = acc.keys().copied().collect();
+            nodes.sort_by(|&a, &b| {
+                let (p, q) = (mesh.node(a), mesh.node(b));
+                p.iter()
+                    .zip(q)
+                    .map(|(u, v)| u.total_cmp(v))
+                    .find(|o| o.is_ne())
+                    .unwrap_or(a.cmp(&b))
+            });
+            nodes
+        };
+        if dim == 2
+            && order.len() > 1
+            && mesh.node(order[0])[0] > mesh.node(order[order.len() - 1])[0]
+        {
+            order.reverse();
+        }
+        let mut surface = Self {
+            dim,
+            nodes: Vec::new(),
+            weight: Vec::new(),
+            normal: Vec::new(),
+            gap: Vec::new(),
+        };
+        for node in order.into_iter().filter(|&n| free(n)) {
+            let (w, n) = acc[&node];
+            let norm = n.iter().map(|v| v * v).sum::<f64>().sqrt();
+            if norm <= 0.0 {
+                return Err(Error::InvalidParameter {
+                    name: "boundary.contact".into(),
+                    value: format!("node {node}"),
+                    requirement: "the facet normals at a Γ3 node must not cancel (a fold in Γ3?)"
+                        .into(),
+                });
+            }
+            surface.nodes.push(node);
+            surface.weight.push(w);
+            surface.normal.push(n.map(|v| v / norm));
+            surface.gap.push(0.0);
+        }
+        Ok(surface)
+    }
+
+    /// Sets the gaps: the distance along ν_i to `foundation` plus `offset` (the constant gap
+    /// g_a of the paper when the foundation is [`Foundation::ConstantGap`]).
+    pub fn with_gaps(mut self, problem: &Problem, foundation: &Foundation, offset: f64) -> Self {
+        self.gap = (0..self.len())
+            .map(|i| offset + foundation.distance_along(self.position3(problem, i), self.normal[i]))
+            .collect();
+        self
+    }
+
+    /// Node i's coordinates with 3 components.
+    pub fn position3(&self, problem: &Problem, i: usize) -> [f64; 3] {
+        let mut x = [0.0; 3];
+        x[..self.dim].copy_from_slice(self.position(problem, i));
+        x
+    }
+
+    /// Number of Γ3 nodes.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether Γ3 has no node.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Space dimension.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// τ_i = ν_i rotated by +90° (2D); the first tangent τ1 of [`ContactSurface::frame`] in 3D.
+    pub fn tangent(&self, i: usize) -> [f64; 3] {
+        self.frame(i)[1]
+    }
+
+    /// The local frame of node i: rows ν, τ1, τ2, orthonormal. In 2D τ1 = ν turned by +90°
+    /// and τ2 = 0. In 3D τ1 is the coordinate axis least aligned with ν, made orthogonal to ν
+    /// and normalised, and τ2 = ν × τ1; the tangential columns of contact.csv are along them.
+    pub fn frame(&self, i: usize) -> [[f64; 3]; 3] {
+        frame(self.normal[i], self.dim)
+    }
+
+    /// u at Γ3 node i from a global vector.
+    pub fn u(&self, dofs: &DofMap, x: &[f64], i: usize) -> [f64; 3] {
+        let mut u = [0.0; 3];
+        (0..self.dim).for_each(|k| u[k] = x[dofs.u(self.nodes[i], k)]);
+        u
+    }
+
+    /// (u_ν, u_τ) at Γ3 node i.
+    pub fn split(&self, dofs: &DofMap, x: &[f64], i: usize) -> (f64, [f64; 3]) {
+        let (u, n) = (self.u(dofs, x, i), self.normal[i]);
+        let u_nu: f64 = (0..3).map(|k| u[k] * n[k]).sum();
+        (u_nu, [0, 1, 2].map(|k| u[k] - u_nu * n[k]))
+    }
+
+    /// ϕ at Γ3 node i.
+    pub fn phi(&self, dofs: &DofMap, x: &[f64], i: usize) -> f64 {
+        x[dofs.phi(self.nodes[i])]
+    }
+
+    /// Γ3 node coordinates.
+    pub fn position<'a>(&self, problem: &'a Problem, i: usize) -> &'a [f64] {
+        problem.mesh.node(self.nodes[i])
+    }
+}
+
+/// The frame of unit normal ν: rows ν, τ1, τ2 (see [`ContactSurface::frame`]).
+pub fn frame(nu: [f64; 3], dim: usize) -> [[f64; 3]; 3] {
+    if dim == 2 {
+        return [nu, [-nu[1], nu[0], 0.0], [0.0; 3]];
+    }
+    let axis = (0..3).min_by(|&a, &b| nu[a].abs().total_cmp(&nu[b].abs())).unwrap_or(0);
+    let mut t1 = [0.0; 3];
+    t1[axis] = 1.0;
+    let along = nu[axis];
+    (0..3).for_each(|k| t1[k] -= along * nu[k]);
+    let norm = t1.iter().map(|v| v * v).sum::<f64>().sqrt();
+    t1.iter_mut().for_each(|v| *v /= norm);
+    let t2 = [
+        nu[1] * t1[2] - nu[2] * t1[1],
+        nu[2] * t1[0] - nu[0] * t1[2],
+        nu[0] * t1[1] - nu[1] * t1[0],
+    ];
+    [nu, t1, t2]
+}
+
+/// Orders the nodes of a chain of segments from one end to the other (a closed chain from
+/// its smallest node); disconnected chains follow each other.
+fn chain_order(neighbours: &BTreeMap<usize, Vec<usize>>) -> Vec<usize> {
+    let mut order = Vec::with_capacity(neighbours.len());
+    let mut visited = std::collections::HashSet::new();
+    let degree = |n: &usize| {
+        let mut v = neighbours[n].clone();
+        v.sort_unstable();
+        v.dedup();
+        v.len()
+    };
+    let starts: Vec<usize> =
+        neighbours.keys().filter(|n| degree(n) == 1).chain(neighbours.keys()).copied().collect();
+    for start in starts {
+        if visited.contains(&start) {
+            continue;
+        }
+        let mut current = Some(start);
+        while let Some(node) = current {
+            visited.insert(node);
+            order.push(node);
+            current = neighbours[&node].iter().copied().find(|n| !visited.contains(n));
+        }
+    }
+    order
+}

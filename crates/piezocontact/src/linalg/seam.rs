@@ -1,0 +1,120 @@
+//! The seam between the coupled system and a linear-solver backend: what every backend does
+//! ([`LinearSolver`]), the capabilities some have ([`SchurComplement`], [`Distributed`]), and
+//! what they count ([`SolverStats`]). The module docs of [`crate::linalg`] say how it is
+//! shaped.
+
+use super::dense::DenseMatrix;
+use super::sparse::{SymmetricMatrix, SymmetricPattern};
+use super::vectors::column_count;
+use crate::error::Result;
+
+/// The fill-reducing ordering of [`super::LdltSolver`]'s symbolic analysis ([`super::ordering`]).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum Ordering {
+    /// Nested dissection straight away for the pattern of a 3D mesh (more than
+    /// [`super::ordering::DENSE_ROWS`] stored entries per row of the lower half; about 30 for P1
+    /// tetrahedra, 11 for triangles), where it gave the smaller factor in every measurement;
+    /// otherwise both symbolic analyses, AMD's and nested dissection's, and the one with the
+    /// smaller factor.
+    #[default]
+    Auto,
+    /// Approximate minimum degree.
+    Amd,
+    /// METIS's nested dissection of the mesh nodes, each node's unknowns together.
+    NestedDissection,
+    /// The caller's: `order[k]` is the unknown eliminated k-th (a permutation of 0..n).
+    Custom(Vec<usize>),
+}
+
+/// Counts and wall-clock times of a linear solver.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SolverStats {
+    /// Symbolic analysis: the ordering, the elimination tree and the factor's storage \[s\].
+    pub symbolic_seconds: f64,
+    /// All numeric factorisations \[s\].
+    pub numeric_seconds: f64,
+    /// Number of numeric factorisations.
+    pub numeric_count: usize,
+    /// All solves \[s\].
+    pub solve_seconds: f64,
+    /// Number of solves.
+    pub solve_count: usize,
+    /// Stored values of the factor (a measure of its memory).
+    pub factor_len: usize,
+    /// The bytes the last analysis predicted for a numeric factorisation (factor, workspace,
+    /// scaled matrix).
+    pub factor_bytes: f64,
+    /// The ordering of the last analysis ("amd", "nd", "custom"; empty before one).
+    pub ordering: &'static str,
+    /// The floating-point operations of a numeric factorisation, as the last analysis counted
+    /// them (0 from a backend that does not count them).
+    pub factor_flops: f64,
+}
+
+/// What every backend does: analyse the pattern once, factorise whenever the values change,
+/// solve as often as needed.
+pub trait LinearSolver: std::fmt::Debug + Send {
+    /// The backend's name, for messages and reports.
+    fn name(&self) -> &str;
+    /// Symbolic analysis of `pattern`; `signs` are the expected pivot signs (+1 for u rows,
+    /// −1 for ϕ rows) of the quasi-definite matrix, a hint the backend may check.
+    fn analyze(&mut self, pattern: &SymmetricPattern, signs: &[i8]) -> Result<()>;
+    /// Numeric factorisation of `matrix`, which has the analysed pattern.
+    fn factorize(&mut self, matrix: &SymmetricMatrix) -> Result<()>;
+    /// Solves A x = b in place (b on entry, x on exit, whole vectors) with the current
+    /// factorisation.
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()>;
+    /// Solves A X = B in place for the right-hand sides stored one after another in `rhs`
+    /// (the columns of B, `n` entries each): by default one [`Self::solve_in_place`] each; a
+    /// backend with blocked sweeps reads its factor once for all of them.
+    fn solve_columns_in_place(&mut self, rhs: &mut [f64], n: usize) -> Result<()> {
+        match column_count(rhs.len(), n)? {
+            0 => Ok(()),
+            _ => rhs.chunks_mut(n).try_for_each(|column| self.solve_in_place(column)),
+        }
+    }
+    /// Counts and timings so far.
+    fn stats(&self) -> SolverStats;
+    /// The Schur-complement capability, for backends that have it.
+    fn schur(&mut self) -> Option<&mut dyn SchurComplement> {
+        None
+    }
+    /// The capability of a backend whose rows live on several processes.
+    fn distributed(&mut self) -> Option<&mut dyn Distributed> {
+        None
+    }
+}
+
+/// What a backend whose rows live on several processes tells the assembly, so that each
+/// process assembles and holds only its rows.
+pub trait Distributed {
+    /// Splits the mesh nodes between the processes — given the free unknowns of each node
+    /// (`weights[a]`) and each node's neighbours (`adjacency.1[adjacency.0[a]..adjacency.0[a +
+    /// 1]]`) — and returns those this process owns; `None` when it owns them all. The matrix
+    /// handed to [`LinearSolver::factorize`] must then hold every entry of the owned nodes'
+    /// rows, and may lack the others.
+    fn owned_nodes(
+        &mut self,
+        weights: &[usize],
+        adjacency: (&[usize], &[usize]),
+    ) -> Result<Option<Vec<bool>>>;
+    /// The sum of `value` over the processes.
+    fn sum(&self, value: f64) -> Result<f64>;
+}
+
+/// What a backend that can condense does: eliminate every unknown but a given list, and give
+/// the Schur complement S = K_cc − K_ci K_ii⁻¹ K_ic of that list (model §11).
+pub trait SchurComplement {
+    /// Symbolic analysis of `pattern` as [`LinearSolver::analyze`], with the unknowns `last`
+    /// (distinct, below n) kept for the Schur complement, in that order; the backend orders
+    /// the others as it likes.
+    fn analyze_with_last(
+        &mut self,
+        pattern: &SymmetricPattern,
+        signs: &[i8],
+        last: &[usize],
+    ) -> Result<()>;
+    /// S of the unknowns given to [`SchurComplement::analyze_with_last`] (rows and columns
+    /// in that order), from the current factorisation.
+    fn schur_complement(&self) -> Result<DenseMatrix>;
+}

@@ -1,0 +1,133 @@
+//! The fields of `summary.json`: those common to every run, those of a contact solution
+//! (Algorithms 1–4), the timings and the memory.
+
+use super::contact::{Row, non_finite, zone_measures};
+use crate::algorithm::ContactSolution;
+use crate::case::Built;
+use crate::contact::ContactModel;
+use crate::dofs::DofMap;
+use crate::error::Error;
+use crate::system::Timings;
+use serde_json::{Value, json};
+
+/// Fields common to every summary.json: the case, its mesh and unknowns, the backend.
+pub fn common_summary(built: &Built, dofs: &DofMap) -> Value {
+    let (units, mesh) = (&built.units, &built.problem.mesh);
+    json!({
+        "case": built.origin.path.display().to_string(),
+        "title": built.title,
+        "units": { "length": units.length, "stress": units.stress, "charge": units.charge, "potential": units.potential },
+        "dim": mesh.dim(),
+        "nodes": mesh.n_nodes(),
+        "elements": mesh.n_cells(),
+        "dofs": { "total": dofs.n_total(), "free": dofs.n_free(), "free_u": dofs.n_free_u(), "free_phi": dofs.n_free() - dofs.n_free_u() },
+        "backend": { "name": built.linear.backend_name(), "processes": crate::linalg::processes() },
+        "threads": rayon::current_num_threads(),
+    })
+}
+
+/// The summary.json of a validated case that the solver refused before it had a result (a
+/// factor too large for the memory, a backend without a capability the method needs): the
+/// fields common to every summary ([`common_summary`]), `converged` false and the `failure`.
+pub fn refusal_summary(built: &Built, failure: &Error) -> Value {
+    let mut summary = match DofMap::new(&built.problem) {
+        Ok(dofs) => common_summary(built, &dofs),
+        Err(_) => json!({}),
+    };
+    merge(
+        &mut summary,
+        json!({ "converged": false, "failure": failure.to_string(), "method": built.method_name() }),
+    );
+    summary
+}
+
+/// Adds the fields of `b` to the object `a`.
+pub fn merge(a: &mut Value, b: Value) {
+    if let (Some(a), Value::Object(b)) = (a.as_object_mut(), b) {
+        a.extend(b);
+    }
+}
+
+/// How the outer loop linearised Hencky's law (model §7, §13): "secant" (the paper's fixed
+/// point, with the Uzawa method), "whole" (the exact solver's Newton iteration with the whole
+/// tangent, also beyond e·t0, where the law's modulus along ε^D is not positive; the word for
+/// a linear law too), or "floored in k of n outer steps" where that iteration cycled or made
+/// a pivot of B̌ change sign, with ", c of them chord steps on a kept factorisation" when
+/// the floor stayed.
+pub fn hencky_tangent(solution: &ContactSolution, lags: bool) -> String {
+    let floored = format!(
+        "floored in {} of {} outer steps",
+        solution.floored_steps,
+        solution.outer_iterations()
+    );
+    match (solution.floored_steps, solution.chord_steps) {
+        _ if lags => "secant".into(),
+        (0, _) => "whole".into(),
+        (_, 0) => floored,
+        (_, c) => format!("{floored}, {c} of them chord steps on a kept factorisation"),
+    }
+}
+
+/// The contact part of `summary.json`.
+pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &[Row]) -> Value {
+    let max_abs = |f: &dyn Fn(&Row) -> f64| rows.iter().map(|r| f(r).abs()).fold(0.0, f64::max);
+    let (contact, stick, slip) = zone_measures(solution, rows);
+    let (t, kkt, balance) = (solution.timings, &solution.kkt, &solution.balance);
+    json!({
+        "problem": model.name(),
+        "converged": solution.converged(),
+        "failure": solution.failure.as_ref().map(|e| e.to_string()),
+        "outer_iterations": solution.outer_iterations(),
+        "inner_iterations": solution.inner_iterations,
+        "outer_criterion_history": solution.outer_history,
+        "inner_criterion_history": solution.inner_history,
+        "kkt_residual": {
+            "max": kkt.max,
+            "equilibrium_u": kkt.equilibrium_u,
+            "equilibrium_phi": kkt.equilibrium_phi,
+            "contact": kkt.contact,
+            "friction": kkt.friction,
+            "max_penetration": kkt.penetration,
+        },
+        "balance": {
+            "applied_load": balance.applied,
+            "contact_force": balance.contact,
+            "clamp_reaction": balance.reaction,
+            "relative_imbalance": balance.imbalance,
+        },
+        "gamma3": {
+            "nodes": rows.len(),
+            "condensed_nodes": solution.condensed_nodes,
+            "max_abs_sigma_nu": max_abs(&|r| r.sigma_nu),
+            "max_abs_sigma_tau": max_abs(&|r| r.sigma_tau[0].hypot(r.sigma_tau[1])),
+            "contact_measure": contact,
+            "stick_measure": stick,
+            "slip_measure": slip,
+        },
+        "timings_seconds": timings(&t),
+        "memory": memory(&t),
+        "non_finite": non_finite(solution, rows),
+    })
+}
+
+/// The `memory` object of summary.json \[bytes\]: the factorisation's size as its symbolic
+/// analysis predicted it, the exact solver's dense condensed matrices (0 without), and the
+/// process's peak resident memory measured when the solve ended (null where the system does
+/// not say).
+pub fn memory(t: &Timings) -> Value {
+    json!({
+        "factor_predicted_bytes": t.solver.factor_bytes,
+        "dense_predicted_bytes": t.dense_bytes,
+        "peak_resident_bytes": t.peak_resident_bytes,
+    })
+}
+
+/// The `timings_seconds` object of summary.json (without the total).
+pub fn timings(t: &Timings) -> Value {
+    let s = &t.solver;
+    json!({
+        "pattern": t.pattern, "assembly": t.assembly, "symbolic": s.symbolic_seconds,
+        "numeric": s.numeric_seconds, "numeric_count": s.numeric_count, "solve": s.solve_seconds,
+        "solve_count": s.solve_count, "dense": t.dense,
+    })
+}

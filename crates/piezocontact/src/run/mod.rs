@@ -1,0 +1,126 @@
+//! A run of a built case ([`Run`]): a solve without contact, one contact solve, or a loading
+//! path — chosen once, here, from what the case holds — with its summary and its files. What
+//! `piezocontact run`, `sweep` and `reproduce` do for each case, and what the Python package
+//! and a library user call.
+//!
+//! Each file imports its siblings' files, never this one.
+
+pub mod contact_run;
+pub mod path_run;
+pub mod static_run;
+
+pub use contact_run::ContactRun;
+pub use path_run::PathRun;
+pub use static_run::StaticRun;
+
+use crate::algorithm::Progress;
+use crate::case::Built;
+use crate::dofs::DofMap;
+use crate::error::{Error, Result};
+use crate::linalg::LinearSolver;
+use serde_json::Value;
+use std::path::Path;
+
+/// A solved case.
+pub enum Run {
+    /// No `[contact]` table: the coupled problem alone (Γ3, if named, is free).
+    Static(StaticRun),
+    /// One contact solve.
+    Contact(ContactRun),
+    /// A loading path (`[loading]`): one contact solve per step.
+    Path(PathRun),
+}
+
+impl Run {
+    /// Solves `built` with the caller's linear `solver` (`built.linear_solver()` for the
+    /// case's own), telling `progress` of each outer step and inner iteration.
+    pub fn solve(
+        built: &Built,
+        solver: Box<dyn LinearSolver>,
+        progress: &(dyn Fn(Progress) + Sync),
+    ) -> Result<Self> {
+        match (&built.model, &built.loading) {
+            (Some(model), Some(loading)) => {
+                PathRun::solve(built, (model, loading), solver, progress).map(Self::Path)
+            }
+            (Some(model), None) => {
+                ContactRun::solve(built, model, solver, progress).map(Self::Contact)
+            }
+            (None, _) => {
+                if !built.problem.boundary.contact.is_empty() {
+                    log::warn!(
+                        "the case has no [contact] table: Γ3 is treated as free (traction and charge free)"
+                    );
+                }
+                StaticRun::solve(built, solver).map(Self::Static)
+            }
+        }
+    }
+
+    /// The summary.json document.
+    pub fn summary(&self, built: &Built) -> Value {
+        match (self, &built.loading) {
+            (Self::Static(run), _) => run.summary(built),
+            (Self::Contact(run), _) => run.summary(built),
+            (Self::Path(path), Some(loading)) => path.summary(built, loading),
+            (Self::Path(path), None) => path.last.summary(built),
+        }
+    }
+
+    /// Writes the run's files into `out` (created if needed): summary.json and solution.vtu;
+    /// with contact contact.csv (and the map of Γ3 in 3D); on a path curve.csv, the steps'
+    /// solution-NNNN.vtu with solution.pvd and the curves' figure.
+    pub fn write(&self, built: &Built, out: &Path) -> Result<()> {
+        let summary = self.summary(built);
+        match (self, &built.loading) {
+            (Self::Static(run), _) => run.write(built, out, &summary),
+            (Self::Contact(run), _) => run.write_with(built, out, &summary),
+            (Self::Path(path), Some(loading)) => path.write((built, loading), out, &summary),
+            (Self::Path(path), None) => path.last.write_with(built, out, &summary),
+        }
+    }
+
+    /// The contact run: the run itself, or the last step of a path; `None` without contact.
+    pub fn contact(&self) -> Option<&ContactRun> {
+        match self {
+            Self::Static(_) => None,
+            Self::Contact(run) => Some(run),
+            Self::Path(path) => Some(&path.last),
+        }
+    }
+
+    /// The DOF numbering and x = (u, ϕ) of the solution (of the last step of a path).
+    pub fn state(&self) -> (&DofMap, &[f64]) {
+        match self {
+            Self::Static(run) => (&run.solution.dofs, &run.solution.x),
+            Self::Contact(run) => (&run.solution.dofs, &run.solution.x),
+            Self::Path(path) => (&path.last.solution.dofs, &path.last.solution.x),
+        }
+    }
+
+    /// Why the run did not converge, `None` when it did: the solution's failure, or the step
+    /// of a path that stopped it.
+    pub fn failure(&self) -> Option<String> {
+        match self {
+            Self::Static(_) => None,
+            Self::Contact(run) => run.solution.failure.as_ref().map(ToString::to_string),
+            Self::Path(path) => path.failure.clone(),
+        }
+    }
+
+    /// The solution's own error when the run did not converge (a path's last step's): a cap,
+    /// a divergence, an interruption; `None` otherwise, and for a path step that failed
+    /// outright.
+    pub fn error(&self) -> Option<&Error> {
+        self.contact().and_then(|run| run.solution.failure.as_ref())
+    }
+
+    /// What of the run is kept when it did not converge, for messages: "the partial result
+    /// is" or, on a path, "the steps before it are".
+    pub fn kept(&self) -> &'static str {
+        match self {
+            Self::Path(_) => "the steps before it are",
+            _ => "the partial result is",
+        }
+    }
+}

@@ -1,0 +1,216 @@
+//! A loading path of a built case (model §14): one static contact solve per step, the
+//! foundation moved rigidly along a direction and/or the applied loads scaled, each step
+//! started from the last with the factorisation and the exact solver's condensation kept
+//! ([`crate::algorithm::ContactSolver`]).
+
+use super::contact_run::ContactRun;
+use crate::algorithm::{ContactSolution, ContactSolver, Progress};
+use crate::case::Built;
+use crate::contact::{ContactModel, LoadStep, Loading};
+use crate::error::{Error, Result};
+use crate::linalg::LinearSolver;
+use crate::output::fields::ContactFields;
+use crate::output::files;
+use crate::output::plot::{self, LinePlot, PALETTE, Series};
+use crate::output::vtu::pvd;
+use crate::report::{self, Column, CurveRow, Row, curve_columns, curve_csv};
+use plotters::prelude::SeriesLabelPosition;
+use serde_json::{Value, json};
+use std::path::Path;
+use std::time::Instant;
+
+/// A loading path solved step after step.
+pub struct PathRun {
+    /// One row per step solved (the last one unconverged when the path stopped there).
+    pub curve: Vec<CurveRow>,
+    /// Per step solved: x and the Γ3 rows, for its solution-NNNN.vtu.
+    states: Vec<(Vec<f64>, Vec<Row>)>,
+    /// The last step solved, as a run: its model with the foundation where the step put it,
+    /// its solution under the step's loads — what contact.csv and summary.json hold.
+    pub last: ContactRun,
+    /// Why the path stopped before its end: the step and the reason.
+    pub failure: Option<String>,
+}
+
+impl PathRun {
+    /// Solves the steps of `loading` in order with the caller's `solver`, each from the last;
+    /// stops at the first step that does not converge (kept, marked) or fails (the steps
+    /// before it kept). An error when the first step fails.
+    pub(super) fn solve(
+        built: &Built,
+        (model, loading): (&ContactModel, &Loading),
+        solver: Box<dyn LinearSolver>,
+        progress: &(dyn Fn(Progress) + Sync),
+    ) -> Result<Self> {
+        let start = Instant::now();
+        let problem = &built.problem;
+        let at_first = loading.at_first(model);
+        let mut solver = ContactSolver::new(problem, &at_first, &built.settings, solver)
+            .map_err(|e| built.context(e))?;
+        let (mut curve, mut states, mut failure) = (Vec::new(), Vec::new(), None);
+        let mut last: Option<(ContactModel, ContactSolution)> = None;
+        let n = loading.steps.len();
+        for (k, load) in loading.steps.iter().enumerate() {
+            let what = step_name(k, n, load);
+            log::info!("{what}");
+            let step_model = loading.model_at(model, load);
+            let solution = match solver.solve(problem, &step_model, load.load_factor, progress) {
+                Ok(solution) => solution,
+                Err(e) if k > 0 => {
+                    failure = Some(format!("{what} failed: {e}"));
+                    break;
+                }
+                Err(e) => return Err(built.context(e)),
+            };
+            let rows = report::rows(problem, &step_model, &solution);
+            curve.push(CurveRow::new(k + 1, load, &solution, &rows));
+            states.push((solution.x.clone(), rows));
+            let stop = solution.failure.as_ref().map(|e| format!("{what} did not converge: {e}"));
+            last = Some((step_model, solution));
+            if stop.is_some() {
+                failure = stop;
+                break;
+            }
+        }
+        let (model, solution) =
+            last.ok_or_else(|| Error::Input("a loading path without steps".into()))?;
+        let last = ContactRun::new(built, model, solution, start);
+        Ok(Self { curve, states, last, failure })
+    }
+
+    /// The Γ3 rows of step k (from 0) of the steps solved.
+    pub fn rows(&self, k: usize) -> &[Row] {
+        &self.states[k].1
+    }
+
+    /// x = (u, ϕ) of each step solved, in order (global numbering of the last step's DOF
+    /// map).
+    pub fn states(&self) -> impl Iterator<Item = &[f64]> {
+        self.states.iter().map(|(x, _)| x.as_slice())
+    }
+
+    /// The names of the grounded parts, whose charges curve.csv reports.
+    pub fn electrodes(built: &Built) -> Vec<String> {
+        let problem = &built.problem;
+        problem.boundary.grounded.iter().map(|&p| problem.mesh.parts()[p].name.clone()).collect()
+    }
+
+    /// The columns of curve.csv.
+    pub fn columns(&self, built: &Built) -> Vec<(String, Column)> {
+        curve_columns(&self.curve, built.problem.mesh.dim(), &Self::electrodes(built))
+    }
+
+    /// Whether every step converged and the path reached its end.
+    pub fn converged(&self) -> bool {
+        self.failure.is_none()
+    }
+
+    /// The summary.json of the path: the last step's, with the path's steps and its failure.
+    pub fn summary(&self, built: &Built, loading: &Loading) -> Value {
+        let mut summary = self.last.summary(built);
+        summary["converged"] = json!(self.converged() && self.last.solution.converged());
+        if let Some(failure) = &self.failure {
+            summary["failure"] = json!(failure);
+        }
+        summary["path"] = json!({
+            "steps": loading.steps.len(),
+            "steps_solved": self.curve.len(),
+            "direction": &loading.direction[..built.problem.mesh.dim()],
+        });
+        summary
+    }
+
+    /// Writes the last step's files (contact.csv, solution.vtu, the 3D contact map),
+    /// `summary` as summary.json, curve.csv, solution-NNNN.vtu per step with solution.pvd,
+    /// and the curves' figure (curve.png and .svg).
+    pub(super) fn write(
+        &self,
+        (built, loading): (&Built, &Loading),
+        out: &Path,
+        summary: &Value,
+    ) -> Result<()> {
+        self.last.write_with(built, out, summary)?;
+        let problem = &built.problem;
+        let parts = Self::electrodes(built);
+        let csv = curve_csv(&self.curve, problem.mesh.dim(), &parts);
+        files::write_atomic(&out.join("curve.csv"), csv.as_bytes())?;
+        let mut collection = Vec::new();
+        let solution = &self.last.solution;
+        for (k, (x, rows)) in self.states.iter().enumerate() {
+            let name = format!("solution-{:04}.vtu", k + 1);
+            let fields = ContactFields::new(&problem.mesh, &solution.surface, rows);
+            let vtu = files::solution_vtu(problem, &solution.dofs, x, &fields.fields())?;
+            files::write_atomic(&out.join(&name), vtu.as_bytes())?;
+            collection.push((k + 1, name));
+        }
+        files::write_atomic(&out.join("solution.pvd"), pvd(&collection).as_bytes())?;
+        plot::panels(&self.figures((built, loading), &parts), &out.join("curve"))
+    }
+
+    /// The curves against the depth (against the load factor when the foundation does not
+    /// move): the force P = −F·direction (F·e_d without a direction), the charges of the
+    /// electrodes, and ϕ at the centre and in the mean over the contact zone.
+    fn figures(&self, (built, loading): (&Built, &Loading), parts: &[String]) -> Vec<LinePlot> {
+        let units = &built.units;
+        let dim = built.problem.mesh.dim();
+        let moves = loading.moves();
+        let (x_label, x) = if moves {
+            (format!("depth [{}]", units.length), (|r: &CurveRow| r.depth) as fn(&CurveRow) -> f64)
+        } else {
+            ("load factor [-]".to_string(), (|r: &CurveRow| r.load_factor) as fn(&CurveRow) -> f64)
+        };
+        // The force on the indenter against its travel, P = −F·d; F along the last axis
+        // when the foundation does not move.
+        let along = loading.direction.map(|v| -v);
+        let force = |r: &CurveRow| {
+            if moves { (0..dim).map(|k| r.force[k] * along[k]).sum() } else { r.force[dim - 1] }
+        };
+        let per_depth = if dim == 2 { format!("/{}", units.length) } else { String::new() };
+        let line = |label: String, k: usize, y: &dyn Fn(&CurveRow) -> f64| Series {
+            label,
+            points: self.curve.iter().map(|r| (x(r), y(r))).collect(),
+            color: PALETTE[k % PALETTE.len()],
+            markers: true,
+        };
+        let area = if dim == 3 { format!("{}²", units.length) } else { units.length.clone() };
+        let title = if built.title.is_empty() { "loading path" } else { built.title.as_str() };
+        let plot = |title: String, y_label: String, series: Vec<Series>| LinePlot {
+            title,
+            x_label: x_label.clone(),
+            y_label,
+            series,
+            log_log: false,
+            legend: SeriesLabelPosition::UpperLeft,
+        };
+        let charges = parts
+            .iter()
+            .enumerate()
+            .map(|(k, p)| line(format!("on {p}"), k + 1, &move |r: &CurveRow| r.charges[k]))
+            .collect();
+        vec![
+            plot(
+                title.to_string(),
+                format!("force on the indenter [{}·{area}]", units.stress),
+                vec![line("P".into(), 0, &force)],
+            ),
+            plot(
+                "charge on the electrodes".into(),
+                format!("charge [{}{per_depth}]", units.charge),
+                charges,
+            ),
+            plot(
+                "potential under the indenter".into(),
+                format!("ϕ [{}]", units.potential),
+                vec![
+                    line("at the largest pressure".into(), 1, &|r: &CurveRow| r.phi_center),
+                    line("mean over the contact zone".into(), 2, &|r: &CurveRow| r.phi_mean),
+                ],
+            ),
+        ]
+    }
+}
+
+/// How step k (from 0) of `n` reads in messages.
+fn step_name(k: usize, n: usize, load: &LoadStep) -> String {
+    format!("step {} of {n} (depth {:e}, load factor {})", k + 1, load.depth, load.load_factor)
+}

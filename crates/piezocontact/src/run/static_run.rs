@@ -1,0 +1,71 @@
+//! A solve of a built case without contact (no `[contact]` table: Γ3, if named, is free).
+
+use crate::case::Built;
+use crate::error::Result;
+use crate::linalg::LinearSolver;
+use crate::output::files;
+use crate::report::summary::{common_summary, memory, merge, timings};
+use crate::system::{StaticSolution, solve_without_contact};
+use serde_json::{Value, json};
+use std::path::Path;
+use std::time::Instant;
+
+/// A solved case without contact.
+pub struct StaticRun {
+    /// The solution.
+    pub solution: StaticSolution,
+    /// max ‖u‖ over the nodes \[length\].
+    pub max_u: f64,
+    /// The smallest and the largest nodal ϕ \[potential\].
+    pub phi_range: (f64, f64),
+    /// Wall time \[s\].
+    pub seconds: f64,
+}
+
+impl StaticRun {
+    /// Solves the coupled problem of `built` without contact with the caller's `solver`.
+    pub(super) fn solve(built: &Built, solver: Box<dyn LinearSolver>) -> Result<Self> {
+        let start = Instant::now();
+        let problem = &built.problem;
+        let solution = solve_without_contact(problem, solver).map_err(|e| built.context(e))?;
+        let (dofs, x) = (&solution.dofs, &solution.x);
+        let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
+        let max_u = (0..n)
+            .map(|a| (0..dim).map(|i| x[dofs.u(a, i)].powi(2)).sum::<f64>().sqrt())
+            .fold(0.0, f64::max);
+        let phi_range = (0..n)
+            .map(|a| x[dofs.phi(a)])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        let seconds = start.elapsed().as_secs_f64();
+        Ok(Self { solution, max_u, phi_range, seconds })
+    }
+
+    /// The summary.json document.
+    pub fn summary(&self, built: &Built) -> Value {
+        let (solution, t) = (&self.solution, self.solution.timings);
+        let mut summary = common_summary(built, &solution.dofs);
+        merge(
+            &mut summary,
+            json!({
+                "problem": "coupled electro-elastic, no contact",
+                "converged": true,
+                "norms": {
+                    "max_abs_u": self.max_u,
+                    "min_phi": self.phi_range.0,
+                    "max_phi": self.phi_range.1,
+                    "relative_residual": solution.relative_residual,
+                },
+                "timings_seconds": timings(&t),
+                "memory": memory(&t),
+            }),
+        );
+        summary["timings_seconds"]["total"] = json!(self.seconds);
+        summary
+    }
+
+    /// Writes `summary` as summary.json and solution.vtu into `out`.
+    pub(super) fn write(&self, built: &Built, out: &Path, summary: &Value) -> Result<()> {
+        let solution = &self.solution;
+        files::write_results(out, summary, &built.problem, &solution.dofs, &solution.x, &[])
+    }
+}
