@@ -360,9 +360,8 @@ impl Solution {
     #[getter]
     fn curve<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
-        let Run::Path(path) = &self.run else { return Ok(dict) };
         let numpy = py.import("numpy")?;
-        for (name, column) in path.columns(&self.built) {
+        for (name, column) in self.run.curve(&self.built) {
             match column {
                 Column::Integer(v) => dict.set_item(name, numpy.call_method1("array", (v,))?)?,
                 Column::Real(v) => dict.set_item(name, PyArray1::from_vec(py, v))?,
@@ -376,10 +375,11 @@ impl Solution {
     /// for a single run.
     #[getter]
     fn steps<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let Run::Path(path) = &self.run else { return Ok(Vec::new()) };
         let (dofs, _) = self.run.state();
         let n = self.built.problem.mesh.n_nodes();
-        path.states()
+        self.run
+            .steps()
+            .into_iter()
             .map(|x| {
                 let dict = PyDict::new(py);
                 dict.set_item("u", self.nodal(py, |a, k| x[dofs.u(a, k)])?)?;

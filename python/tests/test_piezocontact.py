@@ -294,6 +294,23 @@ def test_a_loading_path_gives_its_curve_and_its_steps(tmp_path):
     assert (tmp_path / "path" / "solution-0002.vtu").exists()
 
 
+def test_a_path_without_contact_gives_the_command_s_curve(tmp_path):
+    case = ROOT / "cases" / "cantilever-load-factors.toml"
+    s = piezocontact.solve(case)
+    assert s.converged and s.contact == {}
+    curve = s.curve
+    assert list(curve) == ["step", "load_factor", "reaction_x", "reaction_y", "charge_root", "charge_top"]
+    assert list(curve["load_factor"]) == [0.5, 1.0, 1.5, 2.0]
+    # The clamp holds the tip traction (f2 = -0.001 over the tip's length 2) times the factor.
+    np.testing.assert_allclose(curve["reaction_y"], 0.002 * curve["load_factor"], rtol=1e-9)
+    assert len(s.steps) == 4 and np.array_equal(s.steps[3]["u"], s.u)
+    subprocess.run([cli(), "run", case, "--out", tmp_path / "cli", "-q"], check=True)
+    with open(tmp_path / "cli" / "curve.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    for name, column in curve.items():
+        assert [float(r[name]) for r in rows] == [float(v) for v in column], name
+
+
 def test_ctrl_c_during_a_solve_raises_keyboard_interrupt():
     # Uzawa with a tolerance it cannot reach runs until stopped (or for about 30 s, so that
     # the test cannot hang); Ctrl-C comes from a helper thread after a second

@@ -6,7 +6,7 @@ use piezocontact::case::schema::Units;
 use piezocontact::contact::Loading;
 use piezocontact::material::Material;
 use piezocontact::oracles::{Piezoelectric, plane_strain_modulus};
-use piezocontact::run::{ContactRun, PathRun, Run, StaticRun};
+use piezocontact::run::{ContactRun, PathRun, Run, StaticPathRun, StaticRun};
 use std::path::Path;
 
 /// Prints a run's figures on the terminal, each with its unit.
@@ -15,6 +15,7 @@ pub fn run(run: &Run, built: &Built, out: &Path) {
         Run::Static(run) => static_run(run, built, out),
         Run::Contact(run) => contact_run(run, built, out),
         Run::Path(path) => path_run(path, built, out),
+        Run::StaticPath(path) => static_path_run(path, built, out),
     }
 }
 
@@ -131,8 +132,48 @@ fn path_run(path: &PathRun, built: &Built, out: &Path) {
     );
 }
 
+/// Prints a loading path without contact: a line per step, then the last step as a run.
+fn static_path_run(path: &StaticPathRun, built: &Built, out: &Path) {
+    let (units, dim) = (&built.units, built.problem.mesh.dim());
+    let force = if dim == 3 { format!("{}²", units.length) } else { units.length.clone() };
+    let per = if dim == 2 { format!("/{}", units.length) } else { String::new() };
+    let parts = PathRun::electrodes(built);
+    say!(
+        "{}: loading path of {} steps without contact",
+        built.origin.path.display(),
+        path.curve.len()
+    );
+    let mut header = format!("  {:>4} {:>11}", "step", "load factor");
+    for c in &["x", "y", "z"][..dim] {
+        header += &format!(" {:>22}", format!("reaction_{c} [{}·{force}]", units.stress));
+    }
+    for p in &parts {
+        header += &format!(" {:>22}", format!("charge_{p} [{}{per}]", units.charge));
+    }
+    say!("{header}");
+    for r in &path.curve {
+        let mut line = format!("  {:>4} {:>11.4}", r.step, r.load_factor);
+        for v in r.reaction.iter().chain(&r.charges) {
+            line += &format!(" {v:>22.6e}");
+        }
+        say!("{line}");
+    }
+    say!("the last step:");
+    static_run(&path.last, built, out);
+    say!(
+        "  wrote curve.csv, curve.png/.svg, solution-NNNN.vtu and solution.pvd (every step) in {}",
+        out.display()
+    );
+}
+
 /// Prints a loading path: its direction and each step's depth and load factor.
 pub fn loading(loading: &Loading, dim: usize, units: &Units) {
+    if !loading.moves() {
+        let factors: Vec<String> =
+            loading.steps.iter().map(|s| s.load_factor.to_string()).collect();
+        say!("loading path: {} steps, load factors [{}]", loading.steps.len(), factors.join(", "));
+        return;
+    }
     let steps: Vec<String> = loading
         .steps
         .iter()

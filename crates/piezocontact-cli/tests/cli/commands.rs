@@ -659,3 +659,55 @@ fn threads_bound_a_run_and_leave_its_answer_to_the_last_bit() {
     assert_eq!(bad.status.code(), Some(1));
     assert!(text(&bad).contains("PIEZOCONTACT_THREADS"), "{}", text(&bad));
 }
+
+/// A loading path without `[contact]` solves each step without contact, the loads scaled by
+/// its factor: curve.csv has the path's columns and no contact columns; the clamp's reaction
+/// balances the tip traction times the factor (f2 × the tip's length, read from the case), the
+/// charges grow linearly with the factor and sum to zero (no free charge), and the last step
+/// is the run of the case without `[loading]` at its factor. Depths without a foundation to
+/// move are refused, naming the key.
+#[test]
+fn a_path_without_contact_scales_the_loads_step_by_step() {
+    let dir = temp_dir("path-without-contact");
+    let case = "cases/cantilever-load-factors.toml";
+    let o = piezocontact(&["run", case, "--out", &dir.join("path").display().to_string(), "-q"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let curve = std::fs::read_to_string(dir.join("path/curve.csv")).unwrap();
+    let mut lines = curve.lines();
+    let header = "step,load_factor,reaction_x,reaction_y,charge_root,charge_top";
+    assert_eq!(lines.next(), Some(header));
+    let rows: Vec<Vec<f64>> =
+        lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.iter().map(|r| r[1]).collect::<Vec<_>>(), [0.5, 1.0, 1.5, 2.0]);
+    let (f2, tip_length) = (-0.001, 2.0);
+    let unit_charge = rows[1][4];
+    for r in &rows {
+        let applied = f2 * tip_length * r[1];
+        assert!((r[3] + applied).abs() < 1e-9 * applied.abs(), "{r:?}");
+        assert!(r[2].abs() < 1e-9 * applied.abs(), "{r:?}");
+        assert!((r[4] - r[1] * unit_charge).abs() < 1e-9 * unit_charge.abs(), "{r:?}");
+        assert!((r[4] + r[5]).abs() < 1e-9 * r[4].abs(), "{r:?}");
+    }
+    assert!(unit_charge.abs() > 0.0, "the bending draws no charge: {curve}");
+    for k in 1..=4 {
+        assert!(dir.join(format!("path/solution-{k:04}.vtu")).is_file());
+    }
+    let text_of = std::fs::read_to_string(root().join(case)).unwrap();
+    let single = dir.join("single.toml");
+    let without =
+        text_of.replace("[loading]", "").replace("load_factors = [0.5, 1.0, 1.5, 2.0]", "");
+    std::fs::write(&single, without.replace("f2 = [0.0, -0.001]", "f2 = [0.0, -0.002]")).unwrap();
+    let out = dir.join("single").display().to_string();
+    let o = piezocontact(&["run", &single.display().to_string(), "--out", &out, "-q"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let summary = |p: &str| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.join(p)).unwrap()).unwrap()
+    };
+    let (path, single) = (summary("path/summary.json"), summary("single/summary.json"));
+    let max_u = |s: &serde_json::Value| s["norms"]["max_abs_u"].as_f64().unwrap();
+    assert!((max_u(&path) - max_u(&single)).abs() < 1e-12 * max_u(&single), "{path} {single}");
+    assert_eq!(path["path"]["steps_solved"], 4);
+    let depths = ["check", case, "--set", "loading.depths=[0.1]"];
+    let o = piezocontact(&depths);
+    assert!(!o.status.success() && text(&o).contains("loading.depths moves the foundation"));
+}

@@ -98,7 +98,6 @@ pub fn assess(
         imbalance: 0.0,
         charges: Vec::new(),
     };
-    let mut phi_reaction = vec![0.0; problem.mesh.n_nodes()];
     for gdof in 0..dofs.n_total() {
         let residual = f_int[gdof] - f_ext[gdof] - contact_force[gdof];
         let row_scale = scale[gdof] + f_ext[gdof].abs() + contact_force[gdof].abs();
@@ -109,8 +108,7 @@ pub fn assess(
             balance.contact[c] += contact_force[gdof];
         }
         match (dofs.free_index(gdof) == CONSTRAINED, is_u) {
-            (true, true) => balance.reaction[gdof % dim] += f_int[gdof] - f_ext[gdof],
-            (true, false) => phi_reaction[gdof - dim * problem.mesh.n_nodes()] = residual,
+            (true, _) => {}
             (false, true) => {
                 r_u += residual * residual;
                 s_u += row_scale * row_scale;
@@ -121,6 +119,8 @@ pub fn assess(
             }
         }
     }
+    (balance.reaction, balance.charges) =
+        reactions(problem, dofs, (&f_int, &f_ext), &contact_force);
     let ratio = |r: f64, s: f64| if s > 0.0 { (r / s).sqrt() } else { r.sqrt() };
     kkt.equilibrium_u = ratio(r_u, s_u);
     kkt.equilibrium_phi = ratio(r_phi, s_phi);
@@ -130,7 +130,6 @@ pub fn assess(
         (0..dim).map(|c| balance.applied[c] + balance.contact[c] + balance.reaction[c]).collect();
     let size = norm(&balance.applied) + norm(&balance.contact) + norm(&balance.reaction);
     balance.imbalance = if size > 0.0 { norm(&total) / size } else { 0.0 };
-    balance.charges = electrode_charges(problem, &phi_reaction);
     Ok((kkt, balance))
 }
 
@@ -178,6 +177,43 @@ fn contact_conditions(
         }
     }
     (contact_force, kkt)
+}
+
+/// The reactions of the constrained rows, from the internal and applied forces (`f_int`,
+/// `f_ext`) and the contact forces and fluxes on the Γ3 rows: the force of the clamps on the
+/// body (d components, [stress·length^(d−1)]) and the charge on each part of Γa
+/// ([`electrode_charges`]).
+pub fn reactions(
+    problem: &Problem,
+    dofs: &DofMap,
+    (f_int, f_ext): (&[f64], &[f64]),
+    contact_force: &[f64],
+) -> (Vec<f64>, Vec<f64>) {
+    let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
+    let mut reaction = vec![0.0; dim];
+    let mut phi_reaction = vec![0.0; n];
+    for gdof in (0..dofs.n_total()).filter(|&g| dofs.free_index(g) == CONSTRAINED) {
+        if gdof < dim * n {
+            reaction[gdof % dim] += f_int[gdof] - f_ext[gdof];
+        } else {
+            phi_reaction[gdof - dim * n] = f_int[gdof] - f_ext[gdof] - contact_force[gdof];
+        }
+    }
+    (reaction, electrode_charges(problem, &phi_reaction))
+}
+
+/// The reactions ([`reactions`]) of a state `x` without contact, solved with the secant
+/// `moduli` g_e (one per element) under the loads scaled by `load_factor` [-].
+pub fn reactions_without_contact(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    (moduli, load_factor): (&[f64], f64),
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let (f_int, _) = internal_force(problem, dofs, x, moduli)?;
+    let f_ext = load_vector(problem, dofs, load_factor);
+    let none = vec![0.0; dofs.n_total()];
+    Ok(reactions(problem, dofs, (&f_int, &f_ext), &none))
 }
 
 /// The charge on each part of Γa from the reactions of the ϕ rows at its nodes: the ϕ

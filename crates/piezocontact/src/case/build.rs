@@ -76,12 +76,8 @@ impl Case {
         let problem = self.problem_checked()?;
         let model = self.contact_model(&problem)?;
         let loading = self.loading(problem.mesh.dim())?;
-        match (&model, &loading) {
-            (Some(model), loading) => self.check_reach(&problem, model, loading.as_ref())?,
-            (None, Some(_)) => {
-                return Err(input!("{}: the case has no [contact] table", self.path().display()));
-            }
-            (None, None) => {}
+        if let Some(model) = &model {
+            self.check_reach(&problem, model, loading.as_ref())?;
         }
         let mut warnings = self.hypothesis_warnings(&problem.material);
         warnings.extend(self.setting_warnings());

@@ -261,13 +261,14 @@ impl Case {
         })
     }
 
-    /// The loading path of `[loading]` for a d-dimensional body, `None` without the table.
+    /// The loading path of `[loading]` for a d-dimensional body, `None` without the table;
+    /// without `[contact]`, load factors only (a path of solves without contact).
     pub fn loading(&self, dim: usize) -> Result<Option<Loading>> {
         let Some(l) = &self.file.loading else { return Ok(None) };
-        if self.file.contact.is_none() {
+        if self.file.contact.is_none() && l.depths.is_some() {
             return Err(input!(
-                "{}: [loading] is a path of contact solves: the case needs a [contact] table",
-                self.locate("loading")
+                "{}: loading.depths moves the foundation, which only a case with a [contact] table has: add [contact], or scale the loads with loading.load_factors alone",
+                self.locate("loading.depths")
             ));
         }
         let needs = "loading.depths (it moves the foundation along it)".to_string();

@@ -133,12 +133,51 @@ pub fn curve_columns(rows: &[CurveRow], dim: usize, parts: &[String]) -> Vec<(St
 
 /// curve.csv: a header, then one line per row.
 pub fn curve_csv(rows: &[CurveRow], dim: usize, parts: &[String]) -> String {
-    let columns = curve_columns(rows, dim, parts);
+    columns_csv(&curve_columns(rows, dim, parts), rows.len())
+}
+
+/// A CSV of `n` rows: a header of the columns' names, then one line per row.
+pub fn columns_csv(columns: &[(String, Column)], n: usize) -> String {
     let header: Vec<&str> = columns.iter().map(|(name, _)| name.as_str()).collect();
     let mut csv = header.join(",") + "\n";
-    for k in 0..rows.len() {
+    for k in 0..n {
         let line: Vec<String> = columns.iter().map(|(_, c)| c.cell(k)).collect();
         csv += &(line.join(",") + "\n");
     }
     csv
+}
+
+/// One row of the curve.csv of a loading path without contact: the step's load factor, the
+/// clamps' reaction and the electrodes' charges.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StaticCurveRow {
+    /// The step, from 1.
+    pub step: usize,
+    /// The factor on the applied loads [-].
+    pub load_factor: f64,
+    /// The force of the clamps on the body, d components [stress·length^(d−1)].
+    pub reaction: Vec<f64>,
+    /// The charge on each part of Γa [charge·length^(3−d)].
+    pub charges: Vec<f64>,
+}
+
+/// The columns of the curve.csv of a loading path without contact: `step`, `load_factor`,
+/// `reaction_x`… (the clamps' reaction) and one `charge_<part>` per grounded part.
+pub fn static_curve_columns(
+    rows: &[StaticCurveRow],
+    dim: usize,
+    parts: &[String],
+) -> Vec<(String, Column)> {
+    let real = |f: &dyn Fn(&StaticCurveRow) -> f64| Column::Real(rows.iter().map(f).collect());
+    let mut columns = vec![
+        ("step".to_string(), Column::Integer(rows.iter().map(|r| r.step).collect())),
+        ("load_factor".into(), real(&|r| r.load_factor)),
+    ];
+    for (k, name) in ["reaction_x", "reaction_y", "reaction_z"][..dim].iter().enumerate() {
+        columns.push((name.to_string(), real(&|r| r.reaction[k])));
+    }
+    for (k, part) in parts.iter().enumerate() {
+        columns.push((format!("charge_{part}"), real(&|r| r.charges[k])));
+    }
+    columns
 }

@@ -12,4 +12,6 @@ pub mod summary;
 
 pub use contact::{Row, contact_columns, contact_csv, row_values, rows, zone_measures};
 pub use csv::csv_number;
-pub use curve::{Column, CurveRow, curve_columns, curve_csv};
+pub use curve::{
+    Column, CurveRow, StaticCurveRow, columns_csv, curve_columns, curve_csv, static_curve_columns,
+};

@@ -7,10 +7,12 @@
 
 pub mod contact_run;
 pub mod path_run;
+pub mod static_path_run;
 pub mod static_run;
 
 pub use contact_run::ContactRun;
 pub use path_run::PathRun;
+pub use static_path_run::StaticPathRun;
 pub use static_run::StaticRun;
 
 use crate::algorithm::Progress;
@@ -18,6 +20,7 @@ use crate::case::Built;
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::LinearSolver;
+use crate::report::Column;
 use serde_json::Value;
 use std::path::Path;
 
@@ -29,6 +32,9 @@ pub enum Run {
     Contact(ContactRun),
     /// A loading path (`[loading]`): one contact solve per step.
     Path(PathRun),
+    /// A loading path without `[contact]` (`loading.load_factors`): one solve without contact
+    /// per step.
+    StaticPath(StaticPathRun),
 }
 
 impl Run {
@@ -46,13 +52,18 @@ impl Run {
             (Some(model), None) => {
                 ContactRun::solve(built, model, solver, progress).map(Self::Contact)
             }
-            (None, _) => {
+            (None, loading) => {
                 if !built.problem.boundary.contact.is_empty() {
                     log::warn!(
                         "the case has no [contact] table: Γ3 is treated as free (traction and charge free)"
                     );
                 }
-                StaticRun::solve(built, solver).map(Self::Static)
+                match loading {
+                    Some(loading) => {
+                        StaticPathRun::solve(built, loading, solver).map(Self::StaticPath)
+                    }
+                    None => StaticRun::solve(built, solver).map(Self::Static),
+                }
             }
         }
     }
@@ -64,6 +75,7 @@ impl Run {
             (Self::Contact(run), _) => run.summary(built),
             (Self::Path(path), Some(loading)) => path.summary(built, loading),
             (Self::Path(path), None) => path.last.summary(built),
+            (Self::StaticPath(path), _) => path.summary(built),
         }
     }
 
@@ -77,13 +89,14 @@ impl Run {
             (Self::Contact(run), _) => run.write_with(built, out, &summary),
             (Self::Path(path), Some(loading)) => path.write((built, loading), out, &summary),
             (Self::Path(path), None) => path.last.write_with(built, out, &summary),
+            (Self::StaticPath(path), _) => path.write(built, out, &summary),
         }
     }
 
     /// The contact run: the run itself, or the last step of a path; `None` without contact.
     pub fn contact(&self) -> Option<&ContactRun> {
         match self {
-            Self::Static(_) => None,
+            Self::Static(_) | Self::StaticPath(_) => None,
             Self::Contact(run) => Some(run),
             Self::Path(path) => Some(&path.last),
         }
@@ -95,6 +108,7 @@ impl Run {
             Self::Static(run) => (&run.solution.dofs, &run.solution.x),
             Self::Contact(run) => (&run.solution.dofs, &run.solution.x),
             Self::Path(path) => (&path.last.solution.dofs, &path.last.solution.x),
+            Self::StaticPath(path) => (&path.last.solution.dofs, &path.last.solution.x),
         }
     }
 
@@ -102,7 +116,7 @@ impl Run {
     /// of a path that stopped it.
     pub fn failure(&self) -> Option<String> {
         match self {
-            Self::Static(_) => None,
+            Self::Static(_) | Self::StaticPath(_) => None,
             Self::Contact(run) => run.solution.failure.as_ref().map(ToString::to_string),
             Self::Path(path) => path.failure.clone(),
         }
@@ -115,11 +129,31 @@ impl Run {
         self.contact().and_then(|run| run.solution.failure.as_ref())
     }
 
+    /// The columns of a loading path's curve.csv, one entry per step solved; empty for a
+    /// single solve.
+    pub fn curve(&self, built: &Built) -> Vec<(String, Column)> {
+        match self {
+            Self::Path(path) => path.columns(built),
+            Self::StaticPath(path) => path.columns(built),
+            _ => Vec::new(),
+        }
+    }
+
+    /// x = (u, ϕ) of each step of a loading path, in order (numbered as [`Run::state`]'s);
+    /// empty for a single solve.
+    pub fn steps(&self) -> Vec<&[f64]> {
+        match self {
+            Self::Path(path) => path.states().collect(),
+            Self::StaticPath(path) => path.states().collect(),
+            _ => Vec::new(),
+        }
+    }
+
     /// What of the run is kept when it did not converge, for messages: "the partial result
     /// is" or, on a path, "the steps before it are".
     pub fn kept(&self) -> &'static str {
         match self {
-            Self::Path(_) => "the steps before it are",
+            Self::Path(_) | Self::StaticPath(_) => "the steps before it are",
             _ => "the partial result is",
         }
     }

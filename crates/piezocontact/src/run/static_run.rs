@@ -26,10 +26,16 @@ impl StaticRun {
     /// Solves the coupled problem of `built` without contact with the caller's `solver`.
     pub(super) fn solve(built: &Built, solver: Box<dyn LinearSolver>) -> Result<Self> {
         let start = Instant::now();
-        let problem = &built.problem;
-        let solution = solve_without_contact(problem, solver).map_err(|e| built.context(e))?;
+        let solution =
+            solve_without_contact(&built.problem, solver).map_err(|e| built.context(e))?;
+        Ok(Self::new(built, solution, start))
+    }
+
+    /// The run of `solution`, started at `start`.
+    pub(super) fn new(built: &Built, solution: StaticSolution, start: Instant) -> Self {
         let (dofs, x) = (&solution.dofs, &solution.x);
-        let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
+        let mesh = &built.problem.mesh;
+        let (dim, n) = (mesh.dim(), mesh.n_nodes());
         let max_u = (0..n)
             .map(|a| (0..dim).map(|i| x[dofs.u(a, i)].powi(2)).sum::<f64>().sqrt())
             .fold(0.0, f64::max);
@@ -37,7 +43,7 @@ impl StaticRun {
             .map(|a| x[dofs.phi(a)])
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
         let seconds = start.elapsed().as_secs_f64();
-        Ok(Self { solution, max_u, phi_range, seconds })
+        Self { solution, max_u, phi_range, seconds }
     }
 
     /// The summary.json document.

@@ -1,0 +1,134 @@
+//! A loading path of a built case without contact (`[loading]` with `load_factors` and no
+//! `[contact]`): one solve without contact per step, every applied load scaled by the step's
+//! factor, with one factorisation for the whole path.
+
+use super::path_run::PathRun;
+use super::static_run::StaticRun;
+use crate::algorithm::residual::reactions_without_contact;
+use crate::case::Built;
+use crate::contact::Loading;
+use crate::error::Result;
+use crate::linalg::LinearSolver;
+use crate::output::files;
+use crate::output::plot::{self, LinePlot, PALETTE, Series};
+use crate::output::vtu::pvd;
+use crate::report::{Column, StaticCurveRow, columns_csv, static_curve_columns};
+use crate::system::{StaticSolution, solve_without_contact_at};
+use plotters::prelude::SeriesLabelPosition;
+use serde_json::{Value, json};
+use std::path::Path;
+use std::time::Instant;
+
+/// A loading path without contact, solved.
+pub struct StaticPathRun {
+    /// One row per step.
+    pub curve: Vec<StaticCurveRow>,
+    /// x = (u, ϕ) of each step, for its solution-NNNN.vtu.
+    states: Vec<Vec<f64>>,
+    /// The last step, as a run: what summary.json and solution.vtu hold.
+    pub last: StaticRun,
+}
+
+impl StaticPathRun {
+    /// Solves the steps of `loading` (load factors only: the foundation that depths move
+    /// needs `[contact]`) with the caller's `solver`, factorised once.
+    pub(super) fn solve(
+        built: &Built,
+        loading: &Loading,
+        solver: Box<dyn LinearSolver>,
+    ) -> Result<Self> {
+        let start = Instant::now();
+        let problem = &built.problem;
+        let factors: Vec<f64> = loading.steps.iter().map(|s| s.load_factor).collect();
+        let steps =
+            solve_without_contact_at(problem, solver, &factors).map_err(|e| built.context(e))?;
+        let mut curve = Vec::with_capacity(factors.len());
+        for (k, ((x, _), &load_factor)) in steps.states.iter().zip(&factors).enumerate() {
+            let scaled = (steps.moduli.as_slice(), load_factor);
+            let (reaction, charges) = reactions_without_contact(problem, &steps.dofs, x, scaled)?;
+            curve.push(StaticCurveRow { step: k + 1, load_factor, reaction, charges });
+        }
+        let (x, relative_residual) = steps.states.last().cloned().unwrap_or_default();
+        let states = steps.states.into_iter().map(|(x, _)| x).collect();
+        let (dofs, timings) = (steps.dofs, steps.timings);
+        let solution = StaticSolution { x, dofs, relative_residual, timings };
+        Ok(Self { curve, states, last: StaticRun::new(built, solution, start) })
+    }
+
+    /// x = (u, ϕ) of each step, in order.
+    pub fn states(&self) -> impl Iterator<Item = &[f64]> {
+        self.states.iter().map(Vec::as_slice)
+    }
+
+    /// The columns of curve.csv.
+    pub fn columns(&self, built: &Built) -> Vec<(String, Column)> {
+        let parts = PathRun::electrodes(built);
+        static_curve_columns(&self.curve, built.problem.mesh.dim(), &parts)
+    }
+
+    /// The summary.json of the path: the last step's, with the path's steps.
+    pub fn summary(&self, built: &Built) -> Value {
+        let mut summary = self.last.summary(built);
+        summary["path"] = json!({ "steps": self.curve.len(), "steps_solved": self.curve.len() });
+        summary
+    }
+
+    /// Writes the last step's summary.json (`summary`) and solution.vtu, curve.csv,
+    /// solution-NNNN.vtu per step with solution.pvd, and the curves' figure (curve.png/.svg).
+    pub(super) fn write(&self, built: &Built, out: &Path, summary: &Value) -> Result<()> {
+        self.last.write(built, out, summary)?;
+        let problem = &built.problem;
+        let csv = columns_csv(&self.columns(built), self.curve.len());
+        files::write_atomic(&out.join("curve.csv"), csv.as_bytes())?;
+        let mut collection = Vec::new();
+        for (k, x) in self.states.iter().enumerate() {
+            let name = format!("solution-{:04}.vtu", k + 1);
+            let vtu = files::solution_vtu(problem, &self.last.solution.dofs, x, &[])?;
+            files::write_atomic(&out.join(&name), vtu.as_bytes())?;
+            collection.push((k + 1, name));
+        }
+        files::write_atomic(&out.join("solution.pvd"), pvd(&collection).as_bytes())?;
+        plot::panels(&self.figures(built), &out.join("curve"))
+    }
+
+    /// The clamps' reaction and the electrodes' charges against the load factor.
+    fn figures(&self, built: &Built) -> Vec<LinePlot> {
+        let (units, dim) = (&built.units, built.problem.mesh.dim());
+        let per_depth = if dim == 2 { format!("/{}", units.length) } else { String::new() };
+        let area = if dim == 3 { format!("{}²", units.length) } else { units.length.clone() };
+        let line = |label: String, k: usize, y: &dyn Fn(&StaticCurveRow) -> f64| Series {
+            label,
+            points: self.curve.iter().map(|r| (r.load_factor, y(r))).collect(),
+            color: PALETTE[k % PALETTE.len()],
+            markers: true,
+        };
+        let plot = |title: &str, y_label: String, series: Vec<Series>| LinePlot {
+            title: title.to_string(),
+            x_label: "load factor [-]".into(),
+            y_label,
+            series,
+            log_log: false,
+            legend: SeriesLabelPosition::UpperLeft,
+        };
+        let reactions = ["x", "y", "z"][..dim]
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                line(format!("reaction_{c}"), k, &move |r: &StaticCurveRow| r.reaction[k])
+            })
+            .collect();
+        let charges = PathRun::electrodes(built)
+            .iter()
+            .enumerate()
+            .map(|(k, p)| line(format!("on {p}"), k + 1, &move |r: &StaticCurveRow| r.charges[k]))
+            .collect();
+        vec![
+            plot("reaction of the clamps", format!("force [{}·{area}]", units.stress), reactions),
+            plot(
+                "charge on the electrodes",
+                format!("charge [{}{per_depth}]", units.charge),
+                charges,
+            ),
+        ]
+    }
+}
