@@ -182,7 +182,7 @@ fn contact_conditions(
 /// The reactions of the constrained rows, from the internal and applied forces (`f_int`,
 /// `f_ext`) and the contact forces and fluxes on the Γ3 rows: the force of the clamps on the
 /// body (d components, [stress·length^(d−1)]) and the charge on each part of Γa
-/// ([`electrode_charges`]).
+/// (the reactions of its ϕ rows, with their sign turned).
 pub fn reactions(
     problem: &Problem,
     dofs: &DofMap,
