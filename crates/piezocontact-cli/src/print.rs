@@ -65,6 +65,7 @@ fn contact_run(run: &ContactRun, built: &Built, out: &Path) {
         kkt.friction
     );
     say!("  force balance      = relative imbalance {:.1e}", run.solution.balance.imbalance);
+    reactions(built, &run.solution.balance.supports);
     // The exact solver's condensed problem, where there is one.
     let dense = if t.dense > 0.0 { format!(", dense problem {:.3} s", t.dense) } else { "".into() };
     say!(
@@ -234,6 +235,7 @@ fn static_run(run: &StaticRun, built: &Built, out: &Path) {
     let (lo, hi) = run.phi_range;
     say!("  phi range          = [{lo:.6e}, {hi:.6e}] {}", units.potential);
     say!("  relative residual  = {:.3e}", run.solution.relative_residual);
+    reactions(built, &run.reactions.supports);
     say!(
         "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, total {:.3} s",
         t.pattern,
@@ -268,6 +270,39 @@ pub fn mesh(built: &Built) {
             roles(&built.problem.boundary, p)
         );
     }
+    supports(built);
+}
+
+/// Prints the supports, for `check`: each one's parts, fixed components and nodes.
+fn supports(built: &Built) {
+    let problem = &built.problem;
+    for support in &problem.boundary.supports {
+        let parts: Vec<&str> =
+            support.parts.iter().map(|&p| problem.mesh.parts()[p].name.as_str()).collect();
+        let fixed: Vec<&str> = support.fixed.iter().map(|(c, _)| ["x", "y", "z"][*c]).collect();
+        say!(
+            "  support {:<12} parts {}, fixes {} on {} nodes",
+            support.name,
+            parts.join(", "),
+            fixed.join(", "),
+            problem.part_nodes(&support.parts).len()
+        );
+    }
+}
+
+/// Prints the reaction of each clamp and support, with its unit.
+fn reactions(built: &Built, supports: &[Vec<f64>]) {
+    let units = &built.units;
+    let area = if built.problem.mesh.dim() == 3 { "²" } else { "" };
+    for (name, force) in built.problem.support_names().iter().zip(supports) {
+        let components: Vec<String> = force.iter().map(|f| format!("{f:.6e}")).collect();
+        say!(
+            "  reaction {name:<9} = [{}] {}·{}{area}",
+            components.join(", "),
+            units.stress,
+            units.length
+        );
+    }
 }
 
 /// The roles of boundary part `p`, for `check`.
@@ -279,6 +314,9 @@ fn roles(b: &piezocontact::problem::Boundary, p: usize) -> String {
         if list.contains(&p) {
             roles.push(role);
         }
+    }
+    if b.supports.iter().any(|s| s.parts.contains(&p)) {
+        roles.push("supported");
     }
     if b.traction.iter().any(|(q, _)| *q == p) {
         roles.push("Γ2 traction");

@@ -11,6 +11,9 @@ use crate::problem::Problem;
 /// Marks a constrained global DOF in [`DofMap::free_index`].
 pub const CONSTRAINED: usize = usize::MAX;
 
+/// Marks a u DOF that no clamp or support fixes, in [`DofMap::support_table`].
+pub const NO_TABLE: usize = usize::MAX;
+
 /// Free numbering and prescribed values of all DOFs.
 #[derive(Clone, Debug, Default)]
 pub struct DofMap {
@@ -21,6 +24,9 @@ pub struct DofMap {
     n_free: usize,
     /// Prescribed values of constrained DOFs (0 on free ones), global numbering.
     prescribed: Vec<f64>,
+    /// Per u DOF, the clamp or support that fixes it ([`crate::problem::FixedComponent`]'s
+    /// table), [`NO_TABLE`] where free.
+    table: Vec<usize>,
 }
 
 impl DofMap {
@@ -31,12 +37,10 @@ impl DofMap {
         let total = n_nodes * (dim + 1);
         let mut prescribed = vec![0.0; total];
         let mut constrained = vec![false; total];
-        for node in problem.part_nodes(&problem.boundary.clamped) {
-            let value = problem.boundary.clamped_value.as_ref().map(|f| f(mesh.node(node)));
-            for i in 0..dim {
-                constrained[node * dim + i] = true;
-                prescribed[node * dim + i] = value.as_ref().map_or(0.0, |v| v[i]);
-            }
+        let mut table = vec![NO_TABLE; n_nodes * dim];
+        for f in problem.fixed_displacements()? {
+            let g = f.node * dim + f.component;
+            (constrained[g], prescribed[g], table[g]) = (true, f.value, f.table);
         }
         for node in problem.part_nodes(&problem.boundary.grounded) {
             constrained[n_nodes * dim + node] = true;
@@ -55,7 +59,7 @@ impl DofMap {
                 n_free_u = next;
             }
         }
-        Ok(Self { dim, n_nodes, free, n_free_u, n_free: next, prescribed })
+        Ok(Self { dim, n_nodes, free, n_free_u, n_free: next, prescribed, table })
     }
 
     /// The free unknowns of each node (u components and ϕ).
@@ -97,6 +101,12 @@ impl DofMap {
     /// Number of free u DOFs; free ϕ DOFs follow them.
     pub fn n_free_u(&self) -> usize {
         self.n_free_u
+    }
+
+    /// The clamp or support that fixes global u DOF `g` (an index into
+    /// [`crate::problem::Problem::support_names`]), [`NO_TABLE`] for a free DOF or a ϕ DOF.
+    pub fn support_table(&self, g: usize) -> usize {
+        self.table.get(g).copied().unwrap_or(NO_TABLE)
     }
 
     /// Free index of global DOF `g`, or [`CONSTRAINED`].

@@ -4,6 +4,7 @@
 use crate::error::{Error, Result};
 use crate::material::Material;
 use crate::mesh::Mesh;
+use crate::mesh::rigid::{free_rigid_motions, motions_sentence};
 use std::sync::Arc;
 
 /// A vector field x ↦ v(x) with d components (loads, prescribed displacements).
@@ -19,6 +20,32 @@ pub fn constant_vector(v: Vec<f64>) -> VectorField {
 /// A constant scalar field.
 pub fn constant_scalar(s: f64) -> ScalarField {
     Arc::new(move |_| s)
+}
+
+/// A support: components of u fixed on boundary parts (a roller, a symmetry plane, a
+/// prescribed displacement component).
+#[derive(Clone)]
+pub struct Support {
+    /// The name in outputs (reactions).
+    pub name: String,
+    /// The boundary parts it holds.
+    pub parts: Vec<usize>,
+    /// The fixed components (0 = x, 1 = y, 2 = z), each with its prescribed displacement
+    /// u_i(x) \[length\].
+    pub fixed: Vec<(usize, ScalarField)>,
+}
+
+/// A fixed displacement component of a node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FixedComponent {
+    /// The node.
+    pub node: usize,
+    /// The component (0 = x, 1 = y, 2 = z).
+    pub component: usize,
+    /// Its prescribed value \[length\].
+    pub value: f64,
+    /// The table it belongs to, for its reaction: an index into [`Problem::support_names`].
+    pub table: usize,
 }
 
 /// Boundary roles of \[P\] (2.4), each a list of mesh part indices. Parts with no role are
@@ -38,6 +65,8 @@ pub struct Boundary {
     /// Prescribed displacement on Γ1 \[length\]; `None` is the model's u = 0. Used by
     /// verification problems (patch tests, manufactured solutions).
     pub clamped_value: Option<VectorField>,
+    /// Supports: components of u fixed on parts (with or without a clamp).
+    pub supports: Vec<Support>,
     /// Prescribed potential on Γa \[potential\]; `None` is the model's ϕ = 0.
     pub grounded_value: Option<ScalarField>,
 }
@@ -90,12 +119,13 @@ impl Problem {
         let b = &self.boundary;
         let measure =
             |parts: &[usize]| parts.iter().map(|&p| self.mesh.part_measure(p)).sum::<f64>();
-        if measure(&b.clamped) <= 0.0 {
+        let held: Vec<usize> = self.held_parts();
+        if measure(&held) <= 0.0 {
             return Err(Error::EmptyRole {
-                role: "Γ1 (clamped)",
+                role: "Γ1 (clamped or supported)",
                 why: "the displacement must be fixed on a part of positive measure, or the body \
                       can move freely and the system is singular; name at least one non-empty \
-                      boundary part as clamped",
+                      boundary part as clamped, or hold parts with [[boundary.support]] tables",
             });
         }
         if measure(&b.grounded) <= 0.0 {
@@ -107,6 +137,8 @@ impl Problem {
             });
         }
         self.check_pieces()?;
+        self.check_rigid_motions()?;
+        self.check_contact_off_supports()?;
         let traction: Vec<usize> = b.traction.iter().map(|(p, _)| *p).collect();
         let charge: Vec<usize> = b.charge.iter().map(|(p, _)| *p).collect();
         let roles: [(&'static str, &[usize]); 6] = [
@@ -142,8 +174,9 @@ impl Problem {
     fn check_pieces(&self) -> Result<()> {
         let pieces = self.mesh.pieces();
         let b = &self.boundary;
+        let held = self.held_parts();
         for (role, key, parts) in [
-            ("Γ1 (clamped)", "boundary.clamped", &b.clamped),
+            ("Γ1 (clamped)", "boundary.clamped or a [[boundary.support]]", &held),
             ("Γa (grounded)", "boundary.grounded", &b.grounded),
         ] {
             let mut held = vec![false; pieces.cells.len()];
@@ -186,6 +219,108 @@ impl Problem {
         }
     }
 
+    /// The parts that fix displacement components: the clamped ones, then the supports'.
+    fn held_parts(&self) -> Vec<usize> {
+        let b = &self.boundary;
+        b.clamped.iter().chain(b.supports.iter().flat_map(|s| &s.parts)).copied().collect()
+    }
+
+    /// The names of the tables that hold the body, in order: the clamp (its parts' names
+    /// joined by '+'), if there is one, then each support.
+    pub fn support_names(&self) -> Vec<String> {
+        let b = &self.boundary;
+        let parts = self.mesh.parts();
+        let clamp = b.clamped.iter().map(|&p| parts[p].name.as_str()).collect::<Vec<_>>();
+        let clamp = (!clamp.is_empty()).then(|| clamp.join("+"));
+        clamp.into_iter().chain(b.supports.iter().map(|s| s.name.clone())).collect()
+    }
+
+    /// The clamps and supports whose reactions a path's curve.csv reports one by one: all
+    /// of [`Problem::support_names`] when the case has supports, none with a clamp alone
+    /// (whose reaction is the total).
+    pub fn reported_supports(&self) -> Vec<String> {
+        match self.boundary.supports.is_empty() {
+            true => Vec::new(),
+            false => self.support_names(),
+        }
+    }
+
+    /// Every fixed displacement component, each once: the clamp's (every component of its
+    /// nodes) first, then the supports' in order; a component fixed again keeps its first
+    /// table. The same component fixed to two values is an error naming the node.
+    pub fn fixed_displacements(&self) -> Result<Vec<FixedComponent>> {
+        let (mesh, b) = (&self.mesh, &self.boundary);
+        let dim = mesh.dim();
+        let mut first: Vec<Option<usize>> = vec![None; mesh.n_nodes() * dim];
+        let mut fixed: Vec<FixedComponent> = Vec::new();
+        let clamp_value = |node: usize| b.clamped_value.as_ref().map(|f| f(mesh.node(node)));
+        let mut clamp = Vec::new();
+        for node in self.part_nodes(&b.clamped) {
+            let value = clamp_value(node);
+            clamp.extend((0..dim).map(|i| (node, i, value.as_ref().map_or(0.0, |v| v[i]))));
+        }
+        let tables =
+            std::iter::once((clamp, 0)).chain(b.supports.iter().enumerate().map(|(k, s)| {
+                let entries = self
+                    .part_nodes(&s.parts)
+                    .into_iter()
+                    .flat_map(|node| {
+                        s.fixed.iter().map(move |(i, f)| (node, *i, f(mesh.node(node))))
+                    })
+                    .collect::<Vec<_>>();
+                (entries, k + usize::from(!b.clamped.is_empty()))
+            }));
+        for (entries, table) in tables {
+            for (node, component, value) in entries {
+                let slot = node * dim + component;
+                match first[slot] {
+                    None => {
+                        first[slot] = Some(fixed.len());
+                        fixed.push(FixedComponent { node, component, value, table });
+                    }
+                    Some(k) => check_same_value(&fixed[k], value, &self.support_names())?,
+                }
+            }
+        }
+        Ok(fixed)
+    }
+
+    /// Refuses a body that its clamps and supports leave free to move rigidly, naming the
+    /// free motions (per piece when the mesh has several).
+    fn check_rigid_motions(&self) -> Result<()> {
+        let fixed: Vec<(usize, usize)> =
+            self.fixed_displacements()?.iter().map(|f| (f.node, f.component)).collect();
+        let pieces = self.mesh.pieces();
+        let free = free_rigid_motions(&self.mesh, &pieces, &fixed)?;
+        let Some((piece, motions)) = free.first() else { return Ok(()) };
+        let body = match pieces.cells.iter().filter(|c| **c > 0).count() {
+            1 => "the body".to_string(),
+            _ => {
+                format!("piece {} of the body (bounding box {:?})", piece + 1, pieces.boxes[*piece])
+            }
+        };
+        Err(Error::Input(format!(
+            "{body} can {}: its clamps and supports (boundary.clamped, [[boundary.support]]) do not hold it, and the system is singular; fix more components (a roller on another face, or a clamp)",
+            motions_sentence(motions)
+        )))
+    }
+
+    /// Refuses a support that holds a node of Γ3, naming the node.
+    fn check_contact_off_supports(&self) -> Result<()> {
+        let contact = self.part_nodes(&self.boundary.contact);
+        for support in &self.boundary.supports {
+            let held = self.part_nodes(&support.parts);
+            if let Some(node) = contact.iter().find(|n| held.binary_search(n).is_ok()) {
+                return Err(Error::Input(format!(
+                    "the support '{}' holds node {node} at {:?}, which lies on Γ3 (boundary.contact): contact on a supported node is not available yet; keep the support's parts off the contact face's nodes (or clamp them: clamped Γ3 nodes are left out of contact)",
+                    support.name,
+                    self.mesh.node(*node)
+                )));
+            }
+        }
+        Ok(())
+    }
+
     /// Nodes of the facets of the given parts, sorted and without repetition.
     pub fn part_nodes(&self, parts: &[usize]) -> Vec<usize> {
         let mut nodes: Vec<usize> =
@@ -194,4 +329,18 @@ impl Problem {
         nodes.dedup();
         nodes
     }
+}
+
+/// Refuses `value` for a component that `first` fixes already, unless it is the same value
+/// (to 1e-12 relative); `names` are the tables' names.
+fn check_same_value(first: &FixedComponent, value: f64, names: &[String]) -> Result<()> {
+    let scale = first.value.abs().max(value.abs());
+    if (first.value - value).abs() <= 1e-12 * scale {
+        return Ok(());
+    }
+    let axis = ["x", "y", "z"][first.component];
+    Err(Error::Input(format!(
+        "node {} has its displacement along {axis} fixed to {} by '{}' and to {value} by another support: give both the same value there, or hold the node by one of them",
+        first.node, first.value, names[first.table]
+    )))
 }

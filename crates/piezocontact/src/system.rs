@@ -350,8 +350,6 @@ pub struct StaticSteps {
     pub states: Vec<(Vec<f64>, f64)>,
     /// The DOF numbering of the states.
     pub dofs: DofMap,
-    /// The secant moduli g_e (one per element) B̌ was assembled with: g(0), the linear law.
-    pub moduli: Vec<f64>,
     /// Time spent.
     pub timings: Timings,
 }
@@ -376,5 +374,5 @@ pub fn solve_without_contact_at(
         states.push((x, relative_residual));
     }
     let timings = system.timings();
-    Ok(StaticSteps { states, dofs: system.into_dofs(), moduli, timings })
+    Ok(StaticSteps { states, dofs: system.into_dofs(), timings })
 }

@@ -394,7 +394,7 @@ fn error_messages() {
         ],
     );
     let empty = variant(&dir, "clamped = [\"ends\"]", "clamped = []");
-    assert_error(&["check", empty.to_str().unwrap()], &["Γ1 (clamped) is empty"]);
+    assert_error(&["check", empty.to_str().unwrap()], &["Γ1 (clamped or supported) is empty"]);
     let grounded = variant(&dir, "grounded = [\"load\"]", "grounded = []");
     assert_error(&["check", grounded.to_str().unwrap()], &["Γa (grounded) is empty"]);
     let overlap = variant(&dir, "contact = [\"contact\"]       # Γ3", "contact = [\"ends\"]");

@@ -46,8 +46,10 @@ pub struct Balance {
     pub applied: Vec<f64>,
     /// Force of the foundation on the body: Σ_i w_i (σ_ν ν + σ_τ).
     pub contact: Vec<f64>,
-    /// Reactions of the clamp on Γ1.
+    /// Reactions of the clamp on Γ1 and of the supports, in all.
     pub reaction: Vec<f64>,
+    /// The reaction of each clamp and support, in the order of [`Problem::support_names`].
+    pub supports: Vec<Vec<f64>>,
     /// |applied + contact + reaction| / (|applied| + |contact| + |reaction|).
     pub imbalance: f64,
     /// The charge on each part of Γa (in the order of `boundary.grounded`): the reaction of
@@ -95,6 +97,7 @@ pub fn assess(
         applied: vec![0.0; dim],
         contact: vec![0.0; dim],
         reaction: vec![0.0; dim],
+        supports: Vec::new(),
         imbalance: 0.0,
         charges: Vec::new(),
     };
@@ -119,8 +122,9 @@ pub fn assess(
             }
         }
     }
-    (balance.reaction, balance.charges) =
-        reactions(problem, dofs, (&f_int, &f_ext), &contact_force);
+    let reactions = reactions(problem, dofs, (&f_int, &f_ext), &contact_force);
+    (balance.reaction, balance.supports, balance.charges) =
+        (reactions.total, reactions.supports, reactions.charges);
     let ratio = |r: f64, s: f64| if s > 0.0 { (r / s).sqrt() } else { r.sqrt() };
     kkt.equilibrium_u = ratio(r_u, s_u);
     kkt.equilibrium_phi = ratio(r_phi, s_phi);
@@ -188,29 +192,47 @@ pub fn reactions(
     dofs: &DofMap,
     (f_int, f_ext): (&[f64], &[f64]),
     contact_force: &[f64],
-) -> (Vec<f64>, Vec<f64>) {
+) -> Reactions {
     let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
-    let mut reaction = vec![0.0; dim];
+    let mut total = vec![0.0; dim];
+    let mut supports = vec![vec![0.0; dim]; problem.support_names().len()];
     let mut phi_reaction = vec![0.0; n];
     for gdof in (0..dofs.n_total()).filter(|&g| dofs.free_index(g) == CONSTRAINED) {
         if gdof < dim * n {
-            reaction[gdof % dim] += f_int[gdof] - f_ext[gdof];
+            let reaction = f_int[gdof] - f_ext[gdof];
+            total[gdof % dim] += reaction;
+            supports[dofs.support_table(gdof)][gdof % dim] += reaction;
         } else {
             phi_reaction[gdof - dim * n] = f_int[gdof] - f_ext[gdof] - contact_force[gdof];
         }
     }
-    (reaction, electrode_charges(problem, &phi_reaction))
+    Reactions { total, supports, charges: electrode_charges(problem, &phi_reaction) }
 }
 
-/// The reactions ([`reactions`]) of a state `x` without contact, solved with the secant
-/// `moduli` g_e (one per element) under the loads scaled by `load_factor` [-].
+/// The reactions of the constrained rows ([`reactions`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Reactions {
+    /// The force of every clamp and support on the body, d components
+    /// [stress·length^(d−1)].
+    pub total: Vec<f64>,
+    /// The force of each clamp and support, in the order of
+    /// [`Problem::support_names`] (a component fixed by several counts in the first).
+    pub supports: Vec<Vec<f64>>,
+    /// The charge on each part of Γa [charge·length^(3−d)].
+    pub charges: Vec<f64>,
+}
+
+/// The reactions ([`reactions`]) of a state `x` without contact, solved with the linear law
+/// g(0) at x_0 = 0 (as [`crate::system::solve_without_contact`] solves) under the loads scaled
+/// by `load_factor` [-].
 pub fn reactions_without_contact(
     problem: &Problem,
     dofs: &DofMap,
     x: &[f64],
-    (moduli, load_factor): (&[f64], f64),
-) -> Result<(Vec<f64>, Vec<f64>)> {
-    let (f_int, _) = internal_force(problem, dofs, x, moduli)?;
+    load_factor: f64,
+) -> Result<Reactions> {
+    let moduli = secant_moduli(problem, dofs, &vec![0.0; dofs.n_total()])?;
+    let (f_int, _) = internal_force(problem, dofs, x, &moduli)?;
     let f_ext = load_vector(problem, dofs, load_factor);
     let none = vec![0.0; dofs.n_total()];
     Ok(reactions(problem, dofs, (&f_int, &f_ext), &none))

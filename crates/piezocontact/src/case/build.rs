@@ -17,7 +17,9 @@ use crate::linalg::LinearSolver;
 use crate::material::{ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants};
 use crate::mesh::rectangle::{Diagonal, Rectangle, Segment, SegmentParts};
 use crate::mesh::{Mesh, gmsh};
-use crate::problem::{BodyLoads, Boundary, Problem, constant_scalar, constant_vector};
+use crate::problem::{
+    BodyLoads, Boundary, Problem, ScalarField, Support, constant_scalar, constant_vector,
+};
 use std::path::Path;
 
 /// The parameters of each inner method the case file can name.
@@ -78,6 +80,9 @@ impl Case {
         let loading = self.loading(problem.mesh.dim())?;
         if let Some(model) = &model {
             self.check_reach(&problem, model, loading.as_ref())?;
+        }
+        if loading.is_some() {
+            self.check_no_prescribed_displacement()?;
         }
         let mut warnings = self.hypothesis_warnings(&problem.material);
         warnings.extend(self.setting_warnings());
@@ -381,6 +386,51 @@ impl Case {
         Ok(indices)
     }
 
+    /// Refuses a nonzero prescribed displacement on a loading path, which scales the loads
+    /// but not yet the prescribed displacements (each step would hold them at their full
+    /// value).
+    fn check_no_prescribed_displacement(&self) -> Result<()> {
+        let tables = self.file.boundary.support.iter();
+        match tables.flat_map(|t| t.displacement.iter().flatten()).find(|v| **v != 0.0) {
+            Some(value) => Err(input!(
+                "{}: boundary.support.displacement = {value} on a case with a [loading] path: a path scales the loads by its load_factors but not yet the prescribed displacements; prescribe 0, or solve each displacement as a case of its own",
+                self.locate("boundary.support")
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// The `[[boundary.support]]` tables, checked, on `mesh` whose clamped parts are
+    /// `clamped` (whose name the reactions use too).
+    fn supports(&self, mesh: &Mesh, clamped: &[usize]) -> Result<Vec<Support>> {
+        let key = "boundary.support";
+        let dim = mesh.dim();
+        let clamp: Vec<&str> = clamped.iter().map(|&p| mesh.parts()[p].name.as_str()).collect();
+        let mut names: Vec<String> =
+            (!clamp.is_empty()).then(|| clamp.join("+")).into_iter().collect();
+        let mut supports = Vec::new();
+        for (k, table) in self.file.boundary.support.iter().enumerate() {
+            let at = format!("{} ([[boundary.support]] number {})", self.locate(key), k + 1);
+            if table.parts.is_empty() {
+                return Err(input!(
+                    "{at}: parts is empty: name the boundary parts the support holds"
+                ));
+            }
+            let parts = self.part_indices(mesh, "boundary.support.parts", &table.parts, false)?;
+            let fixed = support_components(&table.fix, table.displacement.as_deref(), dim)
+                .map_err(|why| input!("{at}: {why}"))?;
+            let name = table.name.clone().unwrap_or_else(|| table.parts.join("+"));
+            if names.contains(&name) {
+                return Err(input!(
+                    "{at}: the name '{name}' is taken by another clamp or support (reactions are reported by name): give it a name of its own with name = \"...\""
+                ));
+            }
+            names.push(name.clone());
+            supports.push(Support { name, parts, fixed });
+        }
+        Ok(supports)
+    }
+
     /// The problem, after [`Case::contact_settings`] has checked the ranges.
     pub(super) fn problem_checked(&self) -> Result<Problem> {
         let mesh = self.mesh()?;
@@ -418,8 +468,10 @@ impl Case {
                 charge.push((p, constant_scalar(c.q2)));
             }
         }
+        let clamped = parts("boundary.clamped", &b.clamped)?;
         let boundary = Boundary {
-            clamped: parts("boundary.clamped", &b.clamped)?,
+            supports: self.supports(&mesh, &clamped)?,
+            clamped,
             grounded: parts("boundary.grounded", &b.grounded)?,
             contact: parts("boundary.contact", &b.contact)?,
             traction,
@@ -447,4 +499,44 @@ impl Case {
         };
         Problem::new(mesh, material, boundary, loads).map_err(|e| self.context(e))
     }
+}
+
+/// The fixed components of a support table, `fix` (names of axes) with their `displacement`
+/// (default 0), in a d-dimensional mesh; the reason when they are not valid.
+fn support_components(
+    fix: &[String],
+    displacement: Option<&[f64]>,
+    dim: usize,
+) -> std::result::Result<Vec<(usize, ScalarField)>, String> {
+    if fix.is_empty() {
+        return Err("fix is empty: name the components it fixes, e.g. fix = [\"z\"]".into());
+    }
+    let axes = &["x", "y", "z"][..dim];
+    let mut components = Vec::new();
+    for name in fix {
+        let Some(c) = axes.iter().position(|a| a == name) else {
+            return Err(format!(
+                "fix names '{name}', which is no component of the {dim}D mesh's displacement: use {axes:?}"
+            ));
+        };
+        if components.contains(&c) {
+            return Err(format!("fix names '{name}' twice: name each component once"));
+        }
+        components.push(c);
+    }
+    let values = match displacement {
+        None => vec![0.0; fix.len()],
+        Some(d) if d.len() != fix.len() => {
+            return Err(format!(
+                "displacement has {} values and fix {} components: give one value per entry of fix",
+                d.len(),
+                fix.len()
+            ));
+        }
+        Some(d) if d.iter().any(|v| !v.is_finite()) => {
+            return Err(format!("displacement = {d:?} must hold finite numbers"));
+        }
+        Some(d) => d.to_vec(),
+    };
+    Ok(components.into_iter().zip(values).map(|(c, v)| (c, constant_scalar(v))).collect())
 }

@@ -203,6 +203,21 @@ pub struct TractionLoad {
     pub f2: Vec<f64>,
 }
 
+/// `[[boundary.support]]`: components of u fixed on boundary parts (rollers, symmetry planes,
+/// a prescribed displacement component).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SupportTable {
+    /// The name in outputs (reactions); default: its parts' names joined by '+'.
+    pub name: Option<String>,
+    /// Boundary parts it holds.
+    pub parts: Vec<String>,
+    /// The fixed components: "x", "y", "z".
+    pub fix: Vec<String>,
+    /// The prescribed displacement of each entry of `fix` \[length\]; default 0.
+    pub displacement: Option<Vec<f64>>,
+}
+
 /// A surface charge on Γb parts.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -229,6 +244,9 @@ pub struct BoundarySection {
     /// Γ2: tractions.
     #[serde(default)]
     pub traction: Vec<TractionLoad>,
+    /// Supports: components of u fixed on parts.
+    #[serde(default)]
+    pub support: Vec<SupportTable>,
     /// Γb: surface charges.
     #[serde(default)]
     pub charge: Vec<ChargeLoad>,

@@ -290,6 +290,24 @@ pub fn max_distance(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).fold(0.0_f64, |d, (x, y)| d.max((x - y).abs()))
 }
 
+/// An orthonormal basis of the null space of the symmetric positive semidefinite n × n
+/// matrix `a` (column-major): the eigenvectors whose eigenvalues are at most `tolerance` times
+/// the largest (all of them for a zero matrix).
+pub fn null_space(a: &[f64], n: usize, tolerance: f64) -> Result<Vec<Vec<f64>>> {
+    check_length("the matrix of a null space", n * n, a.len())?;
+    let matrix = faer::MatRef::from_column_major_slice(a, n, n);
+    let eigen = matrix
+        .self_adjoint_eigen(faer::Side::Lower)
+        .map_err(|e| Error::LinearAlgebra(format!("a symmetric eigendecomposition: {e:?}")))?;
+    let values = eigen.S().column_vector();
+    let largest = (0..n).map(|k| values[k]).fold(0.0_f64, f64::max);
+    let vectors = eigen.U();
+    Ok((0..n)
+        .filter(|&k| values[k] <= tolerance * largest)
+        .map(|k| (0..n).map(|i| vectors[(i, k)]).collect())
+        .collect())
+}
+
 /// y = A x, as [`DenseMatrix::mul`] says.
 fn product(a: faer::MatRef<'_, f64>, x: &[f64]) -> Vec<f64> {
     let n = a.nrows();

@@ -12,6 +12,7 @@
 
 pub mod gmsh;
 pub mod rectangle;
+pub mod rigid;
 
 use crate::element::{Simplex, facet_measure_normal};
 use crate::error::{Error, Result};

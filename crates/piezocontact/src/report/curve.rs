@@ -40,6 +40,8 @@ pub struct CurveRow {
     pub converged: bool,
     /// The charge on each part of Γa [charge·length^(3−d)].
     pub charges: Vec<f64>,
+    /// The force of each clamp and support on the body, d components each.
+    pub supports: Vec<Vec<f64>>,
 }
 
 impl CurveRow {
@@ -71,6 +73,7 @@ impl CurveRow {
             kkt_residual: solution.kkt.max,
             converged: solution.converged(),
             charges: solution.balance.charges.clone(),
+            supports: solution.balance.supports.clone(),
         }
     }
 }
@@ -97,8 +100,13 @@ impl Column {
 }
 
 /// The columns of curve.csv, named and in order, for `rows` of a d-dimensional body whose
-/// grounded parts are `parts` (one `charge_<part>` each).
-pub fn curve_columns(rows: &[CurveRow], dim: usize, parts: &[String]) -> Vec<(String, Column)> {
+/// grounded parts are `parts` (one `charge_<part>` each) and whose reported clamps and
+/// supports are `supports` (three `reaction_<name>_<axis>` each, [`support_columns`]).
+pub fn curve_columns(
+    rows: &[CurveRow],
+    dim: usize,
+    (supports, parts): (&[String], &[String]),
+) -> Vec<(String, Column)> {
     let real = |f: &dyn Fn(&CurveRow) -> f64| Column::Real(rows.iter().map(f).collect());
     let mut columns = vec![
         ("step".to_string(), Column::Integer(rows.iter().map(|r| r.step).collect())),
@@ -125,15 +133,29 @@ pub fn curve_columns(rows: &[CurveRow], dim: usize, parts: &[String]) -> Vec<(St
     ));
     columns.push(("kkt_residual".into(), real(&|r| r.kkt_residual)));
     columns.push(("converged".into(), Column::Flag(rows.iter().map(|r| r.converged).collect())));
+    let per_row: Vec<&[Vec<f64>]> = rows.iter().map(|r| r.supports.as_slice()).collect();
+    columns.extend(support_columns(supports, dim, &per_row));
     for (k, part) in parts.iter().enumerate() {
         columns.push((format!("charge_{part}"), real(&|r| r.charges[k])));
     }
     columns
 }
 
-/// curve.csv: a header, then one line per row.
-pub fn curve_csv(rows: &[CurveRow], dim: usize, parts: &[String]) -> String {
-    columns_csv(&curve_columns(rows, dim, parts), rows.len())
+/// The `reaction_<name>_<x|y|z>` columns of the clamps and supports named `supports`, from
+/// each row's reactions (in that order).
+fn support_columns(
+    supports: &[String],
+    dim: usize,
+    per_row: &[&[Vec<f64>]],
+) -> Vec<(String, Column)> {
+    let mut columns = Vec::new();
+    for (j, support) in supports.iter().enumerate() {
+        for (k, axis) in ["x", "y", "z"][..dim].iter().enumerate() {
+            let values = per_row.iter().map(|r| r[j][k]).collect();
+            columns.push((format!("reaction_{support}_{axis}"), Column::Real(values)));
+        }
+    }
+    columns
 }
 
 /// A CSV of `n` rows: a header of the columns' names, then one line per row.
@@ -155,18 +177,23 @@ pub struct StaticCurveRow {
     pub step: usize,
     /// The factor on the applied loads [-].
     pub load_factor: f64,
-    /// The force of the clamps on the body, d components [stress·length^(d−1)].
+    /// The force of the clamps and supports on the body, d components
+    /// [stress·length^(d−1)].
     pub reaction: Vec<f64>,
+    /// The force of each clamp and support, d components each.
+    pub supports: Vec<Vec<f64>>,
     /// The charge on each part of Γa [charge·length^(3−d)].
     pub charges: Vec<f64>,
 }
 
 /// The columns of the curve.csv of a loading path without contact: `step`, `load_factor`,
-/// `reaction_x`… (the clamps' reaction) and one `charge_<part>` per grounded part.
+/// `reaction_x`… (the clamps' and supports' reaction in all), `reaction_<name>_x`… per
+/// reported clamp and support (`supports`, [`support_columns`]), and one `charge_<part>` per
+/// grounded part (`parts`).
 pub fn static_curve_columns(
     rows: &[StaticCurveRow],
     dim: usize,
-    parts: &[String],
+    (supports, parts): (&[String], &[String]),
 ) -> Vec<(String, Column)> {
     let real = |f: &dyn Fn(&StaticCurveRow) -> f64| Column::Real(rows.iter().map(f).collect());
     let mut columns = vec![
@@ -176,6 +203,8 @@ pub fn static_curve_columns(
     for (k, name) in ["reaction_x", "reaction_y", "reaction_z"][..dim].iter().enumerate() {
         columns.push((name.to_string(), real(&|r| r.reaction[k])));
     }
+    let per_row: Vec<&[Vec<f64>]> = rows.iter().map(|r| r.supports.as_slice()).collect();
+    columns.extend(support_columns(supports, dim, &per_row));
     for (k, part) in parts.iter().enumerate() {
         columns.push((format!("charge_{part}"), real(&|r| r.charges[k])));
     }

@@ -13,5 +13,5 @@ pub mod summary;
 pub use contact::{Row, contact_columns, contact_csv, row_values, rows, zone_measures};
 pub use csv::csv_number;
 pub use curve::{
-    Column, CurveRow, StaticCurveRow, columns_csv, curve_columns, curve_csv, static_curve_columns,
+    Column, CurveRow, StaticCurveRow, columns_csv, curve_columns, static_curve_columns,
 };

@@ -41,6 +41,12 @@ pub fn refusal_summary(built: &Built, failure: &Error) -> Value {
     summary
 }
 
+/// summary.json's `reactions`: the force of each clamp and support on the body, by name
+/// ([`crate::problem::Problem::support_names`]), d components [stress·length^(d−1)].
+pub fn reactions_json(names: &[String], supports: &[Vec<f64>]) -> Value {
+    Value::Object(names.iter().cloned().zip(supports.iter().map(|f| json!(f))).collect())
+}
+
 /// Adds the fields of `b` to the object `a`.
 pub fn merge(a: &mut Value, b: Value) {
     if let (Some(a), Value::Object(b)) = (a.as_object_mut(), b) {

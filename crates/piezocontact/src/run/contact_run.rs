@@ -9,7 +9,9 @@ use crate::linalg::LinearSolver;
 use crate::output::fields::ContactFields;
 use crate::output::files;
 use crate::output::plot::{self, ContactView, MapLabels};
-use crate::report::summary::{common_summary, contact_summary, hencky_tangent, merge};
+use crate::report::summary::{
+    common_summary, contact_summary, hencky_tangent, merge, reactions_json,
+};
 use crate::report::{self, Row};
 use serde_json::{Value, json};
 use std::path::Path;
@@ -100,6 +102,8 @@ impl ContactRun {
         summary["method"] = json!(built.method_name());
         let lags = built.settings.method.lags_contact();
         summary["hencky_tangent"] = json!(hencky_tangent(&self.solution, lags));
+        let names = built.problem.support_names();
+        summary["reactions"] = reactions_json(&names, &self.solution.balance.supports);
         summary
     }
 

@@ -13,7 +13,7 @@ use crate::output::fields::ContactFields;
 use crate::output::files;
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
 use crate::output::vtu::pvd;
-use crate::report::{self, Column, CurveRow, Row, curve_columns, curve_csv};
+use crate::report::{self, Column, CurveRow, Row, columns_csv, curve_columns};
 use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
 use std::path::Path;
@@ -97,7 +97,9 @@ impl PathRun {
 
     /// The columns of curve.csv.
     pub fn columns(&self, built: &Built) -> Vec<(String, Column)> {
-        curve_columns(&self.curve, built.problem.mesh.dim(), &Self::electrodes(built))
+        let supports = built.problem.reported_supports();
+        let parts = Self::electrodes(built);
+        curve_columns(&self.curve, built.problem.mesh.dim(), (&supports, &parts))
     }
 
     /// Whether every step converged and the path reached its end.
@@ -132,7 +134,7 @@ impl PathRun {
         self.last.write_with(built, out, summary)?;
         let problem = &built.problem;
         let parts = Self::electrodes(built);
-        let csv = curve_csv(&self.curve, problem.mesh.dim(), &parts);
+        let csv = columns_csv(&self.columns(built), self.curve.len());
         files::write_atomic(&out.join("curve.csv"), csv.as_bytes())?;
         let mut collection = Vec::new();
         let solution = &self.last.solution;

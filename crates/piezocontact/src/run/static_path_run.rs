@@ -4,7 +4,7 @@
 
 use super::path_run::PathRun;
 use super::static_run::StaticRun;
-use crate::algorithm::residual::reactions_without_contact;
+use crate::algorithm::residual::{Reactions, reactions_without_contact};
 use crate::case::Built;
 use crate::contact::Loading;
 use crate::error::Result;
@@ -43,16 +43,24 @@ impl StaticPathRun {
         let steps =
             solve_without_contact_at(problem, solver, &factors).map_err(|e| built.context(e))?;
         let mut curve = Vec::with_capacity(factors.len());
+        let mut last_reactions = Reactions::default();
         for (k, ((x, _), &load_factor)) in steps.states.iter().zip(&factors).enumerate() {
-            let scaled = (steps.moduli.as_slice(), load_factor);
-            let (reaction, charges) = reactions_without_contact(problem, &steps.dofs, x, scaled)?;
-            curve.push(StaticCurveRow { step: k + 1, load_factor, reaction, charges });
+            let reactions = reactions_without_contact(problem, &steps.dofs, x, load_factor)?;
+            curve.push(StaticCurveRow {
+                step: k + 1,
+                load_factor,
+                reaction: reactions.total.clone(),
+                supports: reactions.supports.clone(),
+                charges: reactions.charges.clone(),
+            });
+            last_reactions = reactions;
         }
         let (x, relative_residual) = steps.states.last().cloned().unwrap_or_default();
         let states = steps.states.into_iter().map(|(x, _)| x).collect();
         let (dofs, timings) = (steps.dofs, steps.timings);
         let solution = StaticSolution { x, dofs, relative_residual, timings };
-        Ok(Self { curve, states, last: StaticRun::new(built, solution, start) })
+        let last = StaticRun::new(built, (solution, last_reactions), start);
+        Ok(Self { curve, states, last })
     }
 
     /// x = (u, ϕ) of each step, in order.
@@ -63,7 +71,8 @@ impl StaticPathRun {
     /// The columns of curve.csv.
     pub fn columns(&self, built: &Built) -> Vec<(String, Column)> {
         let parts = PathRun::electrodes(built);
-        static_curve_columns(&self.curve, built.problem.mesh.dim(), &parts)
+        let supports = built.problem.reported_supports();
+        static_curve_columns(&self.curve, built.problem.mesh.dim(), (&supports, &parts))
     }
 
     /// The summary.json of the path: the last step's, with the path's steps.

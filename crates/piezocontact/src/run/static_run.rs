@@ -1,10 +1,11 @@
 //! A solve of a built case without contact (no `[contact]` table: Γ3, if named, is free).
 
+use crate::algorithm::residual::{Reactions, reactions_without_contact};
 use crate::case::Built;
 use crate::error::Result;
 use crate::linalg::LinearSolver;
 use crate::output::files;
-use crate::report::summary::{common_summary, memory, merge, timings};
+use crate::report::summary::{common_summary, memory, merge, reactions_json, timings};
 use crate::system::{StaticSolution, solve_without_contact};
 use serde_json::{Value, json};
 use std::path::Path;
@@ -18,6 +19,8 @@ pub struct StaticRun {
     pub max_u: f64,
     /// The smallest and the largest nodal ϕ \[potential\].
     pub phi_range: (f64, f64),
+    /// The reactions of the clamps and supports and the electrodes' charges.
+    pub reactions: Reactions,
     /// Wall time \[s\].
     pub seconds: f64,
 }
@@ -28,11 +31,17 @@ impl StaticRun {
         let start = Instant::now();
         let solution =
             solve_without_contact(&built.problem, solver).map_err(|e| built.context(e))?;
-        Ok(Self::new(built, solution, start))
+        let reactions =
+            reactions_without_contact(&built.problem, &solution.dofs, &solution.x, 1.0)?;
+        Ok(Self::new(built, (solution, reactions), start))
     }
 
-    /// The run of `solution`, started at `start`.
-    pub(super) fn new(built: &Built, solution: StaticSolution, start: Instant) -> Self {
+    /// The run of `solution` with its `reactions`, started at `start`.
+    pub(super) fn new(
+        built: &Built,
+        (solution, reactions): (StaticSolution, Reactions),
+        start: Instant,
+    ) -> Self {
         let (dofs, x) = (&solution.dofs, &solution.x);
         let mesh = &built.problem.mesh;
         let (dim, n) = (mesh.dim(), mesh.n_nodes());
@@ -43,7 +52,7 @@ impl StaticRun {
             .map(|a| x[dofs.phi(a)])
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
         let seconds = start.elapsed().as_secs_f64();
-        Self { solution, max_u, phi_range, seconds }
+        Self { solution, max_u, phi_range, reactions, seconds }
     }
 
     /// The summary.json document.
@@ -61,6 +70,8 @@ impl StaticRun {
                     "max_phi": self.phi_range.1,
                     "relative_residual": solution.relative_residual,
                 },
+                "reactions": reactions_json(&built.problem.support_names(), &self.reactions.supports),
+                "charges": self.reactions.charges,
                 "timings_seconds": timings(&t),
                 "memory": memory(&t),
             }),

@@ -24,5 +24,7 @@ mod layout;
 mod orderings;
 /// Patch tests: linear fields reproduced to round-off, 2D and 3D.
 mod patch;
+/// Supports along the axes: uniform states on rollers, reactions, bad tables.
+mod supports;
 /// The assembled system: symmetry, definiteness of the blocks, factorisation reuse.
 mod system;

@@ -1,0 +1,266 @@
+//! Supports along the axes: uniform states on rollers, which P1 elements reproduce to
+//! round-off, with the expected values computed here from the constitutive law
+//! (σ = k0 tr(ε) I + 2µ1 ε^D + Eᵀ∇ϕ, D = Eε − β∇ϕ), each support's reaction, and the errors
+//! of bad support tables.
+
+use super::common::{EPS0, mesh_file};
+use piezocontact::case::{Built, Case};
+use piezocontact::linalg::default_solver;
+use piezocontact::run::{Run, StaticRun};
+
+/// E, ν of the block [GPa, -], and its size: the box [0,2]×[0,1]×[0,1] [m].
+const YOUNG: f64 = 58.7102;
+const POISSON: f64 = 0.3912;
+const AREA: f64 = 2.0;
+
+/// A block on rollers on x = 0 (along x), y = 0 (along y) and z = 0 (along z), grounded at
+/// the bottom, with the piezoelectric constants (e31, e33, e15) and `extra` tables.
+fn block(e: [f64; 3], extra: &str) -> String {
+    format!(
+        r#"
+[mesh]
+file = "{mesh}"
+
+[material]
+law = "linear"
+young = {YOUNG}
+poisson = {POISSON}
+e31 = {e31}
+e33 = {e33}
+e15 = {e15}
+eps0 = {EPS0}
+beta11_rel = 916.0
+beta33_rel = 830.0
+
+[boundary]
+grounded = ["bottom"]
+
+[[boundary.support]]
+parts = ["x0"]
+fix = ["x"]
+
+[[boundary.support]]
+parts = ["y0"]
+fix = ["y"]
+
+[[boundary.support]]
+parts = ["bottom"]
+fix = ["z"]
+{extra}
+"#,
+        mesh = mesh_file("box-faces.msh").display(),
+        e31 = e[0],
+        e33 = e[1],
+        e15 = e[2],
+    )
+}
+
+fn build(text: &str) -> piezocontact::Result<Built> {
+    Case::from_text("block.toml".as_ref(), text, &[])?.build()
+}
+
+fn solve(text: &str) -> (Built, StaticRun) {
+    let built = build(text).unwrap();
+    match Run::solve(&built, default_solver(), &|_| {}).unwrap() {
+        Run::Static(run) => (built, run),
+        _ => panic!("not a run without contact"),
+    }
+}
+
+/// k0 and µ1 of the block.
+fn moduli() -> (f64, f64) {
+    (YOUNG / (3.0 - 6.0 * POISSON), YOUNG / (2.0 + 2.0 * POISSON))
+}
+
+/// The uniform state (ε_xx = ε_yy = a, ε_zz = c, ∂_zϕ = g) against the nodal solution: u =
+/// (a x, a y, c z), ϕ = g z, to `1e-9` of its largest value.
+fn assert_uniform(built: &Built, run: &StaticRun, (a, c, g): (f64, f64, f64)) {
+    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
+    let mesh = &built.problem.mesh;
+    let scale = a.abs().max(c.abs()) * 2.0;
+    for node in 0..mesh.n_nodes() {
+        let p = mesh.node(node);
+        let expected = [a * p[0], a * p[1], c * p[2]];
+        for k in 0..3 {
+            let got = x[dofs.u(node, k)];
+            assert!(
+                (got - expected[k]).abs() < 1e-9 * scale,
+                "u_{k} at {p:?}: {got} vs {}",
+                expected[k]
+            );
+        }
+        let phi = x[dofs.phi(node)];
+        assert!(
+            (phi - g * p[2]).abs() < 1e-9 * g.abs().max(1e-300),
+            "ϕ at {p:?}: {phi} vs {}",
+            g * p[2]
+        );
+    }
+}
+
+/// The reaction of the support `name`.
+fn reaction<'a>(built: &Built, run: &'a StaticRun, name: &str) -> &'a [f64] {
+    let k = built.problem.support_names().iter().position(|n| n == name).expect(name);
+    &run.reactions.supports[k]
+}
+
+/// An isotropic block on three rollers under a uniform pressure p on top deforms freely:
+/// σ = −p e_z e_z, so tr ε = −p/(3k0) and ε^D = σ^D/(2µ1). The bottom roller carries p A, the
+/// side rollers nothing.
+#[test]
+fn a_block_on_rollers_under_a_pressure_takes_the_uniform_state() {
+    let p = 0.5;
+    let text = block(
+        [0.0; 3],
+        &format!("[[boundary.traction]]\nparts = [\"top\"]\nf2 = [0.0, 0.0, {}]\n", -p),
+    );
+    let (built, run) = solve(&text);
+    let (k0, mu1) = moduli();
+    let trace = -p / (3.0 * k0);
+    let (a, c) = (trace / 3.0 + p / (6.0 * mu1), trace / 3.0 - p / (3.0 * mu1));
+    assert_uniform(&built, &run, (a, c, 0.0));
+    let bottom = reaction(&built, &run, "bottom");
+    assert!((bottom[2] - p * AREA).abs() < 1e-9 * p * AREA, "{bottom:?}");
+    for side in ["x0", "y0"] {
+        let r = reaction(&built, &run, side);
+        assert!(r.iter().all(|f| f.abs() < 1e-9 * p * AREA), "{side}: {r:?}");
+    }
+}
+
+/// The same block compressed by a displacement δ prescribed along z on its top: ε_zz = −δ,
+/// the sides free (σ_xx = σ_yy = 0), so ε_xx = ε_zz (2µ1/3 − k0)/(2k0 + 2µ1/3); the top
+/// support pushes with σ_zz A, the bottom one back.
+#[test]
+fn a_block_compressed_by_a_prescribed_displacement_takes_the_uniform_state() {
+    let delta = 1e-3;
+    let top = format!(
+        "[[boundary.support]]\nname = \"press\"\nparts = [\"top\"]\nfix = [\"z\"]\ndisplacement = [{}]\n",
+        -delta
+    );
+    let (built, run) = solve(&block([0.0; 3], &top));
+    let (k0, mu1) = moduli();
+    let c = -delta;
+    let a = c * (2.0 * mu1 / 3.0 - k0) / (2.0 * k0 + 2.0 * mu1 / 3.0);
+    assert_uniform(&built, &run, (a, c, 0.0));
+    let sigma_zz = k0 * (2.0 * a + c) + 4.0 * mu1 / 3.0 * (c - a);
+    let (press, bottom) = (reaction(&built, &run, "press"), reaction(&built, &run, "bottom"));
+    let force = sigma_zz * AREA;
+    assert!((press[2] - force).abs() < 1e-9 * force.abs(), "{press:?} vs {force}");
+    assert!((bottom[2] + force).abs() < 1e-9 * force.abs(), "{bottom:?} vs {}", -force);
+}
+
+/// A PZT block on the same rollers, grounded at the bottom, its top charge-free, under a
+/// pressure p: the uniform state with D_z = 0, from the three equations σ_xx = 0, σ_zz = −p,
+/// D_z = 2 e31 a + e33 c − β33 g = 0 (Cramer's rule).
+#[test]
+fn a_piezoelectric_block_on_rollers_takes_the_uniform_state_with_no_charge_on_top() {
+    let p = 0.5;
+    let (e31, e33) = (-5.4, 15.8);
+    let text = block(
+        [e31, e33, 12.3],
+        &format!("[[boundary.traction]]\nparts = [\"top\"]\nf2 = [0.0, 0.0, {}]\n", -p),
+    );
+    let (built, run) = solve(&text);
+    let (k0, mu1) = moduli();
+    let beta33 = 830.0 * EPS0;
+    // Rows: σ_xx, σ_zz, D_z; columns: a, c, g.
+    let m = [
+        [2.0 * k0 + 2.0 * mu1 / 3.0, k0 - 2.0 * mu1 / 3.0, e31],
+        [2.0 * k0 - 4.0 * mu1 / 3.0, k0 + 4.0 * mu1 / 3.0, e33],
+        [2.0 * e31, e33, -beta33],
+    ];
+    let rhs = [0.0, -p, 0.0];
+    let det = |m: [[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let solve_for = |j: usize| {
+        let mut mj = m;
+        (0..3).for_each(|i| mj[i][j] = rhs[i]);
+        det(mj) / det(m)
+    };
+    let (a, c, g) = (solve_for(0), solve_for(1), solve_for(2));
+    assert!(g.abs() > 0.0 && a > 0.0 && c < 0.0);
+    assert_uniform(&built, &run, (a, c, g));
+    let bottom = reaction(&built, &run, "bottom");
+    assert!((bottom[2] - p * AREA).abs() < 1e-9 * p * AREA, "{bottom:?}");
+}
+
+/// Bad support tables are errors naming the key and the fix; a body left free to move is
+/// refused with its free motions named; a support on a Γ3 node is refused naming the node.
+#[test]
+fn bad_supports_are_errors_naming_the_key() {
+    let error = |extra: &str| build(&block([0.0; 3], extra)).err().expect(extra).to_string();
+    let table = |body: &str| format!("[[boundary.support]]\n{body}\n");
+    let cases = [
+        (table("parts = [\"top\"]\nfix = []"), "fix is empty"),
+        (table("parts = [\"top\"]\nfix = [\"w\"]"), "fix names 'w'"),
+        (table("parts = [\"top\"]\nfix = [\"z\", \"z\"]"), "fix names 'z' twice"),
+        (
+            table("parts = [\"top\"]\nfix = [\"z\"]\ndisplacement = [1.0, 2.0]"),
+            "displacement has 2 values",
+        ),
+        (table("parts = [\"nowhere\"]\nfix = [\"z\"]"), "boundary.support.parts"),
+        (table("parts = []\nfix = [\"z\"]"), "parts is empty"),
+        (table("parts = [\"bottom\"]\nfix = [\"x\"]"), "the name 'bottom' is taken"),
+        (
+            table("name = \"lift\"\nparts = [\"x1\"]\nfix = [\"z\"]\ndisplacement = [0.1]"),
+            "fixed to 0 by 'bottom' and to 0.1",
+        ),
+    ];
+    for (extra, expected) in cases {
+        let e = error(&extra);
+        assert!(e.contains(expected) && e.contains("block.toml"), "{extra}: {e}");
+    }
+    // A path does not scale prescribed displacements yet: a nonzero one is refused there.
+    let press = "[[boundary.support]]\nparts = [\"top\"]\nfix = [\"z\"]\ndisplacement = [-0.001]\n";
+    let e = error(&format!("{press}[loading]\nload_factors = [0.5, 1.0]\n"));
+    assert!(
+        e.contains("boundary.support.displacement = -0.001 on a case with a [loading] path"),
+        "{e}"
+    );
+    // Without the side rollers the block slides and spins about z; without one, it slides.
+    let x_roller = "[[boundary.support]]\nparts = [\"x0\"]\nfix = [\"x\"]\n";
+    let y_roller = "[[boundary.support]]\nparts = [\"y0\"]\nfix = [\"y\"]\n";
+    let text = block([0.0; 3], "").replace(x_roller, "");
+    let e = build(&text).err().unwrap().to_string();
+    assert!(e.contains("the body can translate along x: its clamps and supports"), "{e}");
+    let e = build(&text.replace(y_roller, "")).err().unwrap().to_string();
+    let free = "the body can translate along x, translate along y and rotate about z:";
+    assert!(e.contains(free), "{e}");
+    let e = build(
+        &block([0.0; 3], "[contact]\ngap = 0.1\n")
+            .replace("grounded = [\"bottom\"]", "grounded = [\"bottom\"]\ncontact = [\"top\"]"),
+    )
+    .err()
+    .unwrap()
+    .to_string();
+    assert!(e.contains("holds node") && e.contains("lies on Γ3"), "{e}");
+}
+
+/// On a path, curve.csv has one column per support and component, which sums to the total
+/// reaction and carries the load times the step's factor (the bottom roller: p A λ).
+#[test]
+fn a_path_reports_each_support_s_reaction() {
+    let p = 0.5;
+    let extra = format!(
+        "[[boundary.traction]]\nparts = [\"top\"]\nf2 = [0.0, 0.0, {}]\n[loading]\nload_factors = [1.0, 3.0]\n",
+        -p
+    );
+    let built = build(&block([0.0; 3], &extra)).unwrap();
+    let run = Run::solve(&built, default_solver(), &|_| {}).unwrap();
+    let columns = run.curve(&built);
+    let column = |name: &str| match &columns.iter().find(|(n, _)| n == name).expect(name).1 {
+        piezocontact::report::Column::Real(v) => v.clone(),
+        _ => panic!("{name} is not real"),
+    };
+    let (bottom, total) = (column("reaction_bottom_z"), column("reaction_z"));
+    let sides = [column("reaction_x0_z"), column("reaction_y0_z")];
+    for (k, factor) in [1.0, 3.0].into_iter().enumerate() {
+        let load = p * AREA * factor;
+        assert!((bottom[k] - load).abs() < 1e-9 * load, "{bottom:?}");
+        let sum = bottom[k] + sides[0][k] + sides[1][k];
+        assert!((sum - total[k]).abs() < 1e-12 * load, "{sum} vs {}", total[k]);
+    }
+}
