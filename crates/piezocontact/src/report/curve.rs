@@ -101,7 +101,7 @@ impl Column {
 
 /// The columns of curve.csv, named and in order, for `rows` of a d-dimensional body whose
 /// grounded parts are `parts` (one `charge_<part>` each) and whose reported clamps and
-/// supports are `supports` (three `reaction_<name>_<axis>` each, [`support_columns`]).
+/// supports are `supports` (d `reaction_<name>_<axis>` columns each).
 pub fn curve_columns(
     rows: &[CurveRow],
     dim: usize,
@@ -188,7 +188,7 @@ pub struct StaticCurveRow {
 
 /// The columns of the curve.csv of a loading path without contact: `step`, `load_factor`,
 /// `reaction_x`… (the clamps' and supports' reaction in all), `reaction_<name>_x`… per
-/// reported clamp and support (`supports`, [`support_columns`]), and one `charge_<part>` per
+/// reported clamp and support (`supports`), and one `charge_<part>` per
 /// grounded part (`parts`).
 pub fn static_curve_columns(
     rows: &[StaticCurveRow],
