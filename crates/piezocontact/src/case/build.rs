@@ -2,6 +2,7 @@
 //! problem, the contact model, the loading path and the settings of the algorithms, with the
 //! case's title, units, backend and origin.
 
+use super::expression::Quantity;
 use super::file::{Case, Linear, Origin};
 use super::schema::{
     DEFAULTS, DiagonalKey, FrictionPathKey, LawKey, MethodKey, ProblemKey, RegularizationKey, Units,
@@ -18,9 +19,11 @@ use crate::material::{ElasticLaw, Elasticity, Material, PermittivityConstants, P
 use crate::mesh::rectangle::{Diagonal, Rectangle, Segment, SegmentParts};
 use crate::mesh::{Mesh, gmsh};
 use crate::problem::{
-    BodyLoads, Boundary, Problem, ScalarField, Support, constant_scalar, constant_vector,
+    BodyLoads, Boundary, Problem, ScalarField, Support, VectorField, constant_scalar,
+    constant_vector,
 };
 use std::path::Path;
+use std::sync::Arc;
 
 /// The parameters of each inner method the case file can name.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -386,15 +389,49 @@ impl Case {
         Ok(indices)
     }
 
+    /// The traction density f2 of a `[[boundary.traction]]` table on `parts` of `mesh`:
+    /// constant when every component is a number, else a field of the position checked at
+    /// the parts' nodes.
+    fn traction_field(&self, mesh: &Mesh, f2: &[Quantity], parts: &[usize]) -> Result<VectorField> {
+        let dim = mesh.dim();
+        let key = "boundary.traction.f2";
+        let numbers: Option<Vec<f64>> = f2
+            .iter()
+            .map(|q| match q {
+                Quantity::Number(v) => Some(*v),
+                Quantity::Expression(_) => None,
+            })
+            .collect();
+        if f2.len() != dim || numbers.as_ref().is_some_and(|v| v.iter().any(|x| !x.is_finite())) {
+            return Err(input!(
+                "{}: {key} = [{}] must have {dim} finite components, numbers or expressions of the position (the mesh is {dim}D)",
+                self.locate(key),
+                f2.iter().map(Quantity::text).collect::<Vec<_>>().join(", ")
+            ));
+        }
+        if let Some(v) = numbers {
+            return Ok(constant_vector(v));
+        }
+        let nodes = part_points(mesh, parts);
+        let fields = f2
+            .iter()
+            .enumerate()
+            .map(|(k, q)| q.field(&format!("{}: {key}[{k}]", self.locate(key)), dim, &nodes))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Arc::new(move |x: &[f64]| fields.iter().map(|f| f(x)).collect()))
+    }
+
     /// Refuses a nonzero prescribed displacement on a loading path, which scales the loads
     /// but not yet the prescribed displacements (each step would hold them at their full
     /// value).
     fn check_no_prescribed_displacement(&self) -> Result<()> {
         let tables = self.file.boundary.support.iter();
-        match tables.flat_map(|t| t.displacement.iter().flatten()).find(|v| **v != 0.0) {
+        let nonzero = |q: &&Quantity| !matches!(q, Quantity::Number(v) if *v == 0.0);
+        match tables.flat_map(|t| t.displacement.iter().flatten()).find(nonzero) {
             Some(value) => Err(input!(
-                "{}: boundary.support.displacement = {value} on a case with a [loading] path: a path scales the loads by its load_factors but not yet the prescribed displacements; prescribe 0, or solve each displacement as a case of its own",
-                self.locate("boundary.support")
+                "{}: boundary.support.displacement = {} on a case with a [loading] path: a path scales the loads by its load_factors but not yet the prescribed displacements; prescribe 0, or solve each displacement as a case of its own",
+                self.locate("boundary.support"),
+                value.text()
             )),
             None => Ok(()),
         }
@@ -417,8 +454,9 @@ impl Case {
                 ));
             }
             let parts = self.part_indices(mesh, "boundary.support.parts", &table.parts, false)?;
-            let fixed = support_components(&table.fix, table.displacement.as_deref(), dim)
-                .map_err(|why| input!("{at}: {why}"))?;
+            let points = part_points(mesh, &parts);
+            let fixed = support_components(&at, (&table.fix, table.displacement.as_deref()), dim)
+                .and_then(|fixed| displacement_fields(&at, fixed, dim, &points))?;
             let name = table.name.clone().unwrap_or_else(|| table.parts.join("+"));
             if names.contains(&name) {
                 return Err(input!(
@@ -450,10 +488,9 @@ impl Case {
         };
         let mut traction = Vec::new();
         for t in &b.traction {
-            let f2 = vector("boundary.traction.f2", &t.f2)?;
-            for p in load_parts("boundary.traction.parts", &t.parts)? {
-                traction.push((p, constant_vector(f2.clone())));
-            }
+            let parts = load_parts("boundary.traction.parts", &t.parts)?;
+            let f2 = self.traction_field(&mesh, &t.f2, &parts)?;
+            traction.extend(parts.into_iter().map(|p| (p, f2.clone())));
         }
         let mut charge = Vec::new();
         for c in &b.charge {
@@ -502,41 +539,63 @@ impl Case {
 }
 
 /// The fixed components of a support table, `fix` (names of axes) with their `displacement`
-/// (default 0), in a d-dimensional mesh; the reason when they are not valid.
-fn support_components(
-    fix: &[String],
-    displacement: Option<&[f64]>,
+/// (default 0), in a d-dimensional mesh; `at` locates the table in errors.
+fn support_components<'a>(
+    at: &str,
+    (fix, displacement): (&[String], Option<&'a [Quantity]>),
     dim: usize,
-) -> std::result::Result<Vec<(usize, ScalarField)>, String> {
+) -> Result<Vec<(usize, Option<&'a Quantity>)>> {
     if fix.is_empty() {
-        return Err("fix is empty: name the components it fixes, e.g. fix = [\"z\"]".into());
+        return Err(input!("{at}: fix is empty: name the components it fixes, e.g. fix = [\"z\"]"));
     }
     let axes = &["x", "y", "z"][..dim];
     let mut components = Vec::new();
     for name in fix {
         let Some(c) = axes.iter().position(|a| a == name) else {
-            return Err(format!(
-                "fix names '{name}', which is no component of the {dim}D mesh's displacement: use {axes:?}"
+            return Err(input!(
+                "{at}: fix names '{name}', which is no component of the {dim}D mesh's displacement: use {axes:?}"
             ));
         };
         if components.contains(&c) {
-            return Err(format!("fix names '{name}' twice: name each component once"));
+            return Err(input!("{at}: fix names '{name}' twice: name each component once"));
         }
         components.push(c);
     }
-    let values = match displacement {
-        None => vec![0.0; fix.len()],
-        Some(d) if d.len() != fix.len() => {
-            return Err(format!(
-                "displacement has {} values and fix {} components: give one value per entry of fix",
-                d.len(),
-                fix.len()
-            ));
-        }
-        Some(d) if d.iter().any(|v| !v.is_finite()) => {
-            return Err(format!("displacement = {d:?} must hold finite numbers"));
-        }
-        Some(d) => d.to_vec(),
-    };
-    Ok(components.into_iter().zip(values).map(|(c, v)| (c, constant_scalar(v))).collect())
+    match displacement {
+        None => Ok(components.into_iter().map(|c| (c, None)).collect()),
+        Some(d) if d.len() != fix.len() => Err(input!(
+            "{at}: displacement has {} values and fix {} components: give one value per entry of fix",
+            d.len(),
+            fix.len()
+        )),
+        Some(d) => Ok(components.into_iter().zip(d.iter().map(Some)).collect()),
+    }
+}
+
+/// The prescribed displacement of each fixed component (0 where none is given), as fields
+/// checked at `points`; `at` locates the table in errors.
+fn displacement_fields(
+    at: &str,
+    fixed: Vec<(usize, Option<&Quantity>)>,
+    dim: usize,
+    points: &[&[f64]],
+) -> Result<Vec<(usize, ScalarField)>> {
+    let zero = Quantity::Number(0.0);
+    fixed
+        .into_iter()
+        .enumerate()
+        .map(|(k, (c, q))| {
+            let key = format!("{at}: displacement[{k}]");
+            Ok((c, q.unwrap_or(&zero).field(&key, dim, points)?))
+        })
+        .collect()
+}
+
+/// The coordinates of the nodes of `parts` of `mesh`, each once.
+fn part_points<'a>(mesh: &'a Mesh, parts: &[usize]) -> Vec<&'a [f64]> {
+    let mut nodes: Vec<usize> =
+        parts.iter().flat_map(|&p| mesh.part_facets(p).flatten().copied()).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    nodes.into_iter().map(|a| mesh.node(a)).collect()
 }

@@ -19,6 +19,7 @@ macro_rules! input {
 }
 
 pub mod build;
+pub mod expression;
 pub mod file;
 mod geometry;
 pub mod overrides;

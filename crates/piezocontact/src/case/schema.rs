@@ -1,6 +1,7 @@
 //! The case file's schema: the raw serde view of a TOML case (ripgrep's "low args"), every
 //! key documented, unknown keys rejected; and every default in one table, [`DEFAULTS`].
 
+use super::expression::Quantity;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -199,8 +200,9 @@ fn default_t0() -> f64 {
 pub struct TractionLoad {
     /// Boundary parts carrying it.
     pub parts: Vec<String>,
-    /// f2: traction density, d components \[stress\].
-    pub f2: Vec<f64>,
+    /// f2: traction density, d components \[stress\], each a number or an expression of
+    /// x, y, z.
+    pub f2: Vec<Quantity>,
 }
 
 /// `[[boundary.support]]`: components of u fixed on boundary parts (rollers, symmetry planes,
@@ -214,8 +216,9 @@ pub struct SupportTable {
     pub parts: Vec<String>,
     /// The fixed components: "x", "y", "z".
     pub fix: Vec<String>,
-    /// The prescribed displacement of each entry of `fix` \[length\]; default 0.
-    pub displacement: Option<Vec<f64>>,
+    /// The prescribed displacement of each entry of `fix` \[length\], each a number or an
+    /// expression of x, y, z; default 0.
+    pub displacement: Option<Vec<Quantity>>,
 }
 
 /// A surface charge on Γb parts.
