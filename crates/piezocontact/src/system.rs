@@ -337,42 +337,12 @@ pub fn solve_without_contact(
     problem: &Problem,
     solver: Box<dyn LinearSolver>,
 ) -> Result<StaticSolution> {
-    let mut steps = solve_without_contact_at(problem, solver, &[1.0])?;
-    let (x, relative_residual) = steps.states.pop().expect("one state per load factor");
-    Ok(StaticSolution { x, dofs: steps.dofs, relative_residual, timings: steps.timings })
-}
-
-/// Result of solves without contact at several load factors (a loading path without contact).
-#[derive(Clone, Debug)]
-pub struct StaticSteps {
-    /// Per load factor, in order: x = (u, ϕ) (global numbering) and the relative residual
-    /// ‖B̌x − f̌‖ / ‖f̌‖ on the free DOFs.
-    pub states: Vec<(Vec<f64>, f64)>,
-    /// The DOF numbering of the states.
-    pub dofs: DofMap,
-    /// Time spent.
-    pub timings: Timings,
-}
-
-/// Solves the coupled problem without contact, as [`solve_without_contact`], at each of
-/// `load_factors` [-] in turn, every applied load scaled by the factor: one factorisation,
-/// one solve per factor.
-pub fn solve_without_contact_at(
-    problem: &Problem,
-    solver: Box<dyn LinearSolver>,
-    load_factors: &[f64],
-) -> Result<StaticSteps> {
     let mut system = CoupledSystem::new(problem, DofMap::new(problem)?, &[], solver)?;
     let zero = vec![0.0; system.dofs().n_total()];
     let moduli = secant_moduli(problem, system.dofs(), &zero)?;
     system.factorize(problem, &moduli, &[])?;
-    let mut states = Vec::with_capacity(load_factors.len());
-    for &load_factor in load_factors {
-        system.scale_loads(problem, load_factor);
-        let x = system.solve(None)?;
-        let relative_residual = system.relative_residual(&x)?;
-        states.push((x, relative_residual));
-    }
+    let x = system.solve(None)?;
+    let relative_residual = system.relative_residual(&x)?;
     let timings = system.timings();
-    Ok(StaticSteps { states, dofs: system.into_dofs(), timings })
+    Ok(StaticSolution { x, dofs: system.into_dofs(), relative_residual, timings })
 }

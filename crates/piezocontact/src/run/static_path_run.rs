@@ -13,7 +13,7 @@ use crate::output::files;
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
 use crate::output::vtu::pvd;
 use crate::report::{Column, StaticCurveRow, columns_csv, static_curve_columns};
-use crate::system::{StaticSolution, solve_without_contact_at};
+use crate::system::{StaticSolution, solve_without_contact};
 use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
 use std::path::Path;
@@ -31,7 +31,9 @@ pub struct StaticPathRun {
 
 impl StaticPathRun {
     /// Solves the steps of `loading` (load factors only: the foundation that depths move
-    /// needs `[contact]`) with the caller's `solver`, factorised once.
+    /// needs `[contact]`) with the caller's `solver`: the problem without contact is linear
+    /// (B̌(0) x = f̌ with the prescribed displacements lifted), so one solve at factor 1 gives
+    /// every step, x_k = λ_k x_1 — loads and prescribed displacements scaled alike.
     pub(super) fn solve(
         built: &Built,
         loading: &Loading,
@@ -39,26 +41,25 @@ impl StaticPathRun {
     ) -> Result<Self> {
         let start = Instant::now();
         let problem = &built.problem;
-        let factors: Vec<f64> = loading.steps.iter().map(|s| s.load_factor).collect();
-        let steps =
-            solve_without_contact_at(problem, solver, &factors).map_err(|e| built.context(e))?;
-        let mut curve = Vec::with_capacity(factors.len());
+        let unit = solve_without_contact(problem, solver).map_err(|e| built.context(e))?;
+        let mut curve = Vec::with_capacity(loading.steps.len());
+        let mut states = Vec::with_capacity(loading.steps.len());
         let mut last_reactions = Reactions::default();
-        for (k, ((x, _), &load_factor)) in steps.states.iter().zip(&factors).enumerate() {
-            let reactions = reactions_without_contact(problem, &steps.dofs, x, load_factor)?;
+        for (k, step) in loading.steps.iter().enumerate() {
+            let x: Vec<f64> = unit.x.iter().map(|v| step.load_factor * v).collect();
+            let reactions = reactions_without_contact(problem, &unit.dofs, &x, step.load_factor)?;
             curve.push(StaticCurveRow {
                 step: k + 1,
-                load_factor,
+                load_factor: step.load_factor,
                 reaction: reactions.total.clone(),
                 supports: reactions.supports.clone(),
                 charges: reactions.charges.clone(),
             });
+            states.push(x);
             last_reactions = reactions;
         }
-        let (x, relative_residual) = steps.states.last().cloned().unwrap_or_default();
-        let states = steps.states.into_iter().map(|(x, _)| x).collect();
-        let (dofs, timings) = (steps.dofs, steps.timings);
-        let solution = StaticSolution { x, dofs, relative_residual, timings };
+        let x = states.last().cloned().unwrap_or_default();
+        let solution = StaticSolution { x, ..unit };
         let last = StaticRun::new(built, (solution, last_reactions), start);
         Ok(Self { curve, states, last })
     }

@@ -225,13 +225,11 @@ fn bad_supports_are_errors_naming_the_key() {
     assert!(e.contains("boundary.traction.f2[1]: \"1 / (x - 2)\" is"), "{e}");
     let e = error(&pull("[0.0, 1.0]"));
     assert!(e.contains("must have 3 finite components"), "{e}");
-    // A path does not scale prescribed displacements yet: a nonzero one is refused there.
+    // A contact path does not scale prescribed displacements yet: a nonzero one is refused.
     let press = "[[boundary.support]]\nparts = [\"top\"]\nfix = [\"z\"]\ndisplacement = [-0.001]\n";
-    let e = error(&format!("{press}[loading]\nload_factors = [0.5, 1.0]\n"));
-    assert!(
-        e.contains("boundary.support.displacement = -0.001 on a case with a [loading] path"),
-        "{e}"
-    );
+    let e = error(&format!("{press}[contact]\ngap = 0.1\n[loading]\nload_factors = [0.5, 1.0]\n"));
+    let refusal = "boundary.support.displacement = -0.001 on a contact case with a [loading] path";
+    assert!(e.contains(refusal), "{e}");
     // Without the side rollers the block slides and spins about z; without one, it slides.
     let x_roller = "[[boundary.support]]\nparts = [\"x0\"]\nfix = [\"x\"]\n";
     let y_roller = "[[boundary.support]]\nparts = [\"y0\"]\nfix = [\"y\"]\n";
@@ -249,6 +247,40 @@ fn bad_supports_are_errors_naming_the_key() {
     .unwrap()
     .to_string();
     assert!(e.contains("holds node") && e.contains("lies on Γ3"), "{e}");
+}
+
+/// A path without contact scales the prescribed displacements with the loads: the block
+/// compressed by δ λ_k at step k takes the uniform state of δ λ_k, the press's reaction
+/// σ_zz(δ) A λ_k.
+#[test]
+fn a_path_without_contact_scales_the_prescribed_displacements() {
+    let delta = 1e-3;
+    let extra = format!(
+        "[[boundary.support]]\nname = \"press\"\nparts = [\"top\"]\nfix = [\"z\"]\ndisplacement = [{}]\n[loading]\nload_factors = [0.5, 2.0]\n",
+        -delta
+    );
+    let built = build(&block([0.0; 3], &extra)).unwrap();
+    let Run::StaticPath(path) = Run::solve(&built, default_solver(), &|_| {}).unwrap() else {
+        panic!("not a path without contact");
+    };
+    let (k0, mu1) = moduli();
+    let (c, steps) = (-delta, path.states().collect::<Vec<_>>());
+    let a = c * (2.0 * mu1 / 3.0 - k0) / (2.0 * k0 + 2.0 * mu1 / 3.0);
+    let sigma_zz = k0 * (2.0 * a + c) + 4.0 * mu1 / 3.0 * (c - a);
+    let top = built.problem.support_names().iter().position(|n| n == "press").unwrap();
+    let mesh = &built.problem.mesh;
+    let dofs = &path.last.solution.dofs;
+    for (k, factor) in [0.5, 2.0].into_iter().enumerate() {
+        let force = sigma_zz * AREA * factor;
+        let reaction = path.curve[k].supports[top][2];
+        assert!((reaction - force).abs() < 1e-9 * force.abs(), "{reaction} vs {force}");
+        let corner = (0..mesh.n_nodes()).find(|&a| mesh.node(a) == [2.0, 1.0, 1.0]).unwrap();
+        let expected = [2.0 * a * factor, a * factor, c * factor];
+        for (i, e) in expected.iter().enumerate() {
+            let got = steps[k][dofs.u(corner, i)];
+            assert!((got - e).abs() < 1e-9 * delta, "step {k} u_{i}: {got} vs {e}");
+        }
+    }
 }
 
 /// On a path, curve.csv has one column per support and component, which sums to the total
