@@ -190,6 +190,27 @@ def test_a_case_from_a_dict_solves_like_its_file(tmp_path):
         piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
 
 
+def test_supports_and_expressions_read_as_in_the_case_file(tmp_path):
+    case = {
+        "mesh": {"x": [0.0, 4.0], "y": [0.0, 1.0], "nx": 8, "ny": 2,
+                 "segments": {"left": ["{0}x[0,1]"], "bottom": ["[0,4]x{0}"], "right": ["{4}x[0,1]"]}},
+        "material": {"law": "linear", "young": 100.0, "poisson": 0.3, "e32": 0.0, "e33": 0.0, "e24": 0.0,
+                     "eps0": 8.885e-3, "beta22_rel": 916.0, "beta33_rel": 830.0},
+        "boundary": {"grounded": ["bottom"],
+                     "support": [{"parts": ["left"], "fix": ["x"]},
+                                 {"name": "floor", "parts": ["bottom"], "fix": ["y"]}],
+                     "traction": [{"parts": ["right"], "f2": ["-2 * y", 0.0]}]},
+    }
+    solved = piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
+    reactions = solved.summary["reactions"]
+    assert set(reactions) == {"left", "floor"}
+    # The traction -2y over y in [0, 1] pulls with -1 along x: the left roller holds it.
+    assert abs(reactions["left"][0] - 1.0) < 1e-9 and abs(reactions["floor"][0]) < 1e-12
+    case["boundary"]["support"][0]["fix"] = ["w"]
+    with pytest.raises(ValueError, match="fix names 'w'"):
+        piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
+
+
 def test_write_writes_the_files_of_run(tmp_path):
     solution = piezocontact.solve(PAPER_72, COARSE)
     out = tmp_path / "out"

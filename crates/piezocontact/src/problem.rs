@@ -278,7 +278,7 @@ impl Problem {
                         first[slot] = Some(fixed.len());
                         fixed.push(FixedComponent { node, component, value, table });
                     }
-                    Some(k) => check_same_value(&fixed[k], value, &self.support_names())?,
+                    Some(k) => check_same_value(&fixed[k], (value, table), &self.support_names())?,
                 }
             }
         }
@@ -331,16 +331,20 @@ impl Problem {
     }
 }
 
-/// Refuses `value` for a component that `first` fixes already, unless it is the same value
-/// (to 1e-12 relative); `names` are the tables' names.
-fn check_same_value(first: &FixedComponent, value: f64, names: &[String]) -> Result<()> {
+/// Refuses `value` from table `table` for a component that `first` fixes already, unless it
+/// is the same value (to 1e-12 relative); `names` are the tables' names.
+fn check_same_value(
+    first: &FixedComponent,
+    (value, table): (f64, usize),
+    names: &[String],
+) -> Result<()> {
     let scale = first.value.abs().max(value.abs());
     if (first.value - value).abs() <= 1e-12 * scale {
         return Ok(());
     }
     let axis = ["x", "y", "z"][first.component];
     Err(Error::Input(format!(
-        "node {} has its displacement along {axis} fixed to {} by '{}' and to {value} by another support: give both the same value there, or hold the node by one of them",
-        first.node, first.value, names[first.table]
+        "node {} has its displacement along {axis} fixed to {} by '{}' and to {value} by '{}': give both the same value there, or hold the node by one of them",
+        first.node, first.value, names[first.table], names[table]
     )))
 }
