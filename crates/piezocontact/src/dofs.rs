@@ -24,6 +24,10 @@ pub struct DofMap {
     n_free: usize,
     /// Prescribed values of constrained DOFs (0 on free ones), global numbering.
     prescribed: Vec<f64>,
+    /// The prescribed displacements of the case (u DOFs, at load factor 1), of which
+    /// `prescribed` holds the multiple a loading path's step asks for
+    /// ([`DofMap::scale_displacements`]); empty when they are all 0.
+    displacements: Vec<f64>,
     /// Per u DOF, the clamp or support that fixes it ([`crate::problem::FixedComponent`]'s
     /// table), [`NO_TABLE`] where free.
     table: Vec<usize>,
@@ -59,7 +63,9 @@ impl DofMap {
                 n_free_u = next;
             }
         }
-        Ok(Self { dim, n_nodes, free, n_free_u, n_free: next, prescribed, table })
+        let nonzero = prescribed[..n_nodes * dim].iter().any(|v| *v != 0.0);
+        let displacements = if nonzero { prescribed[..n_nodes * dim].to_vec() } else { Vec::new() };
+        Ok(Self { dim, n_nodes, free, n_free_u, n_free: next, prescribed, displacements, table })
     }
 
     /// The free unknowns of each node (u components and ϕ).
@@ -117,6 +123,19 @@ impl DofMap {
     /// Prescribed value of global DOF `g` (0 for a free DOF).
     pub fn prescribed(&self, g: usize) -> f64 {
         self.prescribed[g]
+    }
+
+    /// Whether some prescribed displacement is not 0 (a loading path scales them).
+    pub fn has_prescribed_displacements(&self) -> bool {
+        !self.displacements.is_empty()
+    }
+
+    /// Sets the prescribed displacements to `load_factor` [-] times the case's (a step of a
+    /// loading path); the prescribed potentials stay.
+    pub fn scale_displacements(&mut self, load_factor: f64) {
+        for (g, unit) in self.displacements.iter().enumerate() {
+            self.prescribed[g] = load_factor * unit;
+        }
     }
 
     /// Pivot signs of the free DOFs: +1 for u, −1 for ϕ.

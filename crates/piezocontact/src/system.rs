@@ -62,6 +62,9 @@ pub struct CoupledSystem {
     pattern_seconds: f64,
     /// Assembly time so far [s].
     assembly_seconds: f64,
+    /// Whether the prescribed displacements changed since the lifting was assembled
+    /// ([`CoupledSystem::scale_loads`]): the next solve needs a new assembly.
+    lifting_stale: bool,
 }
 
 impl CoupledSystem {
@@ -124,6 +127,7 @@ impl CoupledSystem {
             unloaded: None,
             pattern_seconds,
             assembly_seconds,
+            lifting_stale: false,
         })
     }
 
@@ -158,6 +162,7 @@ impl CoupledSystem {
         let t = Instant::now();
         let (matrix, lifting) = self.assembler.linearised_matrix(problem, linearisation, blocks)?;
         self.lifting = lifting;
+        self.lifting_stale = false;
         self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
         self.assembly_seconds += t.elapsed().as_secs_f64();
         self.unloaded = None;
@@ -188,6 +193,7 @@ impl CoupledSystem {
         let (m_x, k_x) = (frozen.mul(&x_free), matrix.mul(&x_free));
         self.lifting =
             lifting.iter().zip(m_x.iter().zip(&k_x)).map(|(l, (m, k))| l + m - k).collect();
+        self.lifting_stale = false;
         self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
         self.unloaded = None;
         self.assembly_seconds += t.elapsed().as_secs_f64();
@@ -202,6 +208,10 @@ impl CoupledSystem {
             return;
         }
         let t = Instant::now();
+        if self.assembler.dofs().has_prescribed_displacements() {
+            self.assembler.scale_displacements(load_factor);
+            self.lifting_stale = true;
+        }
         let dofs = self.assembler.dofs();
         self.load = self.assembler.restrict(&load_vector(problem, dofs, load_factor));
         self.load_factor = load_factor;
@@ -210,6 +220,12 @@ impl CoupledSystem {
             self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
         }
         self.assembly_seconds += t.elapsed().as_secs_f64();
+    }
+
+    /// Whether the prescribed displacements changed since the lifting was assembled: the
+    /// caller assembles again (a chord step or a factorisation) before it solves.
+    pub fn lifting_stale(&self) -> bool {
+        self.lifting_stale
     }
 
     /// Solves with the current factorisation for the current right-hand side plus `extra`

@@ -72,9 +72,11 @@ impl Hencky {
     }
 
     /// Starts a solve: the linearisation of the last solve is kept (floored or not), its
-    /// failures and counts are not.
-    pub fn start(&mut self) {
+    /// failures and counts are not; `reassemble` (the prescribed displacements changed) has
+    /// the first step assemble B̌ again, which lifts them.
+    pub fn start(&mut self, reassemble: bool) {
         (self.whole_failures, self.chords, self.floored_steps, self.chord_steps) = (0, 0, 0, 0);
+        self.changed |= reassemble;
     }
 
     /// The counts of this solve's steps.

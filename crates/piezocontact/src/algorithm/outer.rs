@@ -141,9 +141,9 @@ impl ContactSolver {
         load_factor: f64,
         progress: &(dyn Fn(Progress) + Sync),
     ) -> Result<ContactSolution> {
-        let mut solution = self.start(problem, model, load_factor);
         self.system.scale_loads(problem, load_factor);
-        self.hencky.start();
+        let mut solution = self.start(problem, model, load_factor);
+        self.hencky.start(self.system.lifting_stale());
         solution.failure = self.iterate(problem, model, &mut solution, progress)?;
         let solution = self.finish(problem, model, solution)?;
         self.last = Some((solution.x.clone(), solution.s.clone()));

@@ -142,6 +142,12 @@ impl Assembler {
         &self.dofs
     }
 
+    /// The prescribed displacements set to `load_factor` [-] times the case's
+    /// ([`DofMap::scale_displacements`]); the next matrix assembled lifts them.
+    pub fn scale_displacements(&mut self, load_factor: f64) {
+        self.dofs.scale_displacements(load_factor);
+    }
+
     /// Gives up the DOF map.
     pub fn into_dofs(self) -> DofMap {
         self.dofs

@@ -77,9 +77,6 @@ impl Case {
     /// Validates the case once and builds everything a run takes.
     pub fn build(&self) -> Result<Built> {
         self.check_backend()?;
-        if self.file.loading.is_some() && self.file.contact.is_some() {
-            self.check_no_prescribed_displacement()?;
-        }
         self.contact_settings()?;
         let problem = self.problem_checked()?;
         let model = self.contact_model(&problem)?;
@@ -419,22 +416,6 @@ impl Case {
             .map(|(k, q)| q.field(&format!("{}: {key}[{k}]", self.locate(key)), dim, &nodes))
             .collect::<Result<Vec<_>>>()?;
         Ok(Arc::new(move |x: &[f64]| fields.iter().map(|f| f(x)).collect()))
-    }
-
-    /// Refuses a nonzero prescribed displacement on a loading path with contact, which scales
-    /// the loads but not yet the prescribed displacements (each step would hold them at their
-    /// full value); a path without contact scales both.
-    fn check_no_prescribed_displacement(&self) -> Result<()> {
-        let tables = self.file.boundary.support.iter();
-        let nonzero = |q: &&Quantity| !matches!(q, Quantity::Number(v) if *v == 0.0);
-        match tables.flat_map(|t| t.displacement.iter().flatten()).find(nonzero) {
-            Some(value) => Err(input!(
-                "{}: boundary.support.displacement = {} on a contact case with a [loading] path: a contact path scales the loads by its load_factors but not yet the prescribed displacements; prescribe 0, or solve each displacement as a case of its own",
-                self.locate("boundary.support"),
-                value.text()
-            )),
-            None => Ok(()),
-        }
     }
 
     /// The `[[boundary.support]]` tables, checked, on `mesh` whose clamped parts are

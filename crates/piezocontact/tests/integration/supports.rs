@@ -225,11 +225,6 @@ fn bad_supports_are_errors_naming_the_key() {
     assert!(e.contains("boundary.traction.f2[1]: \"1 / (x - 2)\" is"), "{e}");
     let e = error(&pull("[0.0, 1.0]"));
     assert!(e.contains("must have 3 finite components"), "{e}");
-    // A contact path does not scale prescribed displacements yet: a nonzero one is refused.
-    let press = "[[boundary.support]]\nparts = [\"top\"]\nfix = [\"z\"]\ndisplacement = [-0.001]\n";
-    let e = error(&format!("{press}[contact]\ngap = 0.1\n[loading]\nload_factors = [0.5, 1.0]\n"));
-    let refusal = "boundary.support.displacement = -0.001 on a contact case with a [loading] path";
-    assert!(e.contains(refusal), "{e}");
     // Without the side rollers the block slides and spins about z; without one, it slides.
     let x_roller = "[[boundary.support]]\nparts = [\"x0\"]\nfix = [\"x\"]\n";
     let y_roller = "[[boundary.support]]\nparts = [\"y0\"]\nfix = [\"y\"]\n";
@@ -426,5 +421,76 @@ fn the_forces_balance_on_the_committed_cases() {
             let size = balance.reaction.iter().map(|f| f.abs()).fold(0.0, f64::max);
             assert!((sum - balance.reaction[c]).abs() <= 1e-12 * size, "{case}: {balance:?}");
         }
+    }
+}
+
+/// A bar pushed onto a rigid foundation by a displacement prescribed on its top, on a path
+/// of load factors: each step equals the single run with the displacement at its factor
+/// (the path scales the prescribed displacements as it scales the loads, and lifts them
+/// again at each step).
+#[test]
+fn a_contact_path_scales_the_prescribed_displacements() {
+    let case = |displacement: f64, loading: &str| {
+        format!(
+            r#"
+[mesh]
+x = [0.0, 4.0]
+y = [0.0, 1.0]
+nx = 16
+ny = 4
+
+[mesh.segments]
+left = ["{{0}}x[0,1]"]
+top = ["[0,4]x{{1}}"]
+bottom = ["[0.5,3.5]x{{0}}"]
+
+[material]
+law = "linear"
+young = {YOUNG}
+poisson = {POISSON}
+e32 = -5.4
+e33 = 15.8
+e24 = 12.3
+eps0 = {EPS0}
+beta22_rel = 916.0
+beta33_rel = 830.0
+
+[boundary]
+grounded = ["top"]
+contact = ["bottom"]
+
+[[boundary.support]]
+parts = ["left"]
+fix = ["x"]
+
+[[boundary.support]]
+name = "press"
+parts = ["top"]
+fix = ["y"]
+displacement = [{displacement}]
+
+[contact]
+gap = 0.001
+c_nu = 100.0
+{loading}
+"#
+        )
+    };
+    let sigma_nu = |run: &piezocontact::run::ContactRun| -> Vec<f64> {
+        run.rows.iter().map(|r| r.sigma_nu).collect()
+    };
+    let path = build(&case(-0.004, "[loading]\nload_factors = [0.5, 1.0]\n")).unwrap();
+    let Run::Path(path) = Run::solve(&path, default_solver(), &|_| {}).unwrap() else {
+        panic!("not a contact path");
+    };
+    assert!(path.converged(), "{:?}", path.failure);
+    for (k, displacement) in [-0.002, -0.004].into_iter().enumerate() {
+        let single = super::common::contact_run(&build(&case(displacement, "")).unwrap());
+        let expected = sigma_nu(&single);
+        let got: Vec<f64> = path.rows(k).iter().map(|r| r.sigma_nu).collect();
+        let scale = expected.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        assert!(scale > 0.0, "step {k}: nothing touches");
+        let error = got.iter().zip(&expected).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(error < 1e-9 * scale, "step {k}: σ_ν differs by {error} of {scale}");
     }
 }
