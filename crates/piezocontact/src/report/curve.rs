@@ -210,3 +210,22 @@ pub fn static_curve_columns(
     }
     columns
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A curve's CSV writes no NaN or infinity as a token: such a cell is empty, and finite
+    /// values keep the bytes of `{:e}`.
+    #[test]
+    fn non_finite_cells_are_empty_and_finite_ones_keep_their_bytes() {
+        let columns = vec![
+            ("step".to_string(), Column::Integer(vec![1, 2, 3])),
+            ("value".to_string(), Column::Real(vec![f64::NAN, f64::INFINITY, -2.5e-3])),
+            ("flag".to_string(), Column::Flag(vec![true, false, true])),
+        ];
+        let csv = columns_csv(&columns, 3);
+        assert_eq!(csv, "step,value,flag\n1,,true\n2,,false\n3,-2.5e-3,true\n");
+        assert_eq!(format!("{:e}", -2.5e-3), "-2.5e-3");
+    }
+}
