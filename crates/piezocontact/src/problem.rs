@@ -225,6 +225,16 @@ impl Problem {
         b.clamped.iter().chain(b.supports.iter().flat_map(|s| &s.parts)).copied().collect()
     }
 
+    /// How many tables hold the body: the clamp, if there is one, and the supports.
+    pub fn n_support_tables(&self) -> usize {
+        self.clamp_tables() + self.boundary.supports.len()
+    }
+
+    /// 1 with a clamp (the first table), else 0.
+    fn clamp_tables(&self) -> usize {
+        usize::from(!self.boundary.clamped.is_empty())
+    }
+
     /// The names of the tables that hold the body, in order: the clamp (its parts' names
     /// joined by '+'), if there is one, then each support.
     pub fn support_names(&self) -> Vec<String> {
@@ -268,7 +278,7 @@ impl Problem {
                         s.fixed.iter().map(move |(i, f)| (node, *i, f(mesh.node(node))))
                     })
                     .collect::<Vec<_>>();
-                (entries, k + usize::from(!b.clamped.is_empty()))
+                (entries, k + self.clamp_tables())
             }));
         for (entries, table) in tables {
             for (node, component, value) in entries {
@@ -323,11 +333,7 @@ impl Problem {
 
     /// Nodes of the facets of the given parts, sorted and without repetition.
     pub fn part_nodes(&self, parts: &[usize]) -> Vec<usize> {
-        let mut nodes: Vec<usize> =
-            parts.iter().flat_map(|&p| self.mesh.part_facets(p).flatten().copied()).collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        nodes
+        self.mesh.part_nodes(parts)
     }
 }
 

@@ -195,7 +195,7 @@ pub fn reactions(
 ) -> Reactions {
     let (dim, n) = (problem.mesh.dim(), problem.mesh.n_nodes());
     let mut total = vec![0.0; dim];
-    let mut supports = vec![vec![0.0; dim]; problem.support_names().len()];
+    let mut supports = vec![vec![0.0; dim]; problem.n_support_tables()];
     let mut phi_reaction = vec![0.0; n];
     for gdof in (0..dofs.n_total()).filter(|&g| dofs.free_index(g) == CONSTRAINED) {
         if gdof < dim * n {

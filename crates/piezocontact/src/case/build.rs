@@ -574,9 +574,5 @@ fn displacement_fields(
 
 /// The coordinates of the nodes of `parts` of `mesh`, each once.
 fn part_points<'a>(mesh: &'a Mesh, parts: &[usize]) -> Vec<&'a [f64]> {
-    let mut nodes: Vec<usize> =
-        parts.iter().flat_map(|&p| mesh.part_facets(p).flatten().copied()).collect();
-    nodes.sort_unstable();
-    nodes.dedup();
-    nodes.into_iter().map(|a| mesh.node(a)).collect()
+    mesh.part_nodes(parts).into_iter().map(|a| mesh.node(a)).collect()
 }

@@ -232,6 +232,15 @@ impl Mesh {
         }
     }
 
+    /// Nodes of the facets of the given parts, sorted and without repetition.
+    pub fn part_nodes(&self, parts: &[usize]) -> Vec<usize> {
+        let mut nodes: Vec<usize> =
+            parts.iter().flat_map(|&p| self.part_facets(p).flatten().copied()).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+
     /// Total measure of part `p`.
     pub fn part_measure(&self, p: usize) -> f64 {
         self.part_facets(p).map(|f| self.facet_frame(f).0).sum()
