@@ -15,6 +15,13 @@
 //! with the caller's linear solver, to solve each outer step, and to say how its stops read;
 //! adding a method touches the method's own module and the case's `solver.method` table.
 //! Each file imports its siblings' files, never this one.
+//!
+//! One outer step of a contact solve visits, in order: [`outer`] (the loop); [`hencky`]
+//! (`prepare`: a factorisation or a chord step, through `system` and `assembly`); the method
+//! — [`newton`] with [`condensed`], or [`uzawa`] — which applies the laws of `contact::law`;
+//! [`solution`] (`record`: σ_ν from `contact::state`, the friction bound from
+//! `contact::friction` and its mollifier); [`hencky`] again (`relinearise`); [`residual`]
+//! and [`stops`] for its criterion and its stops. No file of these imports one above it.
 
 pub mod condensed;
 pub mod hencky;
