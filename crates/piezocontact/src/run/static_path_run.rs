@@ -60,7 +60,7 @@ impl StaticPathRun {
         }
         let x = states.last().cloned().unwrap_or_default();
         let solution = StaticSolution { x, ..unit };
-        let last = StaticRun::new(built, (solution, last_reactions), start);
+        let last = StaticRun::new(built, (solution, last_reactions), start)?;
         Ok(Self { curve, states, last })
     }
 
