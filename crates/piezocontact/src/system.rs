@@ -341,24 +341,98 @@ pub struct StaticSolution {
     pub x: Vec<f64>,
     /// The DOF numbering of `x`.
     pub dofs: DofMap,
-    /// Relative residual ‖B̌x − f̌‖ / ‖f̌‖ of the linear system on the free DOFs.
+    /// Relative residual ‖B̌x − f̌‖ / ‖f̌‖ of the last linear system on the free DOFs.
     pub relative_residual: f64,
+    /// Factorisations of B̌ made: 1, and one more per secant step of Hencky's law.
+    pub factorisations: usize,
     /// Time spent.
     pub timings: Timings,
 }
 
-/// Solves the coupled problem without contact with the caller's `solver`, with B̌(x_0) at x_0 = 0 (g = g(0) = µ1: the
-/// linear problem; the Hencky secant update comes with the contact algorithms).
+/// The most secant steps of Hencky's law a solve without contact makes.
+const MAX_SECANT_STEPS: usize = 200;
+
+/// The relative residual of the true law, ‖B̌(g(x)) x − f̌‖ / ‖f̌‖, at which the secant steps
+/// stop.
+const SECANT_TOLERANCE: f64 = 1e-8;
+
+/// Solves the coupled problem without contact with the caller's `solver`: B̌(g(x)) x = f̌,
+/// Hencky's law followed by secant steps from x_0 = 0 (B̌ with g(x_n), then x_{n+1}: Kačanov's
+/// iteration, model §7's outer loop without contact) until g no longer changes or the
+/// residual of the true law is at most 1e-8 of f̌; one factorisation when the law is linear
+/// or the solution stays within t0.
 pub fn solve_without_contact(
     problem: &Problem,
     solver: Box<dyn LinearSolver>,
 ) -> Result<StaticSolution> {
+    let mut steps = solve_without_contact_at(problem, solver, &[1.0])?;
+    Ok(steps.pop().expect("one solution per load factor"))
+}
+
+/// [`solve_without_contact`] at each of `load_factors` [-] in turn (a loading path without
+/// contact), every load and prescribed displacement scaled by the factor, each from the last
+/// one's secant moduli, on one system (one symbolic analysis).
+pub fn solve_without_contact_at(
+    problem: &Problem,
+    solver: Box<dyn LinearSolver>,
+    load_factors: &[f64],
+) -> Result<Vec<StaticSolution>> {
     let mut system = CoupledSystem::new(problem, DofMap::new(problem)?, &[], solver)?;
     let zero = vec![0.0; system.dofs().n_total()];
-    let moduli = secant_moduli(problem, system.dofs(), &zero)?;
+    let mut moduli = secant_moduli(problem, system.dofs(), &zero)?;
     system.factorize(problem, &moduli, &[])?;
-    let x = system.solve(None)?;
-    let relative_residual = system.relative_residual(&x)?;
-    let timings = system.timings();
-    Ok(StaticSolution { x, dofs: system.into_dofs(), relative_residual, timings })
+    let mut solutions = Vec::with_capacity(load_factors.len());
+    for &load_factor in load_factors {
+        system.scale_loads(problem, load_factor);
+        if system.lifting_stale() {
+            system.factorize(problem, &moduli, &[])?;
+        }
+        let (x, factorisations) = secant_steps(problem, &mut system, &mut moduli)?;
+        let relative_residual = system.relative_residual(&x)?;
+        let (dofs, timings) = (system.dofs().clone(), system.timings());
+        solutions.push(StaticSolution { x, dofs, relative_residual, factorisations, timings });
+    }
+    Ok(solutions)
+}
+
+/// Solves with the factorisation held, then secant steps while Hencky's law at the solution
+/// differs from `moduli` (updated): the solution and the factorisations made (counting the
+/// one held).
+fn secant_steps(
+    problem: &Problem,
+    system: &mut CoupledSystem,
+    moduli: &mut Vec<f64>,
+) -> Result<(Vec<f64>, usize)> {
+    let mut x = system.solve(None)?;
+    let mut residuals: Vec<f64> = Vec::new();
+    for factorisations in 1..=MAX_SECANT_STEPS {
+        let next = secant_moduli(problem, system.dofs(), &x)?;
+        if next == *moduli {
+            return Ok((x, factorisations));
+        }
+        system.factorize(problem, &next, &[])?;
+        *moduli = next;
+        // B̌ now holds g(x): its residual at x is the true law's.
+        let residual = system.relative_residual(&x)?;
+        residuals.push(residual);
+        if residual <= SECANT_TOLERANCE {
+            return Ok((x, factorisations + 1));
+        }
+        x = system.solve(None)?;
+    }
+    Err(Error::NotConverged {
+        what: "the secant steps of Hencky's law without contact".into(),
+        iterations: MAX_SECANT_STEPS,
+        criterion: residuals.last().copied().unwrap_or_default(),
+        tolerance: SECANT_TOLERANCE,
+        history: residuals
+            .iter()
+            .rev()
+            .take(5)
+            .rev()
+            .map(|c| format!("{c:.1e}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        hint: "the loads take the body far beyond Hencky's elasticity limit t0; lower them, or scale them up along a [loading] path".into(),
+    })
 }

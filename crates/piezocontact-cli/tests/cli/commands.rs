@@ -711,28 +711,3 @@ fn a_path_without_contact_scales_the_loads_step_by_step() {
     let o = piezocontact(&depths);
     assert!(!o.status.success() && text(&o).contains("loading.depths moves the foundation"));
 }
-
-/// A solve without contact uses Hencky's law at small strain: where its solution goes beyond
-/// the elasticity limit t0, the run says so (stderr and summary.json's warnings), and not
-/// within it.
-#[test]
-fn a_solve_without_contact_beyond_hencky_s_limit_warns() {
-    let dir = temp_dir("hencky-without-contact");
-    let case = "cases/cantilever-load-factors.toml";
-    let run = |name: &str, t0: &str| {
-        let out = dir.join(name).display().to_string();
-        let sets = ["--set", "material.law=\"hencky\"", "--set", t0];
-        let o = piezocontact(&[&["run", case, "--out", &out][..], &sets].concat());
-        assert!(o.status.success(), "{}", text(&o));
-        let summary: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(dir.join(name).join("summary.json")).unwrap(),
-        )
-        .unwrap();
-        (text(&o), summary["warnings"].to_string())
-    };
-    let (t, warnings) = run("beyond", "material.t0=1e-12");
-    assert!(t.contains("warning: ") && t.contains("exceed Hencky's elasticity limit"), "{t}");
-    assert!(warnings.contains("exceed Hencky's elasticity limit"), "{warnings}");
-    let (t, warnings) = run("within", "material.t0=1.8");
-    assert!(!t.contains("elasticity limit") && !warnings.contains("elasticity limit"), "{t}");
-}

@@ -222,16 +222,16 @@ pub struct Reactions {
     pub charges: Vec<f64>,
 }
 
-/// The reactions ([`reactions`]) of a state `x` without contact, solved with the linear law
-/// g(0) at x_0 = 0 (as [`crate::system::solve_without_contact`] solves) under the loads scaled
-/// by `load_factor` [-].
+/// The reactions ([`reactions`]) of a state `x` without contact, with Hencky's law at x (as
+/// [`crate::system::solve_without_contact`] solves) under the loads scaled by `load_factor`
+/// [-].
 pub fn reactions_without_contact(
     problem: &Problem,
     dofs: &DofMap,
     x: &[f64],
     load_factor: f64,
 ) -> Result<Reactions> {
-    let moduli = secant_moduli(problem, dofs, &vec![0.0; dofs.n_total()])?;
+    let moduli = secant_moduli(problem, dofs, x)?;
     let (f_int, _) = internal_force(problem, dofs, x, &moduli)?;
     let f_ext = load_vector(problem, dofs, load_factor);
     let none = vec![0.0; dofs.n_total()];

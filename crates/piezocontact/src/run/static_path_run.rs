@@ -9,11 +9,12 @@ use crate::case::Built;
 use crate::contact::Loading;
 use crate::error::Result;
 use crate::linalg::LinearSolver;
+use crate::material::ElasticLaw;
 use crate::output::files;
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
 use crate::output::vtu::pvd;
 use crate::report::{Column, StaticCurveRow, columns_csv, static_curve_columns};
-use crate::system::{StaticSolution, solve_without_contact};
+use crate::system::{StaticSolution, solve_without_contact, solve_without_contact_at};
 use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
 use std::path::Path;
@@ -31,9 +32,10 @@ pub struct StaticPathRun {
 
 impl StaticPathRun {
     /// Solves the steps of `loading` (load factors only: the foundation that depths move
-    /// needs `[contact]`) with the caller's `solver`: the problem without contact is linear
-    /// (B̌(0) x = f̌ with the prescribed displacements lifted), so one solve at factor 1 gives
-    /// every step, x_k = λ_k x_1 — loads and prescribed displacements scaled alike.
+    /// needs `[contact]`) with the caller's `solver`. With the linear law the problem is
+    /// linear (B̌ x = f̌ with the prescribed displacements lifted), so one solve at factor 1
+    /// gives every step, x_k = λ_k x_1 — loads and prescribed displacements scaled alike;
+    /// with Hencky's law each step is solved, from the last one's secant moduli.
     pub(super) fn solve(
         built: &Built,
         loading: &Loading,
@@ -41,26 +43,38 @@ impl StaticPathRun {
     ) -> Result<Self> {
         let start = Instant::now();
         let problem = &built.problem;
-        let unit = solve_without_contact(problem, solver).map_err(|e| built.context(e))?;
-        let mut curve = Vec::with_capacity(loading.steps.len());
-        let mut states = Vec::with_capacity(loading.steps.len());
+        let factors: Vec<f64> = loading.steps.iter().map(|s| s.load_factor).collect();
+        let solutions = match problem.material.elasticity.law {
+            ElasticLaw::Linear => {
+                let unit = solve_without_contact(problem, solver);
+                let unit = unit.map_err(|e| built.context(e))?;
+                let scaled = |&factor: &f64| StaticSolution {
+                    x: unit.x.iter().map(|v| factor * v).collect(),
+                    ..unit.clone()
+                };
+                factors.iter().map(scaled).collect()
+            }
+            ElasticLaw::Hencky { .. } => {
+                solve_without_contact_at(problem, solver, &factors).map_err(|e| built.context(e))?
+            }
+        };
+        let mut curve = Vec::with_capacity(factors.len());
         let mut last_reactions = Reactions::default();
-        for (k, step) in loading.steps.iter().enumerate() {
-            let x: Vec<f64> = unit.x.iter().map(|v| step.load_factor * v).collect();
-            let reactions = reactions_without_contact(problem, &unit.dofs, &x, step.load_factor)?;
+        for (k, (solution, &load_factor)) in solutions.iter().zip(&factors).enumerate() {
+            let (dofs, x) = (&solution.dofs, &solution.x);
+            let reactions = reactions_without_contact(problem, dofs, x, load_factor)?;
             curve.push(StaticCurveRow {
                 step: k + 1,
-                load_factor: step.load_factor,
+                load_factor,
                 reaction: reactions.total.clone(),
                 supports: reactions.supports.clone(),
                 charges: reactions.charges.clone(),
             });
-            states.push(x);
             last_reactions = reactions;
         }
-        let x = states.last().cloned().unwrap_or_default();
-        let solution = StaticSolution { x, ..unit };
-        let last = StaticRun::new(built, (solution, last_reactions), start)?;
+        let states: Vec<Vec<f64>> = solutions.iter().map(|s| s.x.clone()).collect();
+        let solution = solutions.into_iter().last().expect("a path has steps");
+        let last = StaticRun::new(built, (solution, last_reactions), start);
         Ok(Self { curve, states, last })
     }
 

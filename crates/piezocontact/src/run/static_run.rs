@@ -1,7 +1,6 @@
 //! A solve of a built case without contact (no `[contact]` table: Γ3, if named, is free).
 
 use crate::algorithm::residual::{Reactions, reactions_without_contact};
-use crate::assembly::secant_moduli;
 use crate::case::Built;
 use crate::error::Result;
 use crate::linalg::LinearSolver;
@@ -22,9 +21,6 @@ pub struct StaticRun {
     pub phi_range: (f64, f64),
     /// The reactions of the clamps and supports and the electrodes' charges.
     pub reactions: Reactions,
-    /// Elements where Hencky's law departs from its small-strain modulus at this solution
-    /// (‖ε^D‖² > t0), which the solve without contact does not follow: 0 for a linear law.
-    pub beyond_limit: usize,
     /// Wall time \[s\].
     pub seconds: f64,
 }
@@ -37,7 +33,7 @@ impl StaticRun {
             solve_without_contact(&built.problem, solver).map_err(|e| built.context(e))?;
         let reactions =
             reactions_without_contact(&built.problem, &solution.dofs, &solution.x, 1.0)?;
-        Self::new(built, (solution, reactions), start)
+        Ok(Self::new(built, (solution, reactions), start))
     }
 
     /// The run of `solution` with its `reactions`, started at `start`.
@@ -45,11 +41,8 @@ impl StaticRun {
         built: &Built,
         (solution, reactions): (StaticSolution, Reactions),
         start: Instant,
-    ) -> Result<Self> {
+    ) -> Self {
         let (dofs, x) = (&solution.dofs, &solution.x);
-        let mu1 = built.problem.material.elasticity.mu1;
-        let moduli = secant_moduli(&built.problem, dofs, x)?;
-        let beyond_limit = moduli.iter().filter(|g| **g != mu1).count();
         let mesh = &built.problem.mesh;
         let (dim, n) = (mesh.dim(), mesh.n_nodes());
         let max_u = (0..n)
@@ -59,18 +52,7 @@ impl StaticRun {
             .map(|a| x[dofs.phi(a)])
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
         let seconds = start.elapsed().as_secs_f64();
-        Ok(Self { solution, max_u, phi_range, reactions, beyond_limit, seconds })
-    }
-
-    /// The warning of a solution beyond Hencky's elasticity limit, `None` within it.
-    pub fn hencky_warning(&self, built: &Built) -> Option<String> {
-        (self.beyond_limit > 0).then(|| {
-            format!(
-                "{} of {} elements exceed Hencky's elasticity limit (‖ε^D‖² > t0) at this solution, and the solve without contact uses the law at small strain (g = µ1) throughout: there its stresses are larger than Hencky's law gives; lower the loads, or set material.law = \"linear\" to take the linear law as meant",
-                self.beyond_limit,
-                built.problem.mesh.n_cells()
-            )
-        })
+        Self { solution, max_u, phi_range, reactions, seconds }
     }
 
     /// The summary.json document.
@@ -95,9 +77,8 @@ impl StaticRun {
             }),
         );
         summary["timings_seconds"]["total"] = json!(self.seconds);
-        let mut warnings = built.warnings.clone();
-        warnings.extend(self.hencky_warning(built));
-        summary["warnings"] = json!(warnings);
+        summary["warnings"] = json!(built.warnings);
+        summary["factorisations"] = json!(self.solution.factorisations);
         summary
     }
 
