@@ -234,6 +234,9 @@ fn static_run(run: &StaticRun, built: &Built, out: &Path) {
     say!("  max |u|            = {:.6e} {}", run.max_u, units.length);
     let (lo, hi) = run.phi_range;
     say!("  phi range          = [{lo:.6e}, {hi:.6e}] {}", units.potential);
+    if run.solution.failure.is_some() {
+        say!("  NOT converged: Hencky's law not met (the last secant step's state is written)");
+    }
     say!("  relative residual  = {:.3e}", run.solution.relative_residual);
     reactions(built, &run.reactions.supports);
     if run.solution.factorisations > 1 {

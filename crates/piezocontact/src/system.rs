@@ -345,6 +345,8 @@ pub struct StaticSolution {
     pub relative_residual: f64,
     /// Factorisations of B̌ made: 1, and one more per secant step of Hencky's law.
     pub factorisations: usize,
+    /// Why the secant steps stopped before the law was met (the cap), `None` when it was.
+    pub failure: Option<Error>,
     /// Time spent.
     pub timings: Timings,
 }
@@ -371,7 +373,8 @@ pub fn solve_without_contact(
 
 /// [`solve_without_contact`] at each of `load_factors` [-] in turn (a loading path without
 /// contact), every load and prescribed displacement scaled by the factor, each from the last
-/// one's secant moduli, on one system (one symbolic analysis).
+/// one's secant moduli, on one system (one symbolic analysis); a step whose secant steps reach
+/// their cap is the last, marked with its failure.
 pub fn solve_without_contact_at(
     problem: &Problem,
     solver: Box<dyn LinearSolver>,
@@ -387,28 +390,34 @@ pub fn solve_without_contact_at(
         if system.lifting_stale() {
             system.factorize(problem, &moduli, &[])?;
         }
-        let (x, factorisations) = secant_steps(problem, &mut system, &mut moduli)?;
+        let (x, factorisations, failure) = secant_steps(problem, &mut system, &mut moduli)?;
         let relative_residual = system.relative_residual(&x)?;
         let (dofs, timings) = (system.dofs().clone(), system.timings());
-        solutions.push(StaticSolution { x, dofs, relative_residual, factorisations, timings });
+        let stop = failure.is_some();
+        let solution =
+            StaticSolution { x, dofs, relative_residual, factorisations, failure, timings };
+        solutions.push(solution);
+        if stop {
+            break;
+        }
     }
     Ok(solutions)
 }
 
 /// Solves with the factorisation held, then secant steps while Hencky's law at the solution
-/// differs from `moduli` (updated): the solution and the factorisations made (counting the
-/// one held).
+/// differs from `moduli` (updated): the solution, the factorisations made (counting the one
+/// held), and the failure when the steps reached their cap (the last iterate kept).
 fn secant_steps(
     problem: &Problem,
     system: &mut CoupledSystem,
     moduli: &mut Vec<f64>,
-) -> Result<(Vec<f64>, usize)> {
+) -> Result<(Vec<f64>, usize, Option<Error>)> {
     let mut x = system.solve(None)?;
     let mut residuals: Vec<f64> = Vec::new();
     for factorisations in 1..=MAX_SECANT_STEPS {
         let next = secant_moduli(problem, system.dofs(), &x)?;
         if next == *moduli {
-            return Ok((x, factorisations));
+            return Ok((x, factorisations, None));
         }
         system.factorize(problem, &next, &[])?;
         *moduli = next;
@@ -416,11 +425,11 @@ fn secant_steps(
         let residual = system.relative_residual(&x)?;
         residuals.push(residual);
         if residual <= SECANT_TOLERANCE {
-            return Ok((x, factorisations + 1));
+            return Ok((x, factorisations + 1, None));
         }
         x = system.solve(None)?;
     }
-    Err(Error::NotConverged {
+    let failure = Error::NotConverged {
         what: "the secant steps of Hencky's law without contact".into(),
         iterations: MAX_SECANT_STEPS,
         criterion: residuals.last().copied().unwrap_or_default(),
@@ -434,5 +443,6 @@ fn secant_steps(
             .collect::<Vec<_>>()
             .join(", "),
         hint: "the loads take the body far beyond Hencky's elasticity limit t0; lower them, or scale them up along a [loading] path".into(),
-    })
+    };
+    Ok((x, MAX_SECANT_STEPS + 1, Some(failure)))
 }

@@ -711,3 +711,25 @@ fn a_path_without_contact_scales_the_loads_step_by_step() {
     let o = piezocontact(&depths);
     assert!(!o.status.success() && text(&o).contains("loading.depths moves the foundation"));
 }
+
+/// Secant steps of Hencky's law that reach their cap without contact (t0 far below the
+/// strains) end the run with exit code 3 and a message naming the step, and still write what
+/// they have: summary.json marked unconverged with the failure, curve.csv up to that step.
+#[test]
+fn a_solve_without_contact_that_does_not_meet_hencky_s_law_says_so() {
+    let dir = temp_dir("hencky-cap");
+    let out = dir.join("out").display().to_string();
+    let law = ["--set", "material.law=\"hencky\"", "--set", "material.t0=1e-16"];
+    let args = [&["run", "cases/cantilever-load-factors.toml", "--out", &out][..], &law].concat();
+    let o = piezocontact(&args);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(3), "{t}");
+    assert!(t.contains("step 1 (load factor 0.5) did not converge: the secant steps"), "{t}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(summary["converged"], false);
+    assert!(summary["failure"].as_str().unwrap().contains("Hencky's law"), "{summary}");
+    let curve = std::fs::read_to_string(dir.join("out/curve.csv")).unwrap();
+    assert_eq!(curve.lines().count(), 2, "{curve}");
+}

@@ -116,9 +116,10 @@ impl Run {
     /// of a path that stopped it.
     pub fn failure(&self) -> Option<String> {
         match self {
-            Self::Static(_) | Self::StaticPath(_) => None,
+            Self::Static(run) => run.solution.failure.as_ref().map(ToString::to_string),
             Self::Contact(run) => run.solution.failure.as_ref().map(ToString::to_string),
             Self::Path(path) => path.failure.clone(),
+            Self::StaticPath(path) => path.failure(),
         }
     }
 
@@ -126,7 +127,11 @@ impl Run {
     /// a divergence, an interruption; `None` otherwise, and for a path step that failed
     /// outright.
     pub fn error(&self) -> Option<&Error> {
-        self.contact().and_then(|run| run.solution.failure.as_ref())
+        match self {
+            Self::Static(run) => run.solution.failure.as_ref(),
+            Self::StaticPath(path) => path.last.solution.failure.as_ref(),
+            _ => self.contact().and_then(|run| run.solution.failure.as_ref()),
+        }
     }
 
     /// The columns of a loading path's curve.csv, one entry per step solved; empty for a

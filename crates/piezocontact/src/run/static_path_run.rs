@@ -78,6 +78,16 @@ impl StaticPathRun {
         Ok(Self { curve, states, last })
     }
 
+    /// Why the path stopped before its end: the step whose secant steps reached their cap.
+    pub fn failure(&self) -> Option<String> {
+        let failure = self.last.solution.failure.as_ref()?;
+        let step = self.curve.len();
+        Some(format!(
+            "step {step} (load factor {}) did not converge: {failure}",
+            self.curve[step - 1].load_factor
+        ))
+    }
+
     /// x = (u, ϕ) of each step, in order.
     pub fn states(&self) -> impl Iterator<Item = &[f64]> {
         self.states.iter().map(Vec::as_slice)
@@ -93,7 +103,10 @@ impl StaticPathRun {
     /// The summary.json of the path: the last step's, with the path's steps.
     pub fn summary(&self, built: &Built) -> Value {
         let mut summary = self.last.summary(built);
-        summary["path"] = json!({ "steps": self.curve.len(), "steps_solved": self.curve.len() });
+        summary["path"] = json!({ "steps": built.loading.as_ref().map_or(0, |l| l.steps.len()), "steps_solved": self.curve.len() });
+        if let Some(failure) = self.failure() {
+            summary["failure"] = json!(failure);
+        }
         summary
     }
 

@@ -63,7 +63,8 @@ impl StaticRun {
             &mut summary,
             json!({
                 "problem": "coupled electro-elastic, no contact",
-                "converged": true,
+                "converged": solution.failure.is_none(),
+                "failure": solution.failure.as_ref().map(ToString::to_string),
                 "norms": {
                     "max_abs_u": self.max_u,
                     "min_phi": self.phi_range.0,
