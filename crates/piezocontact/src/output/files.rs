@@ -8,7 +8,7 @@
 //!   forced) and clears our own earlier output there, so that a rerun replaces it whole. The
 //!   files written are listed in the directory's [`MARKER`] file.
 
-use super::vtu::{Field, to_vtu};
+use super::vtu::{Field, pvd, to_vtu};
 use crate::assembly::element_fields;
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
@@ -236,4 +236,16 @@ pub fn solution_vtu(
             Field { name: "D", components: 3, values: &d },
         ],
     ))
+}
+
+/// The series of a loading path: solution-NNNN.vtu per step (its VTU text, numbered from 1)
+/// and solution.pvd, which ParaView opens as one animation.
+pub fn write_series(out: &Path, steps: impl Iterator<Item = Result<String>>) -> Result<()> {
+    let mut collection = Vec::new();
+    for (k, vtu) in steps.enumerate() {
+        let name = format!("solution-{:04}.vtu", k + 1);
+        write_atomic(&out.join(&name), vtu?.as_bytes())?;
+        collection.push((k + 1, name));
+    }
+    write_atomic(&out.join("solution.pvd"), pvd(&collection).as_bytes())
 }

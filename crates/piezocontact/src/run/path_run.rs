@@ -12,7 +12,6 @@ use crate::linalg::LinearSolver;
 use crate::output::fields::ContactFields;
 use crate::output::files;
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
-use crate::output::vtu::pvd;
 use crate::report::{self, Column, CurveRow, Row, columns_csv, curve_columns};
 use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
@@ -136,16 +135,12 @@ impl PathRun {
         let parts = Self::electrodes(built);
         let csv = columns_csv(&self.columns(built), self.curve.len());
         files::write_atomic(&out.join("curve.csv"), csv.as_bytes())?;
-        let mut collection = Vec::new();
         let solution = &self.last.solution;
-        for (k, (x, rows)) in self.states.iter().enumerate() {
-            let name = format!("solution-{:04}.vtu", k + 1);
+        let steps = self.states.iter().map(|(x, rows)| {
             let fields = ContactFields::new(&problem.mesh, &solution.surface, rows);
-            let vtu = files::solution_vtu(problem, &solution.dofs, x, &fields.fields())?;
-            files::write_atomic(&out.join(&name), vtu.as_bytes())?;
-            collection.push((k + 1, name));
-        }
-        files::write_atomic(&out.join("solution.pvd"), pvd(&collection).as_bytes())?;
+            files::solution_vtu(problem, &solution.dofs, x, &fields.fields())
+        });
+        files::write_series(out, steps)?;
         plot::panels(&self.figures((built, loading), &parts), &out.join("curve"))
     }
 

@@ -12,7 +12,6 @@ use crate::linalg::LinearSolver;
 use crate::material::ElasticLaw;
 use crate::output::files;
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
-use crate::output::vtu::pvd;
 use crate::report::{Column, StaticCurveRow, columns_csv, static_curve_columns};
 use crate::system::{StaticSolution, solve_without_contact, solve_without_contact_at};
 use plotters::prelude::SeriesLabelPosition;
@@ -117,14 +116,9 @@ impl StaticPathRun {
         let problem = &built.problem;
         let csv = columns_csv(&self.columns(built), self.curve.len());
         files::write_atomic(&out.join("curve.csv"), csv.as_bytes())?;
-        let mut collection = Vec::new();
-        for (k, x) in self.states.iter().enumerate() {
-            let name = format!("solution-{:04}.vtu", k + 1);
-            let vtu = files::solution_vtu(problem, &self.last.solution.dofs, x, &[])?;
-            files::write_atomic(&out.join(&name), vtu.as_bytes())?;
-            collection.push((k + 1, name));
-        }
-        files::write_atomic(&out.join("solution.pvd"), pvd(&collection).as_bytes())?;
+        let dofs = &self.last.solution.dofs;
+        let steps = self.states.iter().map(|x| files::solution_vtu(problem, dofs, x, &[]));
+        files::write_series(out, steps)?;
         plot::panels(&self.figures(built), &out.join("curve"))
     }
 
