@@ -198,10 +198,12 @@ pub fn loading(loading: &Loading, dim: usize, units: &Units) {
 /// Prints the indentation moduli of the material's half-space, poled along its outward
 /// normal (the classical solutions with C* in place of E*).
 pub fn indentation_moduli(material: &Material, units: &Units) {
-    let e_star = plane_strain_modulus(material.elasticity.young(), material.elasticity.poisson());
     let s = &units.stress;
     say!("indentation of a half-space poled along its outward normal (small strain):");
-    say!("  E/(1 − ν²)          = {e_star:.6} {s} (without the piezoelectric coupling)");
+    if let Some(el) = material.elasticity() {
+        let e_star = plane_strain_modulus(el.young(), el.poisson());
+        say!("  E/(1 − ν²)          = {e_star:.6} {s} (without the piezoelectric coupling)");
+    }
     let constants = Piezoelectric::of(material);
     if [constants.e31, constants.e33, constants.e15].iter().all(|e| *e == 0.0) {
         return;
@@ -341,14 +343,16 @@ fn roles(b: &piezocontact::problem::Boundary, p: usize) -> String {
 pub fn material(built: &Built) -> piezocontact::Result<()> {
     let problem = &built.problem;
     let dofs = piezocontact::dofs::DofMap::new(problem)?;
-    let el = problem.material.elasticity;
-    say!(
-        "material: mu1 = {:.6} {s}, k0 = {:.6} {s}, law {:?}",
-        el.mu1,
-        el.k0,
-        el.law,
-        s = built.units.stress
-    );
+    match problem.material.elasticity() {
+        Some(el) => say!(
+            "material: mu1 = {:.6} {s}, k0 = {:.6} {s}, law {:?}",
+            el.mu1,
+            el.k0,
+            el.law,
+            s = built.units.stress
+        ),
+        None => say!("material: a stiffness tensor (linear law)"),
+    }
     say!(
         "dofs: {} in all, {} free ({} u, {} phi)",
         dofs.n_total(),

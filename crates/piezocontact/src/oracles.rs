@@ -31,7 +31,7 @@
 //! σ_xz = 0, σ_zz = −p, D_z = q fix the combination.
 
 use crate::error::{Error, Result};
-use crate::material::Material;
+use crate::material::{Elastic, Material};
 use faer::c64;
 use std::f64::consts::PI;
 
@@ -116,16 +116,23 @@ pub struct PiezoelectricIndentation {
 }
 
 impl Piezoelectric {
-    /// The constants of `material` (isotropic elasticity at small strain, µ1 and k0; the
-    /// piezoelectric and dielectric constants of its poling axis, the last).
+    /// The constants of `material` (isotropic elasticity at small strain, µ1 and k0, or the
+    /// stiffness tensor's c11, c13, c33, c44; the piezoelectric and dielectric constants of its
+    /// poling axis, the last), read as those of a material transversely isotropic about it.
     pub fn of(material: &Material) -> Self {
-        let (k0, mu) = (material.elasticity.k0, material.elasticity.mu1);
         let (p, e, beta) = (material.dim - 1, &material.e, &material.beta);
+        let [c11, c13, c33, c44] = match &material.elastic {
+            Elastic::Isotropic(el) => {
+                let (k0, mu) = (el.k0, el.mu1);
+                [k0 + 4.0 / 3.0 * mu, k0 - 2.0 / 3.0 * mu, k0 + 4.0 / 3.0 * mu, mu]
+            }
+            Elastic::Anisotropic(c) => [c[0][0][0][0], c[0][0][p][p], c[p][p][p][p], c[0][p][0][p]],
+        };
         Self {
-            c11: k0 + 4.0 / 3.0 * mu,
-            c13: k0 - 2.0 / 3.0 * mu,
-            c33: k0 + 4.0 / 3.0 * mu,
-            c44: mu,
+            c11,
+            c13,
+            c33,
+            c44,
             e31: e[p][0][0],
             e33: e[p][p][p],
             e15: e[0][0][p],

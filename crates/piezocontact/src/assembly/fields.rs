@@ -199,13 +199,13 @@ impl Linearisation {
     /// The consistent tangent of Hencky's law at x (global vector): whole, or floored where
     /// it is not positive along ε^D.
     pub fn tangent(problem: &Problem, dofs: &DofMap, x: &[f64], beyond: Beyond) -> Result<Self> {
-        let elasticity = problem.material.elasticity;
+        let material = &problem.material;
         let mut moduli = Vec::with_capacity(problem.mesh.n_cells());
         let mut tangent = Vec::with_capacity(problem.mesh.n_cells());
         for c in 0..problem.mesh.n_cells() {
             let deviator = with_simplex!(problem.mesh.dim(), deviator_tensor(problem, dofs, x, c))?;
             let t: f64 = deviator.iter().flatten().map(|v| v * v).sum();
-            let (g, dg) = (elasticity.g(t), elasticity.dg(t));
+            let (g, dg) = (material.modulus(t), material.modulus_slope(t));
             moduli.push(g);
             // Only the elements that use the tangent keep ε^D: an unchanged linearisation then
             // means unchanged moduli wherever the law is linear.
@@ -246,7 +246,7 @@ pub fn secant_moduli(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Vec<
         .into_par_iter()
         .map(|c| {
             let t = with_simplex!(problem.mesh.dim(), deviator_at(problem, dofs, x, c))?;
-            Ok(problem.material.elasticity.g(t))
+            Ok(problem.material.modulus(t))
         })
         .collect()
 }

@@ -7,7 +7,7 @@
 use crate::dofs::DofMap;
 use crate::element::Simplex;
 use crate::error::{Error, Result};
-use crate::material::Material;
+use crate::material::{Elastic, Material};
 use crate::problem::Problem;
 
 /// Largest local system: a tetrahedron with 4 × 4 DOFs.
@@ -35,6 +35,7 @@ pub fn tangent_vector<const D: usize, const N: usize>(
 ///
 /// ```text
 /// uu: |K| [k0 ∂_iN_a ∂_jN_b + 2g (½(δ_ij ∇N_a·∇N_b + ∂_jN_a ∂_iN_b) − ∂_iN_a ∂_jN_b / d)]
+///     or, for a stiffness tensor, |K| ∂_kN_a c_ikjl ∂_lN_b
 /// uϕ: |K| e_kil ∂_kN_b ∂_lN_a            from (Eᵀ∇ϕ, ε(v))
 /// ϕu: |K| e_ijl ∂_lN_b ∂_iN_a            from (Eε(u), ∇ξ)
 /// ϕϕ: −|K| ∂_iN_a β_ij ∂_jN_b
@@ -45,18 +46,13 @@ pub fn element_matrix<const D: usize, const N: usize>(
     g: f64,
 ) -> ElementMatrix {
     let mut k = [[0.0; M_MAX]; M_MAX];
-    let (vol, grad, k0) = (s.measure(), &s.grad, material.elasticity.k0);
+    let (vol, grad) = (s.measure(), &s.grad);
     let (e, beta) = (&material.e, &material.beta);
-    let dot = |a: usize, b: usize| (0..D).map(|i| grad[a][i] * grad[b][i]).sum::<f64>();
     for a in 0..N {
         for b in 0..N {
-            let ab = dot(a, b);
             for i in 0..D {
                 for j in 0..D {
-                    let delta = if i == j { ab } else { 0.0 };
-                    let (gi, gj) = (grad[a][i] * grad[b][j], grad[a][j] * grad[b][i]);
-                    k[a * D + i][b * D + j] =
-                        vol * (k0 * gi + 2.0 * g * (0.5 * (delta + gj) - gi / D as f64));
+                    k[a * D + i][b * D + j] = vol * elastic_entry(material, s, g, [a, b], [i, j]);
                 }
                 let mut coupling = 0.0;
                 for p in 0..D {
@@ -85,6 +81,36 @@ pub fn element_matrix<const D: usize, const N: usize>(
         }
     }
     k
+}
+
+/// The uu entry of B̌ for the components i, j at the nodes a, b, per unit measure \[stress/length²\]:
+/// Hencky's k0 ∂_iN_a ∂_jN_b + 2g (½(δ_ij ∇N_a·∇N_b + ∂_jN_a ∂_iN_b) − ∂_iN_a ∂_jN_b / d), or a
+/// stiffness tensor's Σ_kl ∂_kN_a c_ikjl ∂_lN_b.
+fn elastic_entry<const D: usize, const N: usize>(
+    material: &Material,
+    s: &Simplex<D, N>,
+    g: f64,
+    [a, b]: [usize; 2],
+    [i, j]: [usize; 2],
+) -> f64 {
+    let grad = &s.grad;
+    match &material.elastic {
+        Elastic::Isotropic(el) => {
+            let ab: f64 = (0..D).map(|m| grad[a][m] * grad[b][m]).sum();
+            let delta = if i == j { ab } else { 0.0 };
+            let (gi, gj) = (grad[a][i] * grad[b][j], grad[a][j] * grad[b][i]);
+            el.k0 * gi + 2.0 * g * (0.5 * (delta + gj) - gi / D as f64)
+        }
+        Elastic::Anisotropic(c) => {
+            let mut entry = 0.0;
+            for k in 0..D {
+                for l in 0..D {
+                    entry += grad[a][k] * c[i][k][j][l] * grad[b][l];
+                }
+            }
+            entry
+        }
+    }
 }
 
 /// Global DOF indices of the element's local DOFs.

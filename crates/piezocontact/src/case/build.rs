@@ -5,7 +5,7 @@
 use super::expression::Quantity;
 use super::file::{Case, Linear, Origin};
 use super::schema::{
-    DEFAULTS, DiagonalKey, FrictionPathKey, LawKey, MethodKey, ProblemKey, RegularizationKey, Units,
+    DEFAULTS, DiagonalKey, FrictionPathKey, MethodKey, ProblemKey, RegularizationKey, Units,
 };
 use crate::algorithm::Settings;
 use crate::algorithm::condensed::Guess;
@@ -15,7 +15,6 @@ use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization
 use crate::contact::{ContactModel, Loading};
 use crate::error::{Error, Result};
 use crate::linalg::LinearSolver;
-use crate::material::{ElasticLaw, Elasticity, Material, PermittivityConstants, PiezoConstants};
 use crate::mesh::rectangle::{Diagonal, Rectangle, Segment, SegmentParts};
 use crate::mesh::{Mesh, gmsh};
 use crate::problem::{
@@ -90,7 +89,7 @@ impl Case {
             problem,
             model,
             loading,
-            settings: self.settings_checked(),
+            settings: self.settings_checked()?,
             linear: self.linear(),
             warnings,
             title: self.file.title.clone(),
@@ -192,42 +191,6 @@ impl Case {
         )
     }
 
-    /// The elastic law of `[material]`, its constants checked.
-    pub(super) fn elasticity(&self) -> Result<Elasticity> {
-        let m = &self.file.material;
-        let law = match m.law {
-            LawKey::Hencky => ElasticLaw::Hencky { t0: m.t0 },
-            LawKey::Linear => ElasticLaw::Linear,
-        };
-        Elasticity::from_young_poisson(m.young, m.poisson, law).map_err(|e| self.context(e))
-    }
-
-    /// The material in dimension `dim`.
-    pub fn material(&self, dim: usize) -> Result<Material> {
-        let m = &self.file.material;
-        let elasticity = self.elasticity()?;
-        for (key, value) in [
-            ("material.eps0", m.eps0),
-            ("material.beta11_rel", m.beta11_rel),
-            ("material.beta33_rel", m.beta33_rel),
-        ] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(input!(
-                    "{}: {key} = {value} must be > 0 (the permittivity β = β_rel ε0 is \
-                     positive definite)",
-                    self.locate(key)
-                ));
-            }
-        }
-        Material::new(
-            dim,
-            elasticity,
-            PiezoConstants { e31: m.e31, e33: m.e33, e15: m.e15 },
-            PermittivityConstants { beta11: m.beta11_rel * m.eps0, beta33: m.beta33_rel * m.eps0 },
-        )
-        .map_err(|e| self.context(e))
-    }
-
     /// PV1 or PV2, as the case says or as its sections imply.
     pub fn problem_kind(&self) -> ProblemKey {
         let f = &self.file;
@@ -303,22 +266,25 @@ impl Case {
 
     /// The algorithms' parameters with their [`DEFAULTS`], after [`Case::contact_settings`]
     /// has checked their ranges.
-    pub(super) fn settings_checked(&self) -> Settings {
+    pub(super) fn settings_checked(&self) -> Result<Settings> {
         let max_outer = self.max_outer();
-        match self.method_parameters() {
+        Ok(match self.method_parameters()? {
             MethodParameters::Uzawa(parameters) => Settings::new(Uzawa::new(parameters), max_outer),
             MethodParameters::Newton(parameters) => {
                 Settings::new(Newton::new(parameters), max_outer)
             }
-        }
+        })
     }
 
     /// The `solver.method` table: the chosen method's parameters from `[solver]` with the
     /// defaults, before the range checks.
-    pub(super) fn method_parameters(&self) -> MethodParameters {
+    pub(super) fn method_parameters(&self) -> Result<MethodParameters> {
         let (s, d) = (&self.file.solver, DEFAULTS);
-        let r = s.r.unwrap_or(d.r_per_young * self.file.material.young);
-        match s.method.unwrap_or(d.method) {
+        let r = match s.r {
+            Some(r) => r,
+            None => d.r_per_young * self.reference_modulus()?,
+        };
+        Ok(match s.method.unwrap_or(d.method) {
             MethodKey::Uzawa => MethodParameters::Uzawa(uzawa::Parameters {
                 r,
                 eps: s.eps.unwrap_or(d.eps),
@@ -337,7 +303,7 @@ impl Case {
                     None => Guess::Interpenetration(d.first_condensed),
                 },
             }),
-        }
+        })
     }
 
     /// solver.max_outer with its default.

@@ -22,6 +22,7 @@ pub mod build;
 pub mod expression;
 pub mod file;
 mod geometry;
+mod material;
 pub mod overrides;
 pub mod schema;
 pub mod validate;
@@ -93,10 +94,11 @@ gap = 0.1
             max_condensed: None,
             guess: crate::algorithm::condensed::Guess::Interpenetration(d.first_condensed),
         };
-        assert_eq!(c.method_parameters(), MethodParameters::Newton(newton));
+        assert_eq!(c.method_parameters().unwrap(), MethodParameters::Newton(newton));
         let built = c.build().unwrap();
         assert_eq!((built.settings.method.name(), built.settings.max_outer), ("newton", 100));
-        let uzawa = case(MINIMAL, &["solver.method=\"uzawa\""]).unwrap().method_parameters();
+        let uzawa =
+            case(MINIMAL, &["solver.method=\"uzawa\""]).unwrap().method_parameters().unwrap();
         let expected =
             uzawa::Parameters { r: 25.0, eps: d.eps, eps_fp: d.eps_fp, max_inner: d.max_uzawa };
         assert_eq!(uzawa, MethodParameters::Uzawa(expected));
@@ -106,7 +108,9 @@ gap = 0.1
         assert_eq!(value("solver.r"), Some(25.0));
         assert_eq!(value("solver.max_outer"), Some(d.max_outer as f64));
         let with = case(MINIMAL, &["solver.r=3", "solver.method=\"uzawa\""]).unwrap();
-        assert!(matches!(with.method_parameters(), MethodParameters::Uzawa(p) if p.r == 3.0));
+        assert!(
+            matches!(with.method_parameters().unwrap(), MethodParameters::Uzawa(p) if p.r == 3.0)
+        );
         // Keys of the other method are reported, not silently dropped.
         let unused = case(MINIMAL, &["solver.eps=1e-6"]).unwrap().setting_warnings();
         assert!(unused[0].contains("solver.eps is not used by solver.method = \"newton\""));
@@ -449,7 +453,7 @@ gap = 0.1
     #[test]
     fn overrides_replace_a_key_under_either_spelling() {
         let c = case(PAPER_71, &["material.e31=-1.5", "material.beta11_rel=100"]).unwrap();
-        assert_eq!((c.file.material.e31, c.file.material.beta11_rel), (-1.5, 100.0));
+        assert_eq!((c.file.material.e31, c.file.material.beta11_rel), (Some(-1.5), Some(100.0)));
         assert_eq!(c.locate("material.e32"), "case.toml");
         assert!(c.locate("material.e31").starts_with("case.toml:"));
     }
@@ -464,7 +468,7 @@ gap = 0.1
         // Nested tables, a table the file lacks, and a key under its other spelling.
         let c = case(PAPER_71, &["material={e32=-1.5}", "mesh={segments={extra=[\"[0,1]x{1}\"]}}"])
             .unwrap();
-        assert_eq!((c.file.material.e31, c.file.material.young), (-1.5, 58.7102));
+        assert_eq!((c.file.material.e31, c.file.material.young), (Some(-1.5), Some(58.7102)));
         assert!(c.origin.text.contains("extra"), "{}", c.origin.text);
         let c = case(MINIMAL, &["friction={mu=0.3}"]).unwrap();
         assert_eq!(c.file.friction.map(|f| f.mu), Some(0.3));
@@ -488,5 +492,21 @@ gap = 0.1
         let linear = case(MINIMAL, &["material.law=\"linear\""]).unwrap();
         assert!(linear.hypothesis_warnings(&linear.problem().unwrap().material).is_empty());
         assert!(c.uniqueness_note().unwrap().contains("M_h·L_p + L_h·M_p"));
+    }
+
+    #[test]
+    fn the_2d_continuum_refuses_full_tensors_and_keeps_the_shorthand() {
+        let zero = "d = [[0,0,0,0,0,0],[0,0,0,0,0,0],[0,0,0,0,0,0]]\n";
+        let text = MINIMAL.replace("e31 = -5.4\ne33 = 15.8\ne15 = 12.3\n", zero);
+        assert!(text.contains(zero));
+        let e = case(&text, &[]).unwrap().problem().err().unwrap().to_string();
+        assert!(e.contains("material.d: the 2D continuum model") && e.contains("3D mesh"), "{e}");
+        // eps_rel is the shorthand's permittivity written out: the same material.
+        let written = ["material.beta11_rel=916.0", "material.beta33_rel=830.0"];
+        let given = case(MINIMAL, &written).unwrap().problem().unwrap().material;
+        let text = MINIMAL
+            .replace("beta11_rel = 916.0\nbeta33_rel = 830.0", "eps_rel = [916.0, 916.0, 830.0]");
+        assert!(text.contains("eps_rel"));
+        assert_eq!(case(&text, &[]).unwrap().problem().unwrap().material, given);
     }
 }

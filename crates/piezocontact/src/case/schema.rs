@@ -10,7 +10,7 @@ use std::path::PathBuf;
 pub struct Defaults {
     /// `[units]`: length, stress, charge, potential.
     pub units: [&'static str; 4],
-    /// material.law.
+    /// material.law of the isotropic form.
     pub law: LawKey,
     /// material.t0: Hencky's elasticity limit (the paper's 1.8) [-].
     pub t0: f64,
@@ -156,40 +156,90 @@ pub enum LawKey {
     Linear,
 }
 
-/// `[material]`: Hencky elasticity and the piezoelectric ceramic, poled along the last axis.
+/// `[material]`: the body's elastic, piezoelectric and dielectric constants, in the material's
+/// axes (poled along its axis 3, the mesh's last axis), Voigt order xx, yy, zz, yz, xz, xy with
+/// engineering shear strains. One form of each group: elastic `young`/`poisson` (Hencky's law),
+/// `c` or `s`; piezoelectric `e31`/`e33`/`e15`, `e` or `d` (none: a dielectric); dielectric
+/// `beta11_rel`/`beta33_rel` or `eps_rel`, times `eps0`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSection {
-    /// "hencky" (the paper's g, default) or "linear" (g ≡ µ1).
-    #[serde(default = "default_law")]
-    pub law: LawKey,
+    /// "hencky" (the paper's g, the default of the isotropic form) or "linear" (g ≡ µ1, the
+    /// only law of `c` and `s`).
+    pub law: Option<LawKey>,
     /// E: Young's modulus \[stress\].
-    pub young: f64,
+    pub young: Option<f64>,
     /// ν: Poisson's ratio [-].
-    pub poisson: f64,
+    pub poisson: Option<f64>,
     /// t0: Hencky elasticity limit on ‖ε^D‖² [-] (paper: 1.8).
     #[serde(default = "default_t0")]
     pub t0: f64,
+    /// c^E: the 6 × 6 stiffness \[stress\].
+    pub c: Option<Vec<Vec<f64>>>,
+    /// s^E: the 6 × 6 compliance \[1/stress\].
+    pub s: Option<Vec<Vec<f64>>>,
     /// e31 = e32 [charge/length²].
     #[serde(alias = "e32")]
-    pub e31: f64,
+    pub e31: Option<f64>,
     /// e33 [charge/length²].
-    pub e33: f64,
+    pub e33: Option<f64>,
     /// e15 = e24 [charge/length²].
     #[serde(alias = "e24")]
-    pub e15: f64,
+    pub e15: Option<f64>,
+    /// e: the 3 × 6 piezoelectric stress constants [charge/length²].
+    pub e: Option<Vec<Vec<f64>>>,
+    /// d: the 3 × 6 piezoelectric strain constants [charge/force].
+    pub d: Option<Vec<Vec<f64>>>,
     /// ε0: vacuum permittivity [charge/(potential·length)].
-    pub eps0: f64,
+    pub eps0: Option<f64>,
     /// β11/ε0 = β22/ε0: relative permittivity across the poling axis [-].
     #[serde(alias = "beta22_rel")]
-    pub beta11_rel: f64,
+    pub beta11_rel: Option<f64>,
     /// β33/ε0: relative permittivity along the poling axis [-].
-    pub beta33_rel: f64,
+    pub beta33_rel: Option<f64>,
+    /// The relative permittivity, 3 × 3 or its diagonal: ε^T/ε0 with `d`, else ε^S/ε0 [-].
+    pub eps_rel: Option<Vec<NumberOrRow>>,
 }
 
-fn default_law() -> LawKey {
-    DEFAULTS.law
+/// An entry of a list that is a vector (numbers) or a matrix (rows of numbers).
+#[derive(Clone, Debug, PartialEq)]
+pub enum NumberOrRow {
+    /// A number.
+    Number(f64),
+    /// A row of numbers.
+    Row(Vec<f64>),
 }
+
+impl<'de> Deserialize<'de> for NumberOrRow {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = NumberOrRow;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a number or a row of numbers")
+            }
+            fn visit_f64<E>(self, v: f64) -> Result<NumberOrRow, E> {
+                Ok(NumberOrRow::Number(v))
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<NumberOrRow, E> {
+                Ok(NumberOrRow::Number(v as f64))
+            }
+            fn visit_u64<E>(self, v: u64) -> Result<NumberOrRow, E> {
+                Ok(NumberOrRow::Number(v as f64))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                seq: A,
+            ) -> Result<NumberOrRow, A::Error> {
+                let row =
+                    Vec::<f64>::deserialize(serde::de::value::SeqAccessDeserializer::new(seq))?;
+                Ok(NumberOrRow::Row(row))
+            }
+        }
+        deserializer.deserialize_any(Visitor)
+    }
+}
+
 fn default_t0() -> f64 {
     DEFAULTS.t0
 }

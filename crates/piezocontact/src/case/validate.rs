@@ -61,8 +61,8 @@ impl Case {
     /// Checks the ranges of the contact, friction, conductivity and solver keys, and returns
     /// them as `(key, value)` lines for reports. The contact algorithms use them.
     pub fn contact_settings(&self) -> Result<Vec<(String, f64)>> {
-        // The default r is a multiple of E: the elastic constants first, by their own check.
-        self.elasticity()?;
+        // The default r is a multiple of E: the material's constants first, by their own check.
+        self.material_constants()?;
         let f = &self.file;
         let mut rules: Vec<Rule> = Vec::new();
         if let Some(c) = &f.contact {
@@ -103,7 +103,7 @@ impl Case {
             ]);
         }
         let at_least_one = |v: f64| v >= 1.0;
-        match self.method_parameters() {
+        match self.method_parameters()? {
             MethodParameters::Uzawa(p) => rules.extend([
                 Rule("solver.r", p.r, positive, "r > 0"),
                 Rule("solver.eps", p.eps, positive, "ε > 0"),
@@ -143,13 +143,18 @@ impl Case {
     /// The paper's hypotheses (h1)–(h6) checked on this case's data, as warnings with the
     /// numbers (Section 2 of \[P\]); an empty list when all hold.
     pub fn hypothesis_warnings(&self, material: &Material) -> Vec<String> {
-        let el = material.elasticity;
+        let Some(el) = material.elasticity() else {
+            return Vec::new(); // (h1) is about Hencky's isotropic law.
+        };
         let d = material.dim as f64;
         let mut warnings = Vec::new();
         if el.mu1 > 0.5 * d * el.k0 {
             warnings.push(format!(
-                "(h1)(a) fails: g(0) = µ1 = {:.4e} exceeds d·k0/2 = {:.4e} (Poisson's ratio {} is below the bound of (h1)(a) in {}D)",
-                el.mu1, 0.5 * d * el.k0, self.file.material.poisson, material.dim
+                "(h1)(a) fails: g(0) = µ1 = {:.4e} exceeds d·k0/2 = {:.4e} (Poisson's ratio {:.4} is below the bound of (h1)(a) in {}D)",
+                el.mu1,
+                0.5 * d * el.k0,
+                el.poisson(),
+                material.dim
             ));
         }
         if let ElasticLaw::Hencky { t0 } = el.law {

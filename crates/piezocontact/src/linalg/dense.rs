@@ -295,17 +295,25 @@ pub fn max_distance(a: &[f64], b: &[f64]) -> f64 {
 /// the largest (all of them for a zero matrix).
 pub fn null_space(a: &[f64], n: usize, tolerance: f64) -> Result<Vec<Vec<f64>>> {
     check_length("the matrix of a null space", n * n, a.len())?;
+    let (values, vectors) = symmetric_eigen(a, n)?;
+    let largest = values.iter().copied().fold(0.0_f64, f64::max);
+    Ok((0..n).filter(|&k| values[k] <= tolerance * largest).map(|k| vectors[k].clone()).collect())
+}
+
+/// The eigenvalues of the symmetric n × n matrix `a` (column-major, its lower triangle read),
+/// ascending, and their orthonormal eigenvectors.
+pub fn symmetric_eigen(a: &[f64], n: usize) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
+    check_length("a symmetric matrix", n * n, a.len())?;
     let matrix = faer::MatRef::from_column_major_slice(a, n, n);
     let eigen = matrix
         .self_adjoint_eigen(faer::Side::Lower)
         .map_err(|e| Error::LinearAlgebra(format!("a symmetric eigendecomposition: {e:?}")))?;
     let values = eigen.S().column_vector();
-    let largest = (0..n).map(|k| values[k]).fold(0.0_f64, f64::max);
     let vectors = eigen.U();
-    Ok((0..n)
-        .filter(|&k| values[k] <= tolerance * largest)
-        .map(|k| (0..n).map(|i| vectors[(i, k)]).collect())
-        .collect())
+    Ok((
+        (0..n).map(|k| values[k]).collect(),
+        (0..n).map(|k| (0..n).map(|i| vectors[(i, k)]).collect()).collect(),
+    ))
 }
 
 /// y = A x, as [`DenseMatrix::mul`] says.

@@ -56,7 +56,7 @@ mod seam;
 mod sparse;
 mod vectors;
 
-pub use dense::{DenseMatrix, TransposedLu, max_distance, max_norm, null_space};
+pub use dense::{DenseMatrix, TransposedLu, max_distance, max_norm, null_space, symmetric_eigen};
 pub use ldlt::LdltSolver;
 #[cfg(feature = "petsc")]
 pub use petsc::PetscSolver;

@@ -9,7 +9,6 @@ use crate::case::Built;
 use crate::contact::Loading;
 use crate::error::Result;
 use crate::linalg::LinearSolver;
-use crate::material::ElasticLaw;
 use crate::output::files;
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
 use crate::report::{Column, StaticCurveRow, columns_csv, static_curve_columns};
@@ -43,19 +42,16 @@ impl StaticPathRun {
         let start = Instant::now();
         let problem = &built.problem;
         let factors: Vec<f64> = loading.steps.iter().map(|s| s.load_factor).collect();
-        let solutions = match problem.material.elasticity.law {
-            ElasticLaw::Linear => {
-                let unit = solve_without_contact(problem, solver);
-                let unit = unit.map_err(|e| built.context(e))?;
-                let scaled = |&factor: &f64| StaticSolution {
-                    x: unit.x.iter().map(|v| factor * v).collect(),
-                    ..unit.clone()
-                };
-                factors.iter().map(scaled).collect()
-            }
-            ElasticLaw::Hencky { .. } => {
-                solve_without_contact_at(problem, solver, &factors).map_err(|e| built.context(e))?
-            }
+        let solutions = if problem.material.is_linear() {
+            let unit = solve_without_contact(problem, solver);
+            let unit = unit.map_err(|e| built.context(e))?;
+            let scaled = |&factor: &f64| StaticSolution {
+                x: unit.x.iter().map(|v| factor * v).collect(),
+                ..unit.clone()
+            };
+            factors.iter().map(scaled).collect()
+        } else {
+            solve_without_contact_at(problem, solver, &factors).map_err(|e| built.context(e))?
         };
         let mut curve = Vec::with_capacity(factors.len());
         let mut last_reactions = Reactions::default();

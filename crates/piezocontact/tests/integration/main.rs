@@ -20,6 +20,8 @@ mod hertz;
 mod indentation;
 /// The code's own rules: function lengths, an outer loop that names no method.
 mod layout;
+/// Materials by full tensors: uniform states, the two forms, bad tables.
+mod materials;
 /// Orderings and threads of the factorisation: same solutions, smaller factors.
 mod orderings;
 /// Patch tests: linear fields reproduced to round-off, 2D and 3D.

@@ -6,13 +6,16 @@
 //! (Eε)_i = e_ijk ε_jk,        (Eᵀ∇ϕ)_jk = e_ijk ∂_iϕ.
 //! ```
 //!
-//! The poling direction is the last coordinate axis (y in 2D, z in 3D). The piezoelectric and
-//! permittivity tensors of a transversely isotropic ceramic (PZT) are built from engineering
-//! constants: e31 (= e32), e33, e15 (= e24), β11 (= β22), β33. In 2D the plane holds material
-//! axes 2 (x) and 3 (y), so e_{y,xx} = e32, e_{y,yy} = e33, e_{x,xy} = e24, β = diag(β22, β33)
-//! (model §2).
+//! F is Hencky's isotropic law, or a linear anisotropic one, F ε = c^E : ε, from a full
+//! stiffness. A material's constants ([`Constants`]) are given in its own axes, in Voigt
+//! notation ([`voigt`]); [`Material::from_constants`] turns them into the tensors of the mesh's
+//! axes. In 2D (the paper's continuum) the plane holds material axes 2 (x) and 3 (y), so
+//! e_{y,xx} = e32, e_{y,yy} = e33, e_{x,xy} = e24, β = diag(β22, β33) (model §2).
+
+pub mod voigt;
 
 use crate::error::{Error, Result};
+use voigt::{Coupling, Matrix3, Tensor3, Tensor4, Voigt};
 
 /// The function g of Hencky's law (2.3): the secant shear modulus as a function of
 /// t = ‖ε^D‖² \[stress\].
@@ -99,6 +102,16 @@ pub struct PiezoConstants {
     pub e15: f64,
 }
 
+impl PiezoConstants {
+    /// The coupling matrix e_iJ of a ceramic poled along material axis 3.
+    pub fn coupling(&self) -> Coupling {
+        let mut e = [[0.0; 6]; 3];
+        (e[2][0], e[2][1], e[2][2]) = (self.e31, self.e31, self.e33);
+        (e[0][4], e[1][3]) = (self.e15, self.e15);
+        e
+    }
+}
+
 /// Permittivity along and across the poling axis [charge/(potential·length)].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PermittivityConstants {
@@ -108,17 +121,69 @@ pub struct PermittivityConstants {
     pub beta33: f64,
 }
 
+/// The elastic constants of a material, in its own axes.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ElasticConstants {
+    /// Hencky's isotropic law (linear when g ≡ µ1).
+    Isotropic(Elasticity),
+    /// A linear law with the stiffness c^E in Voigt order \[stress\].
+    Stiffness(Box<Voigt>),
+}
+
+impl ElasticConstants {
+    /// c^E in Voigt order \[stress\] (isotropic: from k0 and µ1, with g ≡ µ1).
+    pub fn stiffness(&self) -> Voigt {
+        match self {
+            ElasticConstants::Isotropic(el) => voigt::isotropic_stiffness(el.k0, el.mu1),
+            ElasticConstants::Stiffness(c) => **c,
+        }
+    }
+}
+
+/// A material's constants in its own axes, in the stress-charge form.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Constants {
+    /// The elastic law.
+    pub elastic: ElasticConstants,
+    /// e_iJ [charge/length²] (zero for a dielectric).
+    pub e: Coupling,
+    /// ε^S = β, symmetric positive definite [charge/(potential·length)].
+    pub permittivity: Matrix3,
+}
+
+impl Constants {
+    /// The modulus a default scales with \[stress\]: E of an isotropic law, 1/s^E_33 of a
+    /// stiffness (material axes).
+    pub fn reference_modulus(&self) -> Result<f64> {
+        Ok(match &self.elastic {
+            ElasticConstants::Isotropic(el) => el.young(),
+            ElasticConstants::Stiffness(c) => 1.0 / voigt::inverse(c)?[2][2],
+        })
+    }
+}
+
+/// The elastic law of a material in the mesh's axes.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Elastic {
+    /// Hencky's isotropic law, the same in every axes.
+    Isotropic(Elasticity),
+    /// A linear law: c_ijkl \[stress\] in the mesh's axes.
+    Anisotropic(Box<Tensor4>),
+}
+
 /// The complete material of the body in dimension `dim`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// Space dimension d.
     pub dim: usize,
     /// F of (2.3).
-    pub elasticity: Elasticity,
+    pub elastic: Elastic,
     /// e_ijk [charge/length²], only the first d indices used.
-    pub e: [[[f64; 3]; 3]; 3],
+    pub e: Tensor3,
     /// β_ij [charge/(potential·length)], symmetric positive definite.
-    pub beta: [[f64; 3]; 3],
+    pub beta: Matrix3,
+    /// The modulus defaults scale with \[stress\] ([`Constants::reference_modulus`]).
+    pub reference_modulus: f64,
 }
 
 impl Material {
@@ -143,21 +208,75 @@ impl Material {
                 return Err(invalid(name, value, "permittivity must be > 0 (β positive definite)"));
             }
         }
-        let p = dim - 1; // poling axis
-        let mut e = [[[0.0; 3]; 3]; 3];
-        let mut beta = [[0.0; 3]; 3];
-        for t in 0..p {
-            e[p][t][t] = piezo.e31;
-            e[t][t][p] = piezo.e15;
-            e[t][p][t] = piezo.e15;
-            beta[t][t] = permittivity.beta11;
-        }
-        e[p][p][p] = piezo.e33;
-        beta[p][p] = permittivity.beta33;
-        Ok(Self { dim, elasticity, e, beta })
+        let (b11, b33) = (permittivity.beta11, permittivity.beta33);
+        let constants = Constants {
+            elastic: ElasticConstants::Isotropic(elasticity),
+            e: piezo.coupling(),
+            permittivity: [[b11, 0.0, 0.0], [0.0, b11, 0.0], [0.0, 0.0, b33]],
+        };
+        Self::from_constants(dim, &constants)
     }
 
-    /// σ = k0 tr(ε) I + 2 g ε^D + Eᵀ∇ϕ with a given secant modulus g \[stress\], (2.2).
+    /// The tensors of `constants` in the mesh's axes, the material's axes being the mesh's. In
+    /// 2D the plane holds material axes 2 and 3 (module docs), and the law must be isotropic.
+    pub fn from_constants(dim: usize, constants: &Constants) -> Result<Self> {
+        let e = voigt::coupling_tensor(&constants.e);
+        let beta = constants.permittivity;
+        let reference_modulus = constants.reference_modulus()?;
+        let elastic = match &constants.elastic {
+            ElasticConstants::Isotropic(el) => Elastic::Isotropic(*el),
+            ElasticConstants::Stiffness(c) => {
+                Elastic::Anisotropic(Box::new(voigt::stiffness_tensor(c)))
+            }
+        };
+        if dim == 3 {
+            return Ok(Self { dim, elastic, e, beta, reference_modulus });
+        }
+        if matches!(elastic, Elastic::Anisotropic(_)) {
+            return Err(invalid_text(
+                "material.c",
+                "a stiffness tensor",
+                "the 2D continuum model takes isotropic elasticity (young, poisson): use a 3D mesh for a full tensor",
+            ));
+        }
+        let (mut e2, mut beta2) = ([[[0.0; 3]; 3]; 3], [[0.0; 3]; 3]);
+        for i in 0..2 {
+            for j in 0..2 {
+                beta2[i][j] = beta[i + 1][j + 1];
+                for k in 0..2 {
+                    e2[i][j][k] = e[i + 1][j + 1][k + 1];
+                }
+            }
+        }
+        Ok(Self { dim, elastic, e: e2, beta: beta2, reference_modulus })
+    }
+
+    /// Hencky's law, where the material is isotropic.
+    pub fn elasticity(&self) -> Option<&Elasticity> {
+        match &self.elastic {
+            Elastic::Isotropic(el) => Some(el),
+            Elastic::Anisotropic(_) => None,
+        }
+    }
+
+    /// Whether the elastic law is linear (g ≡ µ1, or a stiffness tensor).
+    pub fn is_linear(&self) -> bool {
+        self.elasticity().is_none_or(|el| el.law == ElasticLaw::Linear)
+    }
+
+    /// The secant modulus g(t) \[stress\], t = ‖ε^D‖², of an isotropic law; 0 for a stiffness
+    /// tensor, whose element matrices take no modulus.
+    pub fn modulus(&self, t: f64) -> f64 {
+        self.elasticity().map_or(0.0, |el| el.g(t))
+    }
+
+    /// g'(t) \[stress\] of an isotropic law; 0 for a stiffness tensor (a linear law).
+    pub fn modulus_slope(&self, t: f64) -> f64 {
+        self.elasticity().map_or(0.0, |el| el.dg(t))
+    }
+
+    /// σ = F ε + Eᵀ∇ϕ \[stress\], (2.2), with a given secant modulus g \[stress\] for Hencky's
+    /// law (a stiffness tensor ignores it).
     pub fn stress<const D: usize>(
         &self,
         eps: &[[f64; D]; D],
@@ -168,10 +287,17 @@ impl Material {
         let mut sigma = [[0.0; D]; D];
         for j in 0..D {
             for k in 0..D {
-                let dev = eps[j][k] - if j == k { tr / D as f64 } else { 0.0 };
-                sigma[j][k] = 2.0 * g * dev
-                    + if j == k { self.elasticity.k0 * tr } else { 0.0 }
-                    + (0..D).map(|i| self.e[i][j][k] * grad_phi[i]).sum::<f64>();
+                let elastic = match &self.elastic {
+                    Elastic::Isotropic(el) => {
+                        let dev = eps[j][k] - if j == k { tr / D as f64 } else { 0.0 };
+                        2.0 * g * dev + if j == k { el.k0 * tr } else { 0.0 }
+                    }
+                    Elastic::Anisotropic(c) => (0..D)
+                        .flat_map(|l| (0..D).map(move |m| (l, m)))
+                        .map(|(l, m)| c[j][k][l][m] * eps[l][m])
+                        .sum(),
+                };
+                sigma[j][k] = elastic + (0..D).map(|i| self.e[i][j][k] * grad_phi[i]).sum::<f64>();
             }
         }
         sigma
@@ -201,7 +327,7 @@ impl Material {
         eps: &[[f64; D]; D],
         grad_phi: &[f64; D],
     ) -> [[f64; D]; D] {
-        self.stress(eps, grad_phi, self.elasticity.g(deviator_norm_squared(eps)))
+        self.stress(eps, grad_phi, self.modulus(deviator_norm_squared(eps)))
     }
 }
 
@@ -216,6 +342,14 @@ pub fn deviator_norm_squared<const D: usize>(eps: &[[f64; D]; D]) -> f64 {
         }
     }
     s
+}
+
+fn invalid_text(name: &str, value: &str, requirement: &str) -> Error {
+    Error::InvalidParameter {
+        name: name.into(),
+        value: value.into(),
+        requirement: requirement.into(),
+    }
 }
 
 fn invalid(name: &str, value: f64, requirement: &str) -> Error {
@@ -245,7 +379,7 @@ mod tests {
 
     #[test]
     fn hencky_g_is_continuous_and_satisfies_h1() {
-        let el = pzt(2).elasticity;
+        let el = *pzt(2).elasticity().unwrap();
         let t0 = 1.8;
         assert_eq!(el.g(t0), el.mu1);
         assert!((el.g(t0 * (1.0 + 1e-12)) - el.mu1).abs() < 1e-9);

@@ -1,0 +1,314 @@
+//! `[material]` read into a material's constants ([`Constants`], in its own axes): one form of
+//! each group (elastic, piezoelectric, dielectric), checked, and the strain-charge form
+//! converted once into the stress-charge form the solver uses.
+
+use super::file::Case;
+use super::schema::{DEFAULTS, LawKey, MaterialSection, NumberOrRow};
+use crate::error::Result;
+use crate::material::voigt::{self, Coupling, Matrix3, Voigt};
+use crate::material::{
+    Constants, ElasticConstants, ElasticLaw, Elasticity, Material, PiezoConstants,
+};
+
+/// The piezoelectric group as given: a stress-charge or a strain-charge coupling.
+enum Piezo {
+    /// e [charge/length²] (zero for a dielectric).
+    Stress(Coupling),
+    /// d [charge/force].
+    Strain(Coupling),
+}
+
+impl Case {
+    /// The material in dimension `dim`.
+    pub fn material(&self, dim: usize) -> Result<Material> {
+        let m = &self.file.material;
+        if dim == 2
+            && let Some(key) = [
+                ("c", m.c.is_some()),
+                ("s", m.s.is_some()),
+                ("e", m.e.is_some()),
+                ("d", m.d.is_some()),
+            ]
+            .into_iter()
+            .find_map(|(k, given)| given.then_some(k))
+        {
+            let at = self.locate(&format!("material.{key}"));
+            return Err(input!(
+                "{at}: material.{key}: the 2D continuum model takes young and poisson with the ceramic shorthand (e31, e33, e15): full tensors need a 3D mesh"
+            ));
+        }
+        Material::from_constants(dim, &self.material_constants()?).map_err(|e| self.context(e))
+    }
+
+    /// The constants of `[material]` in its own axes, every group checked.
+    pub fn material_constants(&self) -> Result<Constants> {
+        let m = &self.file.material;
+        let elastic = self.elastic_constants(m)?;
+        let c = elastic.stiffness();
+        let piezo = self.piezo_form(m)?;
+        let given = self.permittivity(m)?;
+        let (e, permittivity) = match piezo {
+            Piezo::Stress(e) => (e, given),
+            Piezo::Strain(d) => voigt::stress_charge(&c, &d, &given),
+        };
+        let smallest = voigt::smallest_eigenvalue(&permittivity)?;
+        if smallest.is_nan() || smallest <= 0.0 {
+            let what = match piezo {
+                Piezo::Strain(_) => "ε^S = ε^T − d c^E dᵀ",
+                Piezo::Stress(_) => "the permittivity ε^S",
+            };
+            return Err(input!(
+                "{}: material: {what} is not positive definite (smallest eigenvalue {smallest:e}): check the dielectric constants{}",
+                self.locate("material.eps0"),
+                if matches!(piezo, Piezo::Strain(_)) { " (ε^T with d) and d" } else { "" }
+            ));
+        }
+        Ok(Constants { elastic, e, permittivity })
+    }
+
+    /// The modulus a default scales with \[stress\] ([`Constants::reference_modulus`]), with
+    /// an isotropic material's E as the file gives it.
+    pub fn reference_modulus(&self) -> Result<f64> {
+        match (self.material_constants()?, self.file.material.young) {
+            (Constants { elastic: ElasticConstants::Isotropic(_), .. }, Some(young)) => Ok(young),
+            (constants, _) => constants.reference_modulus(),
+        }
+    }
+
+    /// The elastic group: young and poisson (Hencky's law), c or s.
+    fn elastic_constants(&self, m: &MaterialSection) -> Result<ElasticConstants> {
+        let isotropic = m.young.is_some() || m.poisson.is_some();
+        let forms = [("young and poisson", isotropic), ("c", m.c.is_some()), ("s", m.s.is_some())];
+        let given: Vec<&str> = forms.iter().filter(|f| f.1).map(|f| f.0).collect();
+        let at = self.locate("material");
+        match given.as_slice() {
+            [] => {
+                return Err(input!(
+                    "{at}: material has no elastic constants: give young and poisson (isotropic), c (the 6 × 6 stiffness) or s (the 6 × 6 compliance)"
+                ));
+            }
+            [_] => {}
+            _ => {
+                return Err(input!(
+                    "{at}: material gives the elastic constants twice ({}): keep one form",
+                    given.join(", ")
+                ));
+            }
+        }
+        if isotropic {
+            let (Some(young), Some(poisson)) = (m.young, m.poisson) else {
+                let missing = if m.young.is_none() { "young" } else { "poisson" };
+                return Err(input!(
+                    "{at}: material.{missing} is missing: the isotropic form takes young and poisson"
+                ));
+            };
+            let law = match m.law.unwrap_or(DEFAULTS.law) {
+                LawKey::Hencky => ElasticLaw::Hencky { t0: m.t0 },
+                LawKey::Linear => ElasticLaw::Linear,
+            };
+            let elasticity = Elasticity::from_young_poisson(young, poisson, law);
+            return elasticity.map(ElasticConstants::Isotropic).map_err(|e| self.context(e));
+        }
+        if let Some(LawKey::Hencky) = m.law {
+            return Err(input!(
+                "{}: material.law = \"hencky\": Hencky's law needs the isotropic form (young, poisson); a stiffness tensor is linear",
+                self.locate("material.law")
+            ));
+        }
+        let (key, matrix) = match (&m.c, &m.s) {
+            (Some(c), _) => ("c", c),
+            (_, Some(s)) => ("s", s),
+            _ => unreachable!("one elastic form was given"),
+        };
+        let given: Voigt = self.matrix(&format!("material.{key}"), matrix)?;
+        let name = if key == "c" { "the stiffness c^E" } else { "the compliance s^E" };
+        let given = self.positive_definite(&format!("material.{key}"), name, &given)?;
+        Ok(ElasticConstants::Stiffness(Box::new(if key == "c" {
+            given
+        } else {
+            voigt::inverse(&given)?
+        })))
+    }
+
+    /// The piezoelectric group: the ceramic shorthand, e or d; none for a dielectric.
+    fn piezo_form(&self, m: &MaterialSection) -> Result<Piezo> {
+        let shorthand = [("e31", m.e31), ("e33", m.e33), ("e15", m.e15)];
+        let any_shorthand = shorthand.iter().any(|s| s.1.is_some());
+        let forms = [("e31, e33, e15", any_shorthand), ("e", m.e.is_some()), ("d", m.d.is_some())];
+        let given: Vec<&str> = forms.iter().filter(|f| f.1).map(|f| f.0).collect();
+        if given.len() > 1 {
+            return Err(input!(
+                "{}: material gives the piezoelectric constants twice ({}): keep one form",
+                self.locate("material"),
+                given.join(" and ")
+            ));
+        }
+        if any_shorthand {
+            let mut values = [0.0; 3];
+            for (value, (key, given)) in values.iter_mut().zip(shorthand) {
+                *value = given.ok_or_else(|| {
+                    input!(
+                        "{}: material.{key} is missing: the ceramic shorthand takes e31, e33 and e15",
+                        self.locate("material")
+                    )
+                })?;
+                self.finite(&format!("material.{key}"), *value)?;
+            }
+            let [e31, e33, e15] = values;
+            return Ok(Piezo::Stress(PiezoConstants { e31, e33, e15 }.coupling()));
+        }
+        Ok(match (&m.e, &m.d) {
+            (Some(e), _) => Piezo::Stress(self.matrix("material.e", e)?),
+            (_, Some(d)) => Piezo::Strain(self.matrix("material.d", d)?),
+            _ => Piezo::Stress([[0.0; 6]; 3]),
+        })
+    }
+
+    /// The dielectric group times ε0: beta11_rel and beta33_rel, or eps_rel (3 × 3 or its
+    /// diagonal) [charge/(potential·length)].
+    fn permittivity(&self, m: &MaterialSection) -> Result<Matrix3> {
+        let eps0 = m.eps0.ok_or_else(|| {
+            input!(
+                "{}: material.eps0 is missing: the vacuum permittivity in the case's units (8.854e-12 F/m in SI)",
+                self.locate("material")
+            )
+        })?;
+        let shorthand = m.beta11_rel.is_some() || m.beta33_rel.is_some();
+        let relative = match (&m.eps_rel, shorthand) {
+            (Some(_), true) => {
+                return Err(input!(
+                    "{}: material gives the permittivity twice (beta11_rel/beta33_rel and eps_rel): keep one form",
+                    self.locate("material.eps_rel")
+                ));
+            }
+            (Some(rows), false) => self.relative_permittivity(rows)?,
+            (None, _) => {
+                let mut diagonal = [0.0; 3];
+                for (k, key) in [(0, "beta11_rel"), (2, "beta33_rel")] {
+                    diagonal[k] = if key == "beta11_rel" { m.beta11_rel } else { m.beta33_rel }
+                        .ok_or_else(|| {
+                            input!(
+                                "{}: material.{key} is missing: give beta11_rel and beta33_rel, or eps_rel",
+                                self.locate("material")
+                            )
+                        })?;
+                }
+                diagonal[1] = diagonal[0];
+                [[diagonal[0], 0.0, 0.0], [0.0, diagonal[1], 0.0], [0.0, 0.0, diagonal[2]]]
+            }
+        };
+        if !(eps0.is_finite() && eps0 > 0.0) {
+            return Err(input!(
+                "{}: material.eps0 = {eps0} must be > 0 (the vacuum permittivity)",
+                self.locate("material.eps0")
+            ));
+        }
+        if shorthand {
+            for (key, value) in [("beta11_rel", relative[0][0]), ("beta33_rel", relative[2][2])] {
+                if !(value.is_finite() && value > 0.0) {
+                    return Err(input!(
+                        "{}: material.{key} = {value} must be > 0 (the permittivity β = β_rel ε0 is positive definite)",
+                        self.locate(&format!("material.{key}"))
+                    ));
+                }
+            }
+        }
+        Ok(relative.map(|row| row.map(|v| v * eps0)))
+    }
+
+    /// eps_rel: three numbers (a diagonal) or three rows of three.
+    fn relative_permittivity(&self, rows: &[NumberOrRow]) -> Result<Matrix3> {
+        let numbers: Option<Vec<f64>> = rows
+            .iter()
+            .map(|r| if let NumberOrRow::Number(v) = r { Some(*v) } else { None })
+            .collect();
+        if let Some(d) = numbers.filter(|d| d.len() == 3) {
+            for v in &d {
+                self.finite("material.eps_rel", *v)?;
+            }
+            let diagonal = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
+            return self.positive_definite(
+                "material.eps_rel",
+                "the relative permittivity",
+                &diagonal,
+            );
+        }
+        let matrix: Option<Vec<Vec<f64>>> = rows
+            .iter()
+            .map(|r| if let NumberOrRow::Row(v) = r { Some(v.clone()) } else { None })
+            .collect();
+        let Some(matrix) = matrix else {
+            return Err(input!(
+                "{}: material.eps_rel must be three numbers (the diagonal) or three rows of three numbers",
+                self.locate("material.eps_rel")
+            ));
+        };
+        let relative: Matrix3 = self.matrix("material.eps_rel", &matrix)?;
+        self.positive_definite("material.eps_rel", "the relative permittivity", &relative)
+    }
+
+    /// An R × C matrix of finite numbers from the rows at `key`, or an error naming its shape.
+    fn matrix<const R: usize, const C: usize>(
+        &self,
+        key: &str,
+        rows: &[Vec<f64>],
+    ) -> Result<[[f64; C]; R]> {
+        if rows.len() != R || rows.iter().any(|r| r.len() != C) {
+            let shape: Vec<String> = rows.iter().map(|r| r.len().to_string()).collect();
+            return Err(input!(
+                "{}: {key} must be {R} rows of {C} numbers (Voigt order xx, yy, zz, yz, xz, xy where a row or column has 6); it has {} rows of [{}] numbers",
+                self.locate(key),
+                rows.len(),
+                shape.join(", ")
+            ));
+        }
+        let mut matrix = [[0.0; C]; R];
+        for (row, given) in matrix.iter_mut().zip(rows) {
+            for (v, &g) in row.iter_mut().zip(given) {
+                *v = self.finite(key, g)?;
+            }
+        }
+        Ok(matrix)
+    }
+
+    /// A square matrix checked symmetric (to 1e-12 of its largest entry) and positive
+    /// definite, made exactly symmetric.
+    fn positive_definite<const N: usize>(
+        &self,
+        key: &str,
+        name: &str,
+        a: &[[f64; N]; N],
+    ) -> Result<[[f64; N]; N]> {
+        let asymmetry = voigt::asymmetry(a);
+        if asymmetry > 1e-12 {
+            return Err(input!(
+                "{}: {key}: {name} must be symmetric; entries (i, j) and (j, i) differ by {asymmetry:.1e} of its largest entry",
+                self.locate(key)
+            ));
+        }
+        let smallest = voigt::smallest_eigenvalue(a)?;
+        if smallest.is_nan() || smallest <= 0.0 {
+            return Err(input!(
+                "{}: {key}: {name} is not positive definite (smallest eigenvalue {smallest:e}): check its entries and units",
+                self.locate(key)
+            ));
+        }
+        let mut symmetric = *a;
+        for i in 0..N {
+            for j in 0..i {
+                let mean = 0.5 * (a[i][j] + a[j][i]);
+                (symmetric[i][j], symmetric[j][i]) = (mean, mean);
+            }
+        }
+        Ok(symmetric)
+    }
+
+    /// `value`, or an error when it is not finite.
+    fn finite(&self, key: &str, value: f64) -> Result<f64> {
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(input!("{}: {key} = {value} must be a finite number", self.locate(key)))
+        }
+    }
+}

@@ -1,0 +1,276 @@
+//! Materials given by full tensors: uniform states of a short-circuited block that P1 elements
+//! reproduce to round-off (the expected strains and charges computed here from the
+//! constitutive law), the strain-charge form against the stress-charge form on a ball
+//! indentation, and the errors of bad material tables.
+//!
+//! PZT-5A after Berlincourt, Curran & Jaffe (1964), in GPa, C/m², C/GN (= 10⁻⁹ C/N) and ε0:
+//! c^E, e, ε^S in the stress-charge form, s^E, d, ε^T in the strain-charge form.
+
+use super::common::{EPS0, mesh_file};
+use piezocontact::case::{Built, Case};
+use piezocontact::linalg::default_solver;
+use piezocontact::material::voigt::{self, Coupling, Voigt};
+use piezocontact::run::{Run, StaticRun};
+
+/// c^E of PZT-5A \[GPa\].
+const C: Voigt = [
+    [120.3, 75.2, 75.1, 0.0, 0.0, 0.0],
+    [75.2, 120.3, 75.1, 0.0, 0.0, 0.0],
+    [75.1, 75.1, 110.9, 0.0, 0.0, 0.0],
+    [0.0, 0.0, 0.0, 21.1, 0.0, 0.0],
+    [0.0, 0.0, 0.0, 0.0, 21.1, 0.0],
+    [0.0, 0.0, 0.0, 0.0, 0.0, 22.55],
+];
+/// e of PZT-5A [C/m²].
+const E: Coupling = [
+    [0.0, 0.0, 0.0, 0.0, 12.3, 0.0],
+    [0.0, 0.0, 0.0, 12.3, 0.0, 0.0],
+    [-5.4, -5.4, 15.8, 0.0, 0.0, 0.0],
+];
+/// s^E of PZT-5A \[1/GPa\].
+const S: Voigt = [
+    [16.4e-3, -5.74e-3, -7.22e-3, 0.0, 0.0, 0.0],
+    [-5.74e-3, 16.4e-3, -7.22e-3, 0.0, 0.0, 0.0],
+    [-7.22e-3, -7.22e-3, 18.8e-3, 0.0, 0.0, 0.0],
+    [0.0, 0.0, 0.0, 47.5e-3, 0.0, 0.0],
+    [0.0, 0.0, 0.0, 0.0, 47.5e-3, 0.0],
+    [0.0, 0.0, 0.0, 0.0, 0.0, 44.3e-3],
+];
+/// d of PZT-5A [C/GN].
+const D: Coupling = [
+    [0.0, 0.0, 0.0, 0.0, 0.584, 0.0],
+    [0.0, 0.0, 0.0, 0.584, 0.0, 0.0],
+    [-0.171, -0.171, 0.374, 0.0, 0.0, 0.0],
+];
+/// The block's top face [m²] (the box [0,2]×[0,1]×[0,1]).
+const AREA: f64 = 2.0;
+
+/// A TOML array of arrays.
+fn rows<const R: usize, const K: usize>(m: &[[f64; K]; R]) -> String {
+    let rows: Vec<String> = m.iter().map(|r| format!("{r:?}")).collect();
+    format!("[{}]", rows.join(", "))
+}
+
+/// The stress-charge form of PZT-5A as a `[material]` body.
+fn stress_charge() -> String {
+    format!("c = {}\ne = {}\neps0 = {EPS0}\neps_rel = [916.0, 916.0, 830.0]\n", rows(&C), rows(&E))
+}
+
+/// The strain-charge form of PZT-5A as a `[material]` body.
+fn strain_charge() -> String {
+    format!(
+        "s = {}\nd = {}\neps0 = {EPS0}\neps_rel = [1730.0, 1730.0, 1700.0]\n",
+        rows(&S),
+        rows(&D)
+    )
+}
+
+/// The box on rollers on x = 0 (along x), y = 0 (along y) and z = 0 (along z), its top and
+/// bottom grounded (short-circuited), a pressure p on top.
+fn block(material: &str, p: f64) -> String {
+    format!(
+        r#"
+[mesh]
+file = "{mesh}"
+
+[material]
+{material}
+[boundary]
+grounded = ["bottom", "top"]
+
+[[boundary.support]]
+parts = ["x0"]
+fix = ["x"]
+
+[[boundary.support]]
+parts = ["y0"]
+fix = ["y"]
+
+[[boundary.support]]
+parts = ["bottom"]
+fix = ["z"]
+
+[[boundary.traction]]
+parts = ["top"]
+f2 = [0.0, 0.0, {f}]
+"#,
+        mesh = mesh_file("box-faces.msh").display(),
+        f = -p,
+    )
+}
+
+fn build(text: &str) -> piezocontact::Result<Built> {
+    Case::from_text("block.toml".as_ref(), text, &[])?.build()
+}
+
+fn solve(text: &str) -> (Built, StaticRun) {
+    let built = build(text).unwrap();
+    match Run::solve(&built, default_solver(), &|_| {}).unwrap() {
+        Run::Static(run) => (built, run),
+        _ => panic!("not a run without contact"),
+    }
+}
+
+/// The nodal solution against u = (a x, a y, c z), ϕ = 0, to 1e-9 of the largest strain; the
+/// charges of the grounded bottom and top against ∓D_z A (the charge an electrode holds is
+/// −D·n, n the body's outward normal).
+fn assert_short_circuited(built: &Built, run: &StaticRun, (a, c): (f64, f64), d_z: f64) {
+    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
+    let mesh = &built.problem.mesh;
+    let scale = a.abs().max(c.abs()) * 2.0;
+    for node in 0..mesh.n_nodes() {
+        let p = mesh.node(node);
+        let expected = [a * p[0], a * p[1], c * p[2]];
+        for k in 0..3 {
+            let got = x[dofs.u(node, k)];
+            assert!(
+                (got - expected[k]).abs() < 1e-9 * scale,
+                "u_{k} at {p:?}: {got} vs {}",
+                expected[k]
+            );
+        }
+        // ϕ vanishes to round-off on the scale D_z/β33 · height.
+        let phi = x[dofs.phi(node)];
+        assert!(phi.abs() < 1e-12 * d_z.abs() / (830.0 * EPS0), "ϕ at {p:?}: {phi}");
+    }
+    let charges = &run.reactions.charges;
+    let q = d_z * AREA;
+    assert!((charges[0] - q).abs() < 1e-9 * q.abs(), "bottom: {} vs {q}", charges[0]);
+    assert!((charges[1] + q).abs() < 1e-9 * q.abs(), "top: {} vs {}", charges[1], -q);
+}
+
+/// The stress-charge form under σ = −p e_z e_z with E = 0: σ_xx = σ_yy = 0 give
+/// (c11 + c12) a + c13 c = 0, σ_zz gives 2 c13 a + c33 c = −p; D_z = 2 e31 a + e33 c.
+#[test]
+fn a_short_circuited_block_of_the_stiffness_form_takes_the_uniform_state() {
+    let p = 0.5;
+    let (built, run) = solve(&block(&stress_charge(), p));
+    let (c11, c12, c13, c33) = (C[0][0], C[0][1], C[0][2], C[2][2]);
+    let c = -p / (c33 - 2.0 * c13 * c13 / (c11 + c12));
+    let a = -c13 * c / (c11 + c12);
+    assert!(a > 0.0 && c < 0.0);
+    assert_short_circuited(&built, &run, (a, c), 2.0 * E[2][0] * a + E[2][2] * c);
+}
+
+/// The strain-charge form under the same load: ε = s^E σ and D = d σ, so ε_xx = ε_yy = s13
+/// σ_zz, ε_zz = s33 σ_zz, D_z = d33 σ_zz.
+#[test]
+fn a_short_circuited_block_of_the_compliance_form_has_the_strains_of_the_strain_charge_law() {
+    let p = 0.5;
+    let (built, run) = solve(&block(&strain_charge(), p));
+    let sigma_zz = -p;
+    assert_short_circuited(
+        &built,
+        &run,
+        (S[0][2] * sigma_zz, S[2][2] * sigma_zz),
+        D[2][2] * sigma_zz,
+    );
+}
+
+/// A PZT-5A block indented by a ball (PV1, the coarse mesh): the strain-charge form made from
+/// the stress-charge one (s^E = (c^E)⁻¹, d = e s^E, ε^T = ε^S + d eᵀ) and converted back by the
+/// case reader gives the same solution to 1e-10.
+#[test]
+fn the_strain_charge_form_converted_gives_the_stress_charge_solution() {
+    let relative = [[916.0, 0.0, 0.0], [0.0, 916.0, 0.0], [0.0, 0.0, 830.0]];
+    let eps_s = relative.map(|row| row.map(|v| v * EPS0));
+    let (s, d, eps_t) = voigt::strain_charge(&C, &E, &eps_s).unwrap();
+    let eps_t = eps_t.map(|row| row.map(|v| v / EPS0));
+    let ball = |material: String| {
+        let text = format!(
+            r#"
+[mesh]
+file = "{mesh}"
+[material]
+{material}eps0 = {EPS0}
+[boundary]
+clamped = ["bottom"]
+grounded = ["bottom"]
+contact = ["contact"]
+[contact]
+problem = "PV1"
+[foundation]
+kind = "sphere"
+center = [0.0, 0.0, 0.98]
+radius = 1.0
+"#,
+            mesh = mesh_file("indent-3d-h0.05.msh").display()
+        );
+        let built = Case::from_text("ball.toml".as_ref(), &text, &[]).unwrap().build().unwrap();
+        match Run::solve(&built, default_solver(), &|_| {}).unwrap() {
+            Run::Contact(run) => run.solution.x,
+            _ => panic!("not a contact run"),
+        }
+    };
+    let stress =
+        ball(format!("c = {}\ne = {}\neps_rel = {}\n", rows(&C), rows(&E), rows(&relative)));
+    let strain = ball(format!("s = {}\nd = {}\neps_rel = {}\n", rows(&s), rows(&d), rows(&eps_t)));
+    let scale = stress.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let distance = stress.iter().zip(&strain).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(scale > 0.0 && distance < 1e-10 * scale, "{distance:e} of {scale:e}");
+}
+
+/// Bad material tables are errors naming the key and the fix.
+#[test]
+fn bad_material_tables_are_errors_naming_the_key() {
+    let base = stress_charge();
+    let mut asymmetric = C;
+    asymmetric[0][1] = 70.0;
+    let mut indefinite = C;
+    indefinite[3][3] = -1.0;
+    let cases = [
+        (
+            base.replace("c = ", "young = 1.0\npoisson = 0.3\nc = "),
+            "gives the elastic constants twice",
+        ),
+        (format!("{base}d = {}\n", rows(&D)), "piezoelectric constants twice"),
+        (base.replace(&rows(&C), "[[1.0, 2.0]]"), "must be 6 rows of 6 numbers"),
+        (base.replace(&rows(&C), &rows(&asymmetric)), "must be symmetric"),
+        (base.replace(&rows(&C), &rows(&indefinite)), "not positive definite (smallest eigenvalue"),
+        (format!("{base}law = \"hencky\"\n"), "Hencky's law needs the isotropic form"),
+        (
+            base.replace("eps_rel = [916.0, 916.0, 830.0]", "eps_rel = [916.0, 830.0]"),
+            "eps_rel must be three numbers",
+        ),
+        (
+            base.replace("eps_rel = [916.0, 916.0, 830.0]", "eps_rel = [916.0, -1.0, 830.0]"),
+            "eps_rel: the relative permittivity is not positive definite",
+        ),
+        (format!("{base}beta33_rel = 830.0\n"), "permittivity twice"),
+        (base.replace(&format!("c = {}\n", rows(&C)), ""), "no elastic constants"),
+        (format!("{base}e33 = 1.0\n"), "piezoelectric constants twice"),
+        (base.replace(&format!("e = {}\n", rows(&E)), "e33 = 1.0\n"), "material.e31 is missing"),
+    ];
+    for (material, expected) in cases {
+        let e =
+            build(&block(&material, 0.5)).err().unwrap_or_else(|| panic!("accepted: {material}"));
+        let message = e.to_string();
+        assert!(
+            message.contains(expected) && message.contains("block.toml"),
+            "{expected}: {message}"
+        );
+    }
+}
+
+/// A dielectric (no piezoelectric constants) under the same load: the uniform elastic state
+/// and no charge on its electrodes.
+#[test]
+fn a_dielectric_block_carries_no_charge() {
+    let p = 0.5;
+    let material = format!("c = {}\neps0 = {EPS0}\neps_rel = [4.0, 4.0, 4.0]\n", rows(&C));
+    let (built, run) = solve(&block(&material, p));
+    let (c11, c12, c13, c33) = (C[0][0], C[0][1], C[0][2], C[2][2]);
+    let c = -p / (c33 - 2.0 * c13 * c13 / (c11 + c12));
+    let a = -c13 * c / (c11 + c12);
+    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
+    let mesh = &built.problem.mesh;
+    for node in 0..mesh.n_nodes() {
+        let q = mesh.node(node);
+        let got = [x[dofs.u(node, 0)], x[dofs.u(node, 2)]];
+        assert!(
+            (got[0] - a * q[0]).abs() < 1e-9 * c.abs()
+                && (got[1] - c * q[2]).abs() < 1e-9 * c.abs()
+        );
+    }
+    assert!(run.reactions.charges.iter().all(|q| q.abs() < 1e-12), "{:?}", run.reactions.charges);
+}
