@@ -7,7 +7,7 @@ use super::schema::{DEFAULTS, LawKey, MaterialSection, NumberOrRow};
 use crate::error::Result;
 use crate::material::voigt::{self, Coupling, Matrix3, Voigt};
 use crate::material::{
-    Constants, ElasticConstants, ElasticLaw, Elasticity, Material, PiezoConstants,
+    Constants, ElasticConstants, ElasticLaw, Elasticity, Material, PiezoConstants, orientation,
 };
 
 /// The piezoelectric group as given: a stress-charge or a strain-charge coupling.
@@ -37,7 +37,47 @@ impl Case {
                 "{at}: material.{key}: the 2D continuum model takes young and poisson with the ceramic shorthand (e31, e33, e15): full tensors need a 3D mesh"
             ));
         }
-        Material::from_constants(dim, &self.material_constants()?).map_err(|e| self.context(e))
+        let axes = self.material_axes(dim)?;
+        Material::from_constants(dim, &self.material_constants()?, &axes)
+            .map_err(|e| self.context(e))
+    }
+
+    /// The material's axes in the mesh ([`orientation`]): from `poling` or `euler`, else the
+    /// mesh's own.
+    fn material_axes(&self, dim: usize) -> Result<Matrix3> {
+        let m = &self.file.material;
+        let (key, given) = match (&m.poling, &m.euler) {
+            (None, None) => return Ok(orientation::IDENTITY),
+            (Some(_), Some(_)) => {
+                return Err(input!(
+                    "{}: material gives both poling and euler: keep one (euler fixes all three axes, poling axis 3 with a rule for the others)",
+                    self.locate("material.euler")
+                ));
+            }
+            (Some(p), None) => ("poling", p),
+            (None, Some(e)) => ("euler", e),
+        };
+        let at = self.locate(&format!("material.{key}"));
+        if dim != 3 {
+            return Err(input!(
+                "{at}: material.{key}: the 2D continuum model is poled along y; a turned material needs a 3D mesh"
+            ));
+        }
+        let [a, b, c] = given[..] else {
+            return Err(input!("{at}: material.{key} = {given:?} must have 3 numbers"));
+        };
+        if given.iter().any(|v| !v.is_finite()) {
+            return Err(input!("{at}: material.{key} = {given:?} must be finite numbers"));
+        }
+        if key == "euler" {
+            return Ok(orientation::axes_from_euler([a, b, c]));
+        }
+        if a == 0.0 && b == 0.0 && c == 0.0 {
+            return Err(input!(
+                "{at}: material.poling = {given:?} has zero length: give the direction of the poling, e.g. [0, 0, 1]"
+            ));
+        }
+        Ok(orientation::axes_from_poling([a, b, c]))
     }
 
     /// The constants of `[material]` in its own axes, every group checked.

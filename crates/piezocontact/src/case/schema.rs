@@ -160,7 +160,8 @@ pub enum LawKey {
 /// axes (poled along its axis 3, the mesh's last axis), Voigt order xx, yy, zz, yz, xz, xy with
 /// engineering shear strains. One form of each group: elastic `young`/`poisson` (Hencky's law),
 /// `c` or `s`; piezoelectric `e31`/`e33`/`e15`, `e` or `d` (none: a dielectric); dielectric
-/// `beta11_rel`/`beta33_rel` or `eps_rel`, times `eps0`.
+/// `beta11_rel`/`beta33_rel` or `eps_rel`, times `eps0`. Its axes in the mesh: `poling` or
+/// `euler`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSection {
@@ -199,6 +200,11 @@ pub struct MaterialSection {
     pub beta33_rel: Option<f64>,
     /// The relative permittivity, 3 × 3 or its diagonal: ε^T/ε0 with `d`, else ε^S/ε0 [-].
     pub eps_rel: Option<Vec<NumberOrRow>>,
+    /// The poling: material axis 3 in mesh coordinates (3D; default +z).
+    pub poling: Option<Vec<f64>>,
+    /// The material's axes by Euler angles [φ1, Φ, φ2] in degrees: the columns of
+    /// Rz(φ1)·Rx(Φ)·Rz(φ2) (3D).
+    pub euler: Option<Vec<f64>>,
 }
 
 /// An entry of a list that is a vector (numbers) or a matrix (rows of numbers).

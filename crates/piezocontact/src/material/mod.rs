@@ -12,6 +12,7 @@
 //! axes. In 2D (the paper's continuum) the plane holds material axes 2 (x) and 3 (y), so
 //! e_{y,xx} = e32, e_{y,yy} = e33, e_{x,xy} = e24, β = diag(β22, β33) (model §2).
 
+pub mod orientation;
 pub mod voigt;
 
 use crate::error::{Error, Result};
@@ -214,21 +215,37 @@ impl Material {
             e: piezo.coupling(),
             permittivity: [[b11, 0.0, 0.0], [0.0, b11, 0.0], [0.0, 0.0, b33]],
         };
-        Self::from_constants(dim, &constants)
+        Self::from_constants(dim, &constants, &orientation::IDENTITY)
     }
 
-    /// The tensors of `constants` in the mesh's axes, the material's axes being the mesh's. In
-    /// 2D the plane holds material axes 2 and 3 (module docs), and the law must be isotropic.
-    pub fn from_constants(dim: usize, constants: &Constants) -> Result<Self> {
-        let e = voigt::coupling_tensor(&constants.e);
-        let beta = constants.permittivity;
+    /// The tensors of `constants` in the mesh's axes, the material's axes being the columns of
+    /// `axes` ([`orientation`]; the identity leaves every number as it is). In 2D the plane
+    /// holds material axes 2 and 3 (module docs), the axes must be the identity and the law
+    /// isotropic.
+    pub fn from_constants(dim: usize, constants: &Constants, axes: &Matrix3) -> Result<Self> {
+        let mut e = voigt::coupling_tensor(&constants.e);
+        let mut beta = constants.permittivity;
         let reference_modulus = constants.reference_modulus()?;
-        let elastic = match &constants.elastic {
+        let mut elastic = match &constants.elastic {
             ElasticConstants::Isotropic(el) => Elastic::Isotropic(*el),
             ElasticConstants::Stiffness(c) => {
                 Elastic::Anisotropic(Box::new(voigt::stiffness_tensor(c)))
             }
         };
+        if *axes != orientation::IDENTITY {
+            if dim != 3 {
+                return Err(invalid_text(
+                    "material.poling",
+                    "a turned material",
+                    "the 2D continuum model is poled along y: turned materials need a 3D mesh",
+                ));
+            }
+            e = orientation::rotate_coupling(&e, axes);
+            beta = orientation::rotate_matrix(&beta, axes);
+            if let Elastic::Anisotropic(c) = &mut elastic {
+                **c = orientation::rotate_stiffness(c, axes);
+            }
+        }
         if dim == 3 {
             return Ok(Self { dim, elastic, e, beta, reference_modulus });
         }

@@ -68,6 +68,11 @@ fn strain_charge() -> String {
 /// The box on rollers on x = 0 (along x), y = 0 (along y) and z = 0 (along z), its top and
 /// bottom grounded (short-circuited), a pressure p on top.
 fn block(material: &str, p: f64) -> String {
+    block_pressed(material, ["bottom", "top"], ("top", [0.0, 0.0, -p]))
+}
+
+/// The box on the same rollers, the faces `grounded` grounded, the traction f2 on one face.
+fn block_pressed(material: &str, grounded: [&str; 2], (face, f2): (&str, [f64; 3])) -> String {
     format!(
         r#"
 [mesh]
@@ -76,7 +81,7 @@ file = "{mesh}"
 [material]
 {material}
 [boundary]
-grounded = ["bottom", "top"]
+grounded = {grounded:?}
 
 [[boundary.support]]
 parts = ["x0"]
@@ -91,11 +96,10 @@ parts = ["bottom"]
 fix = ["z"]
 
 [[boundary.traction]]
-parts = ["top"]
-f2 = [0.0, 0.0, {f}]
+parts = ["{face}"]
+f2 = {f2:?}
 "#,
         mesh = mesh_file("box-faces.msh").display(),
-        f = -p,
     )
 }
 
@@ -165,6 +169,40 @@ fn a_short_circuited_block_of_the_compliance_form_has_the_strains_of_the_strain_
         (S[0][2] * sigma_zz, S[2][2] * sigma_zz),
         D[2][2] * sigma_zz,
     );
+}
+
+/// The strain-charge form poled along x, its x faces grounded, pressed along x: the rotated
+/// strains, ε_xx = s33 σ_xx, ε_yy = ε_zz = s13 σ_xx, and D_x = d33 σ_xx (the x faces' area is 1).
+#[test]
+fn a_block_poled_along_x_has_the_rotated_strains() {
+    let p = 0.5;
+    let material = format!("{}poling = [1.0, 0.0, 0.0]\n", strain_charge());
+    let (built, run) = solve(&block_pressed(&material, ["x0", "x1"], ("x1", [-p, 0.0, 0.0])));
+    let sigma_xx = -p;
+    let (a, c) = (S[2][2] * sigma_xx, S[0][2] * sigma_xx);
+    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
+    let mesh = &built.problem.mesh;
+    for node in 0..mesh.n_nodes() {
+        let q = mesh.node(node);
+        let expected = [a * q[0], c * q[1], c * q[2]];
+        for k in 0..3 {
+            let got = x[dofs.u(node, k)];
+            assert!(
+                (got - expected[k]).abs() < 1e-9 * a.abs(),
+                "u_{k} at {q:?}: {got} vs {}",
+                expected[k]
+            );
+        }
+    }
+    let d_x = D[2][2] * sigma_xx;
+    let charges = &run.reactions.charges;
+    assert!((charges[0] - d_x).abs() < 1e-9 * d_x.abs(), "x0: {} vs {d_x}", charges[0]);
+    assert!((charges[1] + d_x).abs() < 1e-9 * d_x.abs(), "x1: {} vs {}", charges[1], -d_x);
+    // The same material by Euler angles: the same axes, the same state.
+    let material = format!("{}euler = [90.0, 90.0, 180.0]\n", strain_charge());
+    let (_, turned) = solve(&block_pressed(&material, ["x0", "x1"], ("x1", [-p, 0.0, 0.0])));
+    let distance = x.iter().zip(&turned.solution.x).fold(0.0_f64, |m, (u, v)| m.max((u - v).abs()));
+    assert!(distance < 1e-9 * a.abs(), "{distance:e}");
 }
 
 /// A PZT-5A block indented by a ball (PV1, the coarse mesh): the strain-charge form made from
@@ -240,6 +278,12 @@ fn bad_material_tables_are_errors_naming_the_key() {
         (base.replace(&format!("c = {}\n", rows(&C)), ""), "no elastic constants"),
         (format!("{base}e33 = 1.0\n"), "piezoelectric constants twice"),
         (base.replace(&format!("e = {}\n", rows(&E)), "e33 = 1.0\n"), "material.e31 is missing"),
+        (format!("{base}poling = [0.0, 0.0, 0.0]\n"), "has zero length"),
+        (format!("{base}poling = [1.0, 0.0]\n"), "must have 3 numbers"),
+        (
+            format!("{base}poling = [1.0, 0.0, 0.0]\neuler = [0.0, 0.0, 0.0]\n"),
+            "both poling and euler",
+        ),
     ];
     for (material, expected) in cases {
         let e =
