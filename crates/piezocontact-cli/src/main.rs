@@ -442,7 +442,9 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
     if let Some(loading) = &built.loading {
         print::loading(loading, built.problem.mesh.dim(), &built.units);
     }
-    print::indentation_moduli(&built.problem.material, &built.units);
+    for named in built.problem.materials.list() {
+        print::indentation_moduli(named, &built.units);
+    }
     for warning in &built.warnings {
         say!("warning: {warning}");
     }

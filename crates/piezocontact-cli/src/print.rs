@@ -4,7 +4,7 @@ use crate::say;
 use piezocontact::case::Built;
 use piezocontact::case::schema::Units;
 use piezocontact::contact::Loading;
-use piezocontact::material::Material;
+use piezocontact::material::NamedMaterial;
 use piezocontact::oracles::{Piezoelectric, plane_strain_modulus};
 use piezocontact::run::{ContactRun, PathRun, Run, StaticPathRun, StaticRun};
 use std::path::Path;
@@ -197,9 +197,12 @@ pub fn loading(loading: &Loading, dim: usize, units: &Units) {
 
 /// Prints the indentation moduli of the material's half-space, poled along its outward
 /// normal (the classical solutions with C* in place of E*).
-pub fn indentation_moduli(material: &Material, units: &Units) {
-    let s = &units.stress;
-    say!("indentation of a half-space poled along its outward normal (small strain):");
+pub fn indentation_moduli(named: &NamedMaterial, units: &Units) {
+    let (s, material) = (&units.stress, &named.material);
+    say!(
+        "indentation of a half-space of material '{}' poled along its outward normal (small strain):",
+        named.name
+    );
     if let Some(el) = material.elasticity() {
         let e_star = plane_strain_modulus(el.young(), el.poisson());
         say!("  E/(1 − ν²)          = {e_star:.6} {s} (without the piezoelectric coupling)");
@@ -343,15 +346,26 @@ fn roles(b: &piezocontact::problem::Boundary, p: usize) -> String {
 pub fn material(built: &Built) -> piezocontact::Result<()> {
     let problem = &built.problem;
     let dofs = piezocontact::dofs::DofMap::new(problem)?;
-    match problem.material.elasticity() {
-        Some(el) => say!(
-            "material: mu1 = {:.6} {s}, k0 = {:.6} {s}, law {:?}",
-            el.mu1,
-            el.k0,
-            el.law,
-            s = built.units.stress
-        ),
-        None => say!("material: a stiffness tensor (linear law)"),
+    let counts = problem.materials.cell_counts(problem.mesh.n_cells());
+    for (named, cells) in problem.materials.list().iter().zip(counts) {
+        let p = named.material.poling();
+        let law = match named.material.elasticity() {
+            Some(el) => format!(
+                "mu1 = {:.6} {s}, k0 = {:.6} {s}, law {:?}",
+                el.mu1,
+                el.k0,
+                el.law,
+                s = built.units.stress
+            ),
+            None => "a stiffness tensor (linear law)".into(),
+        };
+        say!(
+            "material '{}': {cells} cells, {law}, poled along [{:.4}, {:.4}, {:.4}]",
+            named.name,
+            p[0],
+            p[1],
+            p[2]
+        );
     }
     say!(
         "dofs: {} in all, {} free ({} u, {} phi)",

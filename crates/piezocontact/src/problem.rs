@@ -2,7 +2,7 @@
 //! roles and loads. [`Problem::new`] checks the roles once.
 
 use crate::error::{Error, Result};
-use crate::material::Material;
+use crate::material::{Material, Materials};
 use crate::mesh::Mesh;
 use crate::mesh::rigid::{free_rigid_motions, motions_sentence};
 use std::sync::Arc;
@@ -85,8 +85,8 @@ pub struct BodyLoads {
 pub struct Problem {
     /// The mesh.
     pub mesh: Mesh,
-    /// The material.
-    pub material: Material,
+    /// The materials of the cells.
+    pub materials: Materials,
     /// Boundary roles and data.
     pub boundary: Boundary,
     /// Body loads.
@@ -99,20 +99,33 @@ impl Problem {
     /// Γa ∪ Γb, nor Γa with Γb, nor Γ1 with Γ2.
     pub fn new(
         mesh: Mesh,
-        material: Material,
+        materials: impl Into<Materials>,
         boundary: Boundary,
         loads: BodyLoads,
     ) -> Result<Self> {
-        if material.dim != mesh.dim() {
+        let materials = materials.into();
+        if materials.dim() != mesh.dim() {
             return Err(Error::InvalidParameter {
                 name: "material dimension".into(),
-                value: material.dim.to_string(),
+                value: materials.dim().to_string(),
                 requirement: format!("must equal the mesh dimension {}", mesh.dim()),
             });
         }
-        let problem = Self { mesh, material, boundary, loads };
+        if ![0, mesh.n_cells()].contains(&materials.n_mapped()) {
+            return Err(Error::InvalidParameter {
+                name: "the cells' materials".into(),
+                value: materials.n_mapped().to_string(),
+                requirement: format!("one per cell ({})", mesh.n_cells()),
+            });
+        }
+        let problem = Self { mesh, materials, boundary, loads };
         problem.check_roles()?;
         Ok(problem)
+    }
+
+    /// Cell c's material.
+    pub fn material(&self, c: usize) -> &Material {
+        self.materials.of(c)
     }
 
     fn check_roles(&self) -> Result<()> {

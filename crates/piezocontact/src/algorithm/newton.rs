@@ -277,7 +277,7 @@ impl InnerMethod for Newton {
         let condensed = Condensed::new(&dofs, surface, (with_phi, frictionless), guess);
         condensed.check_memory(crate::limits::available_memory())?;
         let system = CoupledSystem::with_last(problem, dofs, &condensed.free, solver)?;
-        self.c_factor = self.parameters.r / problem.material.reference_modulus;
+        self.c_factor = self.parameters.r / problem.materials.reference_modulus();
         self.schur = SchurSource::new(&condensed.free);
         self.condensed = Some(condensed);
         Ok(system)

@@ -64,7 +64,7 @@ fn internal_force_on<const D: usize, const N: usize>(
         let cells = first..(first + FORCE_BLOCK).min(n_cells);
         let products = &mut products[..2 * m * cells.len()];
         products.par_chunks_mut(2 * m).zip(cells.clone()).try_for_each(|(out, c)| {
-            let k = element_matrix(&problem.material, &simplex::<D, N>(problem, c)?, moduli[c]);
+            let k = element_matrix(problem.material(c), &simplex::<D, N>(problem, c)?, moduli[c]);
             let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
             for p in 0..m {
                 for q in 0..m {
@@ -199,12 +199,12 @@ impl Linearisation {
     /// The consistent tangent of Hencky's law at x (global vector): whole, or floored where
     /// it is not positive along ε^D.
     pub fn tangent(problem: &Problem, dofs: &DofMap, x: &[f64], beyond: Beyond) -> Result<Self> {
-        let material = &problem.material;
         let mut moduli = Vec::with_capacity(problem.mesh.n_cells());
         let mut tangent = Vec::with_capacity(problem.mesh.n_cells());
         for c in 0..problem.mesh.n_cells() {
             let deviator = with_simplex!(problem.mesh.dim(), deviator_tensor(problem, dofs, x, c))?;
             let t: f64 = deviator.iter().flatten().map(|v| v * v).sum();
+            let material = problem.material(c);
             let (g, dg) = (material.modulus(t), material.modulus_slope(t));
             moduli.push(g);
             // Only the elements that use the tangent keep ε^D: an unchanged linearisation then
@@ -246,7 +246,7 @@ pub fn secant_moduli(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<Vec<
         .into_par_iter()
         .map(|c| {
             let t = with_simplex!(problem.mesh.dim(), deviator_at(problem, dofs, x, c))?;
-            Ok(problem.material.modulus(t))
+            Ok(problem.material(c).modulus(t))
         })
         .collect()
 }
@@ -276,7 +276,7 @@ fn fields_on<const D: usize, const N: usize>(
     x: &[f64],
     c: usize,
 ) -> Result<([f64; 9], [f64; 3])> {
-    let material = &problem.material;
+    let material = problem.material(c);
     let (eps, grad_phi) = cell_gradients::<D, N>(problem, dofs, x, c)?;
     let sigma = material.true_stress(&eps, &grad_phi);
     let d = material.displacement_field(&eps, &grad_phi);

@@ -440,7 +440,7 @@ fn add_cell<const D: usize, const N: usize>(
     sums: &[AtomicU64],
 ) -> Result<()> {
     let s = simplex::<D, N>(problem, cell.c)?;
-    let mut k = element_matrix(&problem.material, &s, cell.modulus);
+    let mut k = element_matrix(problem.material(cell.c), &s, cell.modulus);
     let global = local_dofs::<D, N>(dofs, problem.mesh.cell(cell.c));
     if let Some(&(beta, deviator)) = cell.tangent.filter(|(beta, _)| *beta != 0.0) {
         let a = tangent_vector::<D, N>(&s, &deviator);

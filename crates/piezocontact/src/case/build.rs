@@ -83,7 +83,7 @@ impl Case {
         if let Some(model) = &model {
             self.check_reach(&problem, model, loading.as_ref())?;
         }
-        let mut warnings = self.hypothesis_warnings(&problem.material);
+        let mut warnings = self.hypothesis_warnings(&problem.materials);
         warnings.extend(self.setting_warnings());
         Ok(Built {
             problem,

@@ -486,11 +486,11 @@ gap = 0.1
     fn the_hypotheses_are_reported_with_their_numbers() {
         let c = case(MINIMAL, &["material.poisson=0.05"]).unwrap();
         let problem = c.problem().unwrap();
-        let warnings = c.hypothesis_warnings(&problem.material);
+        let warnings = c.hypothesis_warnings(&problem.materials);
         assert!(warnings.iter().any(|w| w.starts_with("(h1)(a) fails")), "{warnings:?}");
         assert!(warnings.iter().any(|w| w.contains("e·t0 = 4.8929e0")), "{warnings:?}");
         let linear = case(MINIMAL, &["material.law=\"linear\""]).unwrap();
-        assert!(linear.hypothesis_warnings(&linear.problem().unwrap().material).is_empty());
+        assert!(linear.hypothesis_warnings(&linear.problem().unwrap().materials).is_empty());
         assert!(c.uniqueness_note().unwrap().contains("M_h·L_p + L_h·M_p"));
     }
 
@@ -503,10 +503,10 @@ gap = 0.1
         assert!(e.contains("material.d: the 2D continuum model") && e.contains("3D mesh"), "{e}");
         // eps_rel is the shorthand's permittivity written out: the same material.
         let written = ["material.beta11_rel=916.0", "material.beta33_rel=830.0"];
-        let given = case(MINIMAL, &written).unwrap().problem().unwrap().material;
+        let given = case(MINIMAL, &written).unwrap().problem().unwrap().materials;
         let text = MINIMAL
             .replace("beta11_rel = 916.0\nbeta33_rel = 830.0", "eps_rel = [916.0, 916.0, 830.0]");
         assert!(text.contains("eps_rel"));
-        assert_eq!(case(&text, &[]).unwrap().problem().unwrap().material, given);
+        assert_eq!(case(&text, &[]).unwrap().problem().unwrap().materials, given);
     }
 }

@@ -6,7 +6,7 @@ use super::build::MethodParameters;
 use super::file::Case;
 use super::schema::{BackendKey, FrictionPathKey, MethodKey, ProblemKey, RegularizationKey};
 use crate::error::Result;
-use crate::material::{ElasticLaw, Material};
+use crate::material::{ElasticLaw, Material, Materials};
 
 /// The largest magnitude of a number in a case file, and the smallest nonzero one: the model
 /// multiplies and squares its inputs, and beyond these bounds double precision overflows or
@@ -142,7 +142,20 @@ impl Case {
 
     /// The paper's hypotheses (h1)–(h6) checked on this case's data, as warnings with the
     /// numbers (Section 2 of \[P\]); an empty list when all hold.
-    pub fn hypothesis_warnings(&self, material: &Material) -> Vec<String> {
+    pub fn hypothesis_warnings(&self, materials: &Materials) -> Vec<String> {
+        let several = materials.list().len() > 1;
+        let mut warnings = Vec::new();
+        for named in materials.list() {
+            let prefix =
+                if several { format!("material '{}': ", named.name) } else { String::new() };
+            let of_one = Self::material_warnings(&named.material);
+            warnings.extend(of_one.into_iter().map(|w| format!("{prefix}{w}")));
+        }
+        warnings
+    }
+
+    /// [`Case::hypothesis_warnings`] of one material.
+    fn material_warnings(material: &Material) -> Vec<String> {
         let Some(el) = material.elasticity() else {
             return Vec::new(); // (h1) is about Hencky's isotropic law.
         };

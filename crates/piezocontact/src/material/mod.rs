@@ -185,6 +185,8 @@ pub struct Material {
     pub beta: Matrix3,
     /// The modulus defaults scale with \[stress\] ([`Constants::reference_modulus`]).
     pub reference_modulus: f64,
+    /// The material's axes in mesh coordinates, the columns of a rotation ([`orientation`]).
+    pub axes: Matrix3,
 }
 
 impl Material {
@@ -247,7 +249,7 @@ impl Material {
             }
         }
         if dim == 3 {
-            return Ok(Self { dim, elastic, e, beta, reference_modulus });
+            return Ok(Self { dim, elastic, e, beta, reference_modulus, axes: *axes });
         }
         if matches!(elastic, Elastic::Anisotropic(_)) {
             return Err(invalid_text(
@@ -265,7 +267,12 @@ impl Material {
                 }
             }
         }
-        Ok(Self { dim, elastic, e: e2, beta: beta2, reference_modulus })
+        Ok(Self { dim, elastic, e: e2, beta: beta2, reference_modulus, axes: *axes })
+    }
+
+    /// The poling, material axis 3, in mesh coordinates padded to 3 (y in 2D).
+    pub fn poling(&self) -> [f64; 3] {
+        if self.dim == 2 { [0.0, 1.0, 0.0] } else { self.axes.map(|row| row[2]) }
     }
 
     /// Hencky's law, where the material is isotropic.
@@ -345,6 +352,98 @@ impl Material {
         grad_phi: &[f64; D],
     ) -> [[f64; D]; D] {
         self.stress(eps, grad_phi, self.modulus(deviator_norm_squared(eps)))
+    }
+}
+
+/// A material with its name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NamedMaterial {
+    /// Its name in outputs.
+    pub name: String,
+    /// Its tensors.
+    pub material: Material,
+}
+
+/// The body's materials: a list of named materials and the material of each cell.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Materials {
+    list: Vec<NamedMaterial>,
+    /// The index into `list` of each cell; empty for one material.
+    of_cell: Vec<u16>,
+}
+
+impl Materials {
+    /// Several materials, `of_cell[c]` the index of cell c's: an error when the list is empty
+    /// or longer than 65535, an index is out of range or the dimensions differ.
+    pub fn new(list: Vec<NamedMaterial>, of_cell: Vec<usize>) -> Result<Self> {
+        let dims = list.first().map(|m| m.material.dim);
+        if list.is_empty() || list.len() > usize::from(u16::MAX) {
+            return Err(invalid_text("material", &list.len().to_string(), "1 to 65535 materials"));
+        }
+        if let Some(m) = list.iter().find(|m| Some(m.material.dim) != dims) {
+            return Err(invalid_text(&m.name, "a material of another dimension", "one dimension"));
+        }
+        if let Some(c) = of_cell.iter().position(|&k| k >= list.len()) {
+            let cell = format!("cell {c}");
+            return Err(invalid_text(
+                &cell,
+                "a material out of the list",
+                "every cell one of the list's",
+            ));
+        }
+        Ok(Self { list, of_cell: of_cell.into_iter().map(|k| k as u16).collect() })
+    }
+
+    /// The materials, in their order.
+    pub fn list(&self) -> &[NamedMaterial] {
+        &self.list
+    }
+
+    /// The index of cell c's material.
+    pub fn index_of(&self, c: usize) -> usize {
+        self.of_cell.get(c).map_or(0, |&k| usize::from(k))
+    }
+
+    /// Cell c's material.
+    pub fn of(&self, c: usize) -> &Material {
+        &self.list[self.index_of(c)].material
+    }
+
+    /// The number of cells per material, for `n_cells` cells.
+    pub fn cell_counts(&self, n_cells: usize) -> Vec<usize> {
+        let mut counts = vec![0; self.list.len()];
+        (0..n_cells).for_each(|c| counts[self.index_of(c)] += 1);
+        counts
+    }
+
+    /// Whether every cell map is given (several materials) or none (one).
+    pub fn n_mapped(&self) -> usize {
+        self.of_cell.len()
+    }
+
+    /// The space dimension.
+    pub fn dim(&self) -> usize {
+        self.list[0].material.dim
+    }
+
+    /// Whether every material's law is linear.
+    pub fn is_linear(&self) -> bool {
+        self.list.iter().all(|m| m.material.is_linear())
+    }
+
+    /// The largest reference modulus over the materials \[stress\].
+    pub fn reference_modulus(&self) -> f64 {
+        self.list.iter().map(|m| m.material.reference_modulus).fold(0.0, f64::max)
+    }
+}
+
+impl From<Material> for Materials {
+    /// One material over the whole body, named "material".
+    fn from(material: Material) -> Self {
+        Self {
+            list: vec![NamedMaterial { name: "material".into(), material }],
+            of_cell: Vec::new(),
+        }
     }
 }
 

@@ -42,7 +42,7 @@ impl StaticPathRun {
         let start = Instant::now();
         let problem = &built.problem;
         let factors: Vec<f64> = loading.steps.iter().map(|s| s.load_factor).collect();
-        let solutions = if problem.material.is_linear() {
+        let solutions = if problem.materials.is_linear() {
             let unit = solve_without_contact(problem, solver);
             let unit = unit.map_err(|e| built.context(e))?;
             let scaled = |&factor: &f64| StaticSolution {

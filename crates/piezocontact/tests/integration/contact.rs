@@ -216,7 +216,7 @@ fn the_hencky_law_converges_to_the_true_nonlinear_equations() {
         let model = paper_model(pv2, 0.0, PAPER_UNITS);
         let solution = solve(&problem, &model, &settings);
         let g = piezocontact::assembly::secant_moduli(&problem, &dofs, &solution.x).unwrap();
-        let mu1 = problem.material.elasticity().unwrap().mu1;
+        let mu1 = problem.material(0).elasticity().unwrap().mu1;
         let softened = g.iter().filter(|&&v| v < mu1 * (1.0 - 1e-3)).count();
         assert!(softened >= 10, "g is constant: the test does not exercise Hencky");
         let t_max = (0..problem.mesh.n_cells())

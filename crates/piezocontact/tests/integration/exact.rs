@@ -294,7 +294,7 @@ fn hencky_s_law_by_newton_converges_quadratically() {
         let dofs = &solution.dofs;
         let linearisation =
             Linearisation::tangent(&problem, dofs, &solution.x, Beyond::Floored).unwrap();
-        let elasticity = *problem.material.elasticity().unwrap();
+        let elasticity = *problem.material(0).elasticity().unwrap();
         let softened = linearisation.moduli.iter().filter(|g| **g < elasticity.mu1).count();
         let positive = linearisation.tangent.iter().filter(|(b, _)| *b != 0.0).all(|(b, d)| {
             let t: f64 = d.iter().flatten().map(|v| v * v).sum();
@@ -320,7 +320,7 @@ fn hencky_s_law_by_newton_converges_quadratically() {
 /// The elements of a solution where Hencky's law is not positive along ε^D (t > e·t0).
 fn beyond_e_t0(problem: &Problem, solution: &ContactSolution) -> usize {
     let whole = Linearisation::tangent(problem, &solution.dofs, &solution.x, Beyond::Whole);
-    let el = *problem.material.elasticity().unwrap();
+    let el = *problem.material(0).elasticity().unwrap();
     let t = |d: &[[f64; 3]; 3]| d.iter().flatten().map(|v| v * v).sum::<f64>();
     whole
         .unwrap()
@@ -396,7 +396,7 @@ fn the_exact_solver_converges_with_hencky_active() {
         let dofs = &solution.dofs;
         let g = piezocontact::assembly::secant_moduli(&problem, dofs, &solution.x).unwrap();
         let softened =
-            g.iter().filter(|g| **g < 0.99 * problem.material.elasticity().unwrap().mu1).count();
+            g.iter().filter(|g| **g < 0.99 * problem.material(0).elasticity().unwrap().mu1).count();
         println!(
             "{}: {softened} softened elements, {} outer steps, {} factorisations, KKT {:.1e}",
             model.name(),
@@ -466,7 +466,7 @@ fn the_schur_complement_read_off_the_factor_is_the_schur_complement() {
         .filter(|&k| k != piezocontact::dofs::CONSTRAINED)
         .collect();
     let mut system = CoupledSystem::with_last(&problem, dofs, &last, default_solver()).unwrap();
-    let g = vec![problem.material.elasticity().unwrap().mu1; problem.mesh.n_cells()];
+    let g = vec![problem.material(0).elasticity().unwrap().mu1; problem.mesh.n_cells()];
     system.factorize(&problem, &g, &[]).unwrap();
     let schur = system.schur_complement().unwrap();
     // K in dense form, then S = K_cc − K_ci K_ii⁻¹ K_ic by Gaussian elimination of the

@@ -330,7 +330,7 @@ fn a_ball_on_a_piezoelectric_half_space_follows_its_indentation_modulus() {
     let ball = "kind = \"sphere\"\ncenter = [0.0, 0.0, 1.0]\nradius = 1.0";
     let depths = [0.0016, 0.0036];
     let case = indentation_case("indent-halfspace-fine.msh", ball, &depths, true);
-    let material = case.build().unwrap().problem.material;
+    let material = case.build().unwrap().problem.material(0).clone();
     let piezo = oracles::Piezoelectric::of(&material).indentation().unwrap();
     let e_star = oracles::plane_strain_modulus(58.7102, 0.3912);
     let (mut phi_errors, mut ratios) = (Vec::new(), Vec::new());

@@ -30,7 +30,7 @@ fn matrix_is_symmetric_and_its_blocks_are_definite() {
     ] {
         let assembler =
             Assembler::new(&problem, DofMap::new(&problem).unwrap(), &[], None).unwrap();
-        let g = vec![problem.material.elasticity().unwrap().mu1; problem.mesh.n_cells()];
+        let g = vec![problem.material(0).elasticity().unwrap().mu1; problem.mesh.n_cells()];
         let (matrix, _) = assembler.matrix(&problem, &g, &[]).unwrap();
         // The matrix stores its lower triangle only, so it is symmetric by construction if it
         // holds the right values: its product must equal the element-by-element product of the
@@ -69,7 +69,8 @@ fn parallel_assembly_equals_serial_assembly_to_the_last_bit() {
                 let assembler = Assembler::new(&problem, dofs, &block_nodes, None).unwrap();
                 let g: Vec<f64> = (0..problem.mesh.n_cells())
                     .map(|c| {
-                        problem.material.elasticity().unwrap().mu1 * (1.0 + 0.1 * (c as f64).sin())
+                        problem.material(0).elasticity().unwrap().mu1
+                            * (1.0 + 0.1 * (c as f64).sin())
                     })
                     .collect();
                 let blocks = vec![[[2.0, 0.5, 0.0], [0.5, 3.0, 0.0], [0.0; 3]]; block_nodes.len()];
@@ -94,7 +95,7 @@ fn one_numeric_factorisation_serves_many_solves() {
     let mut system =
         CoupledSystem::new(&problem, DofMap::new(&problem).unwrap(), &[], default_solver())
             .unwrap();
-    let g = vec![problem.material.elasticity().unwrap().mu1; problem.mesh.n_cells()];
+    let g = vec![problem.material(0).elasticity().unwrap().mu1; problem.mesh.n_cells()];
     system.factorize(&problem, &g, &[]).unwrap();
     let first = system.solve(None).unwrap();
     let n = system.dofs().n_free();
