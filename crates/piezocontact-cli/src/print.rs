@@ -203,6 +203,12 @@ pub fn indentation_moduli(named: &NamedMaterial, units: &Units) {
         "indentation of a half-space of material '{}' poled along its outward normal (small strain):",
         named.name
     );
+    if !material.is_transversely_isotropic() {
+        say!(
+            "  no closed form is given: the material is not transversely isotropic about the normal"
+        );
+        return;
+    }
     if let Some(el) = material.elasticity() {
         let e_star = plane_strain_modulus(el.young(), el.poisson());
         say!("  E/(1 − ν²)          = {e_star:.6} {s} (without the piezoelectric coupling)");
@@ -279,6 +285,19 @@ pub fn mesh(built: &Built) {
             part.n_facets(),
             mesh.part_measure(p),
             roles(&built.problem.boundary, p)
+        );
+    }
+    let materials = &built.problem.materials;
+    for region in mesh.regions() {
+        let of = |c: &usize| materials.list()[materials.index_of(*c)].name.as_str();
+        let mut names: Vec<&str> = region.cells.iter().map(of).collect();
+        names.sort_unstable();
+        names.dedup();
+        say!(
+            "  region {:<10} {:>6} cells, material {}",
+            region.name,
+            region.cells.len(),
+            names.join(", ")
         );
     }
     supports(built);

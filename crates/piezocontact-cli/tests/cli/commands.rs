@@ -96,7 +96,7 @@ fn run_writes_a_summary_a_contact_table_and_a_vtu_that_a_reader_accepts() {
         names,
         ["u", "phi", "contact_status", "contact_pressure", "friction_traction", "gap"]
     );
-    assert_eq!(vtu.cell_names, ["sigma", "D"]);
+    assert_eq!(vtu.cell_names, ["sigma", "D", "material", "poling"]);
     // The gap on Γ3 is the paper's constant 0.5 m; PV1 has no friction traction.
     let on_gamma3 = vtu.point_data[2].1.iter().filter(|s| **s > 0.0).count();
     assert_eq!(vtu.point_data[5].1.iter().filter(|g| **g == 0.5).count(), on_gamma3);

@@ -37,6 +37,8 @@ fn case_reader_corpus() {
         ("foundation-punch.toml", 3),
         ("foundation-surface-stl.toml", 3),
         ("loading-path.toml", 3),
+        ("materials-two-layers.toml", 3),
+        ("materials-strain-charge.toml", 3),
     ] {
         assert!(built.contains(&(name.to_string(), dim)), "{name} was not built: {built:?}");
     }

@@ -115,6 +115,7 @@ impl Case {
                 ("mesh.nx", m.nx.is_some()),
                 ("mesh.ny", m.ny.is_some()),
                 ("mesh.segments", !m.segments.is_empty()),
+                ("mesh.regions", !m.regions.is_empty()),
             ] {
                 if set {
                     return Err(input!(
@@ -136,7 +137,9 @@ impl Case {
         }
         let (rectangle, parts) = self.rectangle()?;
         self.check_memory(rectangle.nx, rectangle.ny)?;
-        rectangle.mesh(&parts).map_err(|e| self.context(e))
+        let mesh = rectangle.mesh(&parts).map_err(|e| self.context(e))?;
+        let regions = self.rectangle_regions(&mesh)?;
+        mesh.with_regions(regions).map_err(|e| self.context(e))
     }
 
     /// The built-in rectangle of `[mesh]` and its parts' segments.
@@ -420,7 +423,7 @@ impl Case {
     pub(super) fn problem_checked(&self) -> Result<Problem> {
         let mesh = self.mesh()?;
         let dim = mesh.dim();
-        let material = self.material(dim)?;
+        let materials = self.materials(&mesh)?;
         let b = &self.file.boundary;
         let parts = |key: &str, names: &[String]| self.part_indices(&mesh, key, names, false);
         let load_parts = |key: &str, names: &[String]| self.part_indices(&mesh, key, names, true);
@@ -481,7 +484,7 @@ impl Case {
                 q => q.map(constant_scalar),
             },
         };
-        Problem::new(mesh, material, boundary, loads).map_err(|e| self.context(e))
+        Problem::new(mesh, materials, boundary, loads).map_err(|e| self.context(e))
     }
 }
 

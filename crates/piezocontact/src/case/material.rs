@@ -1,13 +1,15 @@
-//! `[material]` read into a material's constants ([`Constants`], in its own axes): one form of
-//! each group (elastic, piezoelectric, dielectric), checked, and the strain-charge form
-//! converted once into the stress-charge form the solver uses.
+//! `[material]` or `[[material]]` read into materials: each table's constants ([`Constants`],
+//! in its own axes: one form of each group — elastic, piezoelectric, dielectric — checked, the
+//! strain-charge form converted once into the stress-charge form the solver uses), its axes in
+//! the mesh, and the regions it fills.
 
 use super::file::Case;
-use super::schema::{DEFAULTS, LawKey, MaterialSection, NumberOrRow};
-use crate::error::Result;
+use super::schema::{DEFAULTS, LawKey, MaterialSection, MaterialTables, NumberOrRow};
+use crate::error::{Error, Result};
 use crate::material::voigt::{self, Coupling, Matrix3, Voigt};
 use crate::material::{
-    Constants, ElasticConstants, ElasticLaw, Elasticity, Material, PiezoConstants, orientation,
+    Constants, ElasticConstants, ElasticLaw, Elasticity, Material, NamedMaterial, PiezoConstants,
+    orientation,
 };
 
 /// The piezoelectric group as given: a stress-charge or a strain-charge coupling.
@@ -18,75 +20,147 @@ enum Piezo {
     Strain(Coupling),
 }
 
+/// One material table with the dotted key that names it in messages and overrides:
+/// `material` for `[material]` (or a lone unnamed `[[material]]`), `material.<name>` for a
+/// named one.
+pub(super) struct Table<'a> {
+    case: &'a Case,
+    /// The key of the table.
+    pub key: String,
+    /// The table.
+    pub table: &'a MaterialSection,
+}
+
 impl Case {
-    /// The material in dimension `dim`.
-    pub fn material(&self, dim: usize) -> Result<Material> {
-        let m = &self.file.material;
+    /// The material tables, each with its key.
+    pub(super) fn material_tables(&self) -> Vec<Table<'_>> {
+        let many = matches!(self.file.material, MaterialTables::Many(_));
+        let tables = self.file.material.tables();
+        tables
+            .iter()
+            .map(|table| {
+                let key = match (&table.name, many) {
+                    (Some(name), true) => format!("material.{name}"),
+                    _ => "material".to_string(),
+                };
+                Table { case: self, key, table }
+            })
+            .collect()
+    }
+
+    /// Every material table's constants, checked.
+    pub fn material_constants(&self) -> Result<Vec<Constants>> {
+        self.material_tables().iter().map(Table::constants).collect()
+    }
+
+    /// The modulus a default scales with \[stress\]: the largest over the materials of
+    /// [`Constants::reference_modulus`], an isotropic material's E as the file gives it.
+    pub fn reference_modulus(&self) -> Result<f64> {
+        let mut largest = 0.0_f64;
+        for table in self.material_tables() {
+            let modulus = match (table.constants()?, table.table.young) {
+                (Constants { elastic: ElasticConstants::Isotropic(_), .. }, Some(young)) => young,
+                (constants, _) => constants.reference_modulus()?,
+            };
+            largest = largest.max(modulus);
+        }
+        Ok(largest)
+    }
+}
+
+impl Table<'_> {
+    /// "file:line" of the key `sub` of this table (of the table itself for "").
+    fn locate(&self, sub: &str) -> String {
+        if sub.is_empty() {
+            self.case.locate(&self.key)
+        } else {
+            self.case.locate(&format!("{}.{sub}", self.key))
+        }
+    }
+
+    /// Places an error of the material module at this table's key.
+    fn context(&self, e: Error) -> Error {
+        match e {
+            Error::InvalidParameter { name, value, requirement } => {
+                let sub = name.strip_prefix("material.").unwrap_or(&name);
+                let location = self.locate(sub);
+                let name = format!("{}.{sub}", self.key);
+                let error = Error::InvalidParameter { name, value, requirement };
+                Error::Located { location, error: Box::new(error) }
+            }
+            e => self.case.context(e),
+        }
+    }
+
+    /// The material in dimension `dim`, named.
+    pub fn material(&self, dim: usize) -> Result<NamedMaterial> {
+        let m = self.table;
+        let tensors = [
+            ("c", m.c.is_some()),
+            ("s", m.s.is_some()),
+            ("e", m.e.is_some()),
+            ("d", m.d.is_some()),
+        ];
         if dim == 2
-            && let Some(key) = [
-                ("c", m.c.is_some()),
-                ("s", m.s.is_some()),
-                ("e", m.e.is_some()),
-                ("d", m.d.is_some()),
-            ]
-            .into_iter()
-            .find_map(|(k, given)| given.then_some(k))
+            && let Some(key) = tensors.into_iter().find_map(|(k, given)| given.then_some(k))
         {
-            let at = self.locate(&format!("material.{key}"));
             return Err(input!(
-                "{at}: material.{key}: the 2D continuum model takes young and poisson with the ceramic shorthand (e31, e33, e15): full tensors need a 3D mesh"
+                "{}: {}.{key}: the 2D continuum model takes young and poisson with the ceramic shorthand (e31, e33, e15): full tensors need a 3D mesh",
+                self.locate(key),
+                self.key
             ));
         }
-        let axes = self.material_axes(dim)?;
-        Material::from_constants(dim, &self.material_constants()?, &axes)
-            .map_err(|e| self.context(e))
+        let axes = self.axes(dim)?;
+        let material = Material::from_constants(dim, &self.constants()?, &axes)
+            .map_err(|e| self.context(e))?;
+        let name = m.name.clone().unwrap_or_else(|| "material".into());
+        Ok(NamedMaterial { name, material })
     }
 
     /// The material's axes in the mesh ([`orientation`]): from `poling` or `euler`, else the
     /// mesh's own.
-    fn material_axes(&self, dim: usize) -> Result<Matrix3> {
-        let m = &self.file.material;
+    fn axes(&self, dim: usize) -> Result<Matrix3> {
+        let (k, m) = (&self.key, self.table);
         let (key, given) = match (&m.poling, &m.euler) {
             (None, None) => return Ok(orientation::IDENTITY),
             (Some(_), Some(_)) => {
                 return Err(input!(
-                    "{}: material gives both poling and euler: keep one (euler fixes all three axes, poling axis 3 with a rule for the others)",
-                    self.locate("material.euler")
+                    "{}: {k} gives both poling and euler: keep one (euler fixes all three axes, poling axis 3 with a rule for the others)",
+                    self.locate("euler")
                 ));
             }
             (Some(p), None) => ("poling", p),
             (None, Some(e)) => ("euler", e),
         };
-        let at = self.locate(&format!("material.{key}"));
+        let at = self.locate(key);
         if dim != 3 {
             return Err(input!(
-                "{at}: material.{key}: the 2D continuum model is poled along y; a turned material needs a 3D mesh"
+                "{at}: {k}.{key}: the 2D continuum model is poled along y; a turned material needs a 3D mesh"
             ));
         }
         let [a, b, c] = given[..] else {
-            return Err(input!("{at}: material.{key} = {given:?} must have 3 numbers"));
+            return Err(input!("{at}: {k}.{key} = {given:?} must have 3 numbers"));
         };
         if given.iter().any(|v| !v.is_finite()) {
-            return Err(input!("{at}: material.{key} = {given:?} must be finite numbers"));
+            return Err(input!("{at}: {k}.{key} = {given:?} must be finite numbers"));
         }
         if key == "euler" {
             return Ok(orientation::axes_from_euler([a, b, c]));
         }
         if a == 0.0 && b == 0.0 && c == 0.0 {
             return Err(input!(
-                "{at}: material.poling = {given:?} has zero length: give the direction of the poling, e.g. [0, 0, 1]"
+                "{at}: {k}.poling = {given:?} has zero length: give the direction of the poling, e.g. [0, 0, 1]"
             ));
         }
         Ok(orientation::axes_from_poling([a, b, c]))
     }
 
-    /// The constants of `[material]` in its own axes, every group checked.
-    pub fn material_constants(&self) -> Result<Constants> {
-        let m = &self.file.material;
-        let elastic = self.elastic_constants(m)?;
+    /// The constants in the material's own axes, every group checked.
+    pub fn constants(&self) -> Result<Constants> {
+        let elastic = self.elastic_constants()?;
         let c = elastic.stiffness();
-        let piezo = self.piezo_form(m)?;
-        let given = self.permittivity(m)?;
+        let piezo = self.piezo_form()?;
+        let given = self.permittivity()?;
         let (e, permittivity) = match piezo {
             Piezo::Stress(e) => (e, given),
             Piezo::Strain(d) => voigt::stress_charge(&c, &d, &given),
@@ -98,39 +172,32 @@ impl Case {
                 Piezo::Stress(_) => "the permittivity ε^S",
             };
             return Err(input!(
-                "{}: material: {what} is not positive definite (smallest eigenvalue {smallest:e}): check the dielectric constants{}",
-                self.locate("material.eps0"),
+                "{}: {}: {what} is not positive definite (smallest eigenvalue {smallest:e}): check the dielectric constants{}",
+                self.locate("eps0"),
+                self.key,
                 if matches!(piezo, Piezo::Strain(_)) { " (ε^T with d) and d" } else { "" }
             ));
         }
         Ok(Constants { elastic, e, permittivity })
     }
 
-    /// The modulus a default scales with \[stress\] ([`Constants::reference_modulus`]), with
-    /// an isotropic material's E as the file gives it.
-    pub fn reference_modulus(&self) -> Result<f64> {
-        match (self.material_constants()?, self.file.material.young) {
-            (Constants { elastic: ElasticConstants::Isotropic(_), .. }, Some(young)) => Ok(young),
-            (constants, _) => constants.reference_modulus(),
-        }
-    }
-
     /// The elastic group: young and poisson (Hencky's law), c or s.
-    fn elastic_constants(&self, m: &MaterialSection) -> Result<ElasticConstants> {
+    fn elastic_constants(&self) -> Result<ElasticConstants> {
+        let (k, m) = (&self.key, self.table);
         let isotropic = m.young.is_some() || m.poisson.is_some();
         let forms = [("young and poisson", isotropic), ("c", m.c.is_some()), ("s", m.s.is_some())];
         let given: Vec<&str> = forms.iter().filter(|f| f.1).map(|f| f.0).collect();
-        let at = self.locate("material");
+        let at = self.locate("");
         match given.as_slice() {
             [] => {
                 return Err(input!(
-                    "{at}: material has no elastic constants: give young and poisson (isotropic), c (the 6 × 6 stiffness) or s (the 6 × 6 compliance)"
+                    "{at}: {k} has no elastic constants: give young and poisson (isotropic), c (the 6 × 6 stiffness) or s (the 6 × 6 compliance)"
                 ));
             }
             [_] => {}
             _ => {
                 return Err(input!(
-                    "{at}: material gives the elastic constants twice ({}): keep one form",
+                    "{at}: {k} gives the elastic constants twice ({}): keep one form",
                     given.join(", ")
                 ));
             }
@@ -139,7 +206,7 @@ impl Case {
             let (Some(young), Some(poisson)) = (m.young, m.poisson) else {
                 let missing = if m.young.is_none() { "young" } else { "poisson" };
                 return Err(input!(
-                    "{at}: material.{missing} is missing: the isotropic form takes young and poisson"
+                    "{at}: {k}.{missing} is missing: the isotropic form takes young and poisson"
                 ));
             };
             let law = match m.law.unwrap_or(DEFAULTS.law) {
@@ -151,8 +218,8 @@ impl Case {
         }
         if let Some(LawKey::Hencky) = m.law {
             return Err(input!(
-                "{}: material.law = \"hencky\": Hencky's law needs the isotropic form (young, poisson); a stiffness tensor is linear",
-                self.locate("material.law")
+                "{}: {k}.law = \"hencky\": Hencky's law needs the isotropic form (young, poisson); a stiffness tensor is linear",
+                self.locate("law")
             ));
         }
         let (key, matrix) = match (&m.c, &m.s) {
@@ -160,9 +227,9 @@ impl Case {
             (_, Some(s)) => ("s", s),
             _ => unreachable!("one elastic form was given"),
         };
-        let given: Voigt = self.matrix(&format!("material.{key}"), matrix)?;
+        let given: Voigt = self.matrix(key, matrix)?;
         let name = if key == "c" { "the stiffness c^E" } else { "the compliance s^E" };
-        let given = self.positive_definite(&format!("material.{key}"), name, &given)?;
+        let given = self.positive_definite(key, name, &given)?;
         Ok(ElasticConstants::Stiffness(Box::new(if key == "c" {
             given
         } else {
@@ -171,15 +238,16 @@ impl Case {
     }
 
     /// The piezoelectric group: the ceramic shorthand, e or d; none for a dielectric.
-    fn piezo_form(&self, m: &MaterialSection) -> Result<Piezo> {
+    fn piezo_form(&self) -> Result<Piezo> {
+        let (k, m) = (&self.key, self.table);
         let shorthand = [("e31", m.e31), ("e33", m.e33), ("e15", m.e15)];
         let any_shorthand = shorthand.iter().any(|s| s.1.is_some());
         let forms = [("e31, e33, e15", any_shorthand), ("e", m.e.is_some()), ("d", m.d.is_some())];
         let given: Vec<&str> = forms.iter().filter(|f| f.1).map(|f| f.0).collect();
         if given.len() > 1 {
             return Err(input!(
-                "{}: material gives the piezoelectric constants twice ({}): keep one form",
-                self.locate("material"),
+                "{}: {k} gives the piezoelectric constants twice ({}): keep one form",
+                self.locate(""),
                 given.join(" and ")
             ));
         }
@@ -188,37 +256,38 @@ impl Case {
             for (value, (key, given)) in values.iter_mut().zip(shorthand) {
                 *value = given.ok_or_else(|| {
                     input!(
-                        "{}: material.{key} is missing: the ceramic shorthand takes e31, e33 and e15",
-                        self.locate("material")
+                        "{}: {k}.{key} is missing: the ceramic shorthand takes e31, e33 and e15",
+                        self.locate("")
                     )
                 })?;
-                self.finite(&format!("material.{key}"), *value)?;
+                self.finite(key, *value)?;
             }
             let [e31, e33, e15] = values;
             return Ok(Piezo::Stress(PiezoConstants { e31, e33, e15 }.coupling()));
         }
         Ok(match (&m.e, &m.d) {
-            (Some(e), _) => Piezo::Stress(self.matrix("material.e", e)?),
-            (_, Some(d)) => Piezo::Strain(self.matrix("material.d", d)?),
+            (Some(e), _) => Piezo::Stress(self.matrix("e", e)?),
+            (_, Some(d)) => Piezo::Strain(self.matrix("d", d)?),
             _ => Piezo::Stress([[0.0; 6]; 3]),
         })
     }
 
     /// The dielectric group times ε0: beta11_rel and beta33_rel, or eps_rel (3 × 3 or its
     /// diagonal) [charge/(potential·length)].
-    fn permittivity(&self, m: &MaterialSection) -> Result<Matrix3> {
+    fn permittivity(&self) -> Result<Matrix3> {
+        let (k, m) = (&self.key, self.table);
         let eps0 = m.eps0.ok_or_else(|| {
             input!(
-                "{}: material.eps0 is missing: the vacuum permittivity in the case's units (8.854e-12 F/m in SI)",
-                self.locate("material")
+                "{}: {k}.eps0 is missing: the vacuum permittivity in the case's units (8.854e-12 F/m in SI)",
+                self.locate("")
             )
         })?;
         let shorthand = m.beta11_rel.is_some() || m.beta33_rel.is_some();
         let relative = match (&m.eps_rel, shorthand) {
             (Some(_), true) => {
                 return Err(input!(
-                    "{}: material gives the permittivity twice (beta11_rel/beta33_rel and eps_rel): keep one form",
-                    self.locate("material.eps_rel")
+                    "{}: {k} gives the permittivity twice (beta11_rel/beta33_rel and eps_rel): keep one form",
+                    self.locate("eps_rel")
                 ));
             }
             (Some(rows), false) => self.relative_permittivity(rows)?,
@@ -228,8 +297,8 @@ impl Case {
                     diagonal[k] = if key == "beta11_rel" { m.beta11_rel } else { m.beta33_rel }
                         .ok_or_else(|| {
                             input!(
-                                "{}: material.{key} is missing: give beta11_rel and beta33_rel, or eps_rel",
-                                self.locate("material")
+                                "{}: {k}.{key} is missing: give beta11_rel and beta33_rel, or eps_rel",
+                                self.locate("")
                             )
                         })?;
                 }
@@ -239,16 +308,16 @@ impl Case {
         };
         if !(eps0.is_finite() && eps0 > 0.0) {
             return Err(input!(
-                "{}: material.eps0 = {eps0} must be > 0 (the vacuum permittivity)",
-                self.locate("material.eps0")
+                "{}: {k}.eps0 = {eps0} must be > 0 (the vacuum permittivity)",
+                self.locate("eps0")
             ));
         }
         if shorthand {
             for (key, value) in [("beta11_rel", relative[0][0]), ("beta33_rel", relative[2][2])] {
                 if !(value.is_finite() && value > 0.0) {
                     return Err(input!(
-                        "{}: material.{key} = {value} must be > 0 (the permittivity β = β_rel ε0 is positive definite)",
-                        self.locate(&format!("material.{key}"))
+                        "{}: {k}.{key} = {value} must be > 0 (the permittivity β = β_rel ε0 is positive definite)",
+                        self.locate(key)
                     ));
                 }
             }
@@ -258,20 +327,17 @@ impl Case {
 
     /// eps_rel: three numbers (a diagonal) or three rows of three.
     fn relative_permittivity(&self, rows: &[NumberOrRow]) -> Result<Matrix3> {
+        let k = &self.key;
         let numbers: Option<Vec<f64>> = rows
             .iter()
             .map(|r| if let NumberOrRow::Number(v) = r { Some(*v) } else { None })
             .collect();
         if let Some(d) = numbers.filter(|d| d.len() == 3) {
             for v in &d {
-                self.finite("material.eps_rel", *v)?;
+                self.finite("eps_rel", *v)?;
             }
             let diagonal = [[d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]];
-            return self.positive_definite(
-                "material.eps_rel",
-                "the relative permittivity",
-                &diagonal,
-            );
+            return self.positive_definite("eps_rel", "the relative permittivity", &diagonal);
         }
         let matrix: Option<Vec<Vec<f64>>> = rows
             .iter()
@@ -279,12 +345,12 @@ impl Case {
             .collect();
         let Some(matrix) = matrix else {
             return Err(input!(
-                "{}: material.eps_rel must be three numbers (the diagonal) or three rows of three numbers",
-                self.locate("material.eps_rel")
+                "{}: {k}.eps_rel must be three numbers (the diagonal) or three rows of three numbers",
+                self.locate("eps_rel")
             ));
         };
-        let relative: Matrix3 = self.matrix("material.eps_rel", &matrix)?;
-        self.positive_definite("material.eps_rel", "the relative permittivity", &relative)
+        let relative: Matrix3 = self.matrix("eps_rel", &matrix)?;
+        self.positive_definite("eps_rel", "the relative permittivity", &relative)
     }
 
     /// An R × C matrix of finite numbers from the rows at `key`, or an error naming its shape.
@@ -293,10 +359,11 @@ impl Case {
         key: &str,
         rows: &[Vec<f64>],
     ) -> Result<[[f64; C]; R]> {
+        let k = &self.key;
         if rows.len() != R || rows.iter().any(|r| r.len() != C) {
             let shape: Vec<String> = rows.iter().map(|r| r.len().to_string()).collect();
             return Err(input!(
-                "{}: {key} must be {R} rows of {C} numbers (Voigt order xx, yy, zz, yz, xz, xy where a row or column has 6); it has {} rows of [{}] numbers",
+                "{}: {k}.{key} must be {R} rows of {C} numbers (Voigt order xx, yy, zz, yz, xz, xy where a row or column has 6); it has {} rows of [{}] numbers",
                 self.locate(key),
                 rows.len(),
                 shape.join(", ")
@@ -319,17 +386,18 @@ impl Case {
         name: &str,
         a: &[[f64; N]; N],
     ) -> Result<[[f64; N]; N]> {
+        let k = &self.key;
         let asymmetry = voigt::asymmetry(a);
         if asymmetry > 1e-12 {
             return Err(input!(
-                "{}: {key}: {name} must be symmetric; entries (i, j) and (j, i) differ by {asymmetry:.1e} of its largest entry",
+                "{}: {k}.{key}: {name} must be symmetric; entries (i, j) and (j, i) differ by {asymmetry:.1e} of its largest entry",
                 self.locate(key)
             ));
         }
         let smallest = voigt::smallest_eigenvalue(a)?;
         if smallest.is_nan() || smallest <= 0.0 {
             return Err(input!(
-                "{}: {key}: {name} is not positive definite (smallest eigenvalue {smallest:e}): check its entries and units",
+                "{}: {k}.{key}: {name} is not positive definite (smallest eigenvalue {smallest:e}): check its entries and units",
                 self.locate(key)
             ));
         }
@@ -345,10 +413,11 @@ impl Case {
 
     /// `value`, or an error when it is not finite.
     fn finite(&self, key: &str, value: f64) -> Result<f64> {
+        let k = &self.key;
         if value.is_finite() {
             Ok(value)
         } else {
-            Err(input!("{}: {key} = {value} must be a finite number", self.locate(key)))
+            Err(input!("{}: {k}.{key} = {value} must be a finite number", self.locate(key)))
         }
     }
 }

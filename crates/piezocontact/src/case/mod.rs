@@ -24,6 +24,7 @@ pub mod file;
 mod geometry;
 mod material;
 pub mod overrides;
+mod regions;
 pub mod schema;
 pub mod validate;
 
@@ -453,7 +454,10 @@ gap = 0.1
     #[test]
     fn overrides_replace_a_key_under_either_spelling() {
         let c = case(PAPER_71, &["material.e31=-1.5", "material.beta11_rel=100"]).unwrap();
-        assert_eq!((c.file.material.e31, c.file.material.beta11_rel), (Some(-1.5), Some(100.0)));
+        assert_eq!(
+            (c.file.material.tables()[0].e31, c.file.material.tables()[0].beta11_rel),
+            (Some(-1.5), Some(100.0))
+        );
         assert_eq!(c.locate("material.e32"), "case.toml");
         assert!(c.locate("material.e31").starts_with("case.toml:"));
     }
@@ -468,7 +472,10 @@ gap = 0.1
         // Nested tables, a table the file lacks, and a key under its other spelling.
         let c = case(PAPER_71, &["material={e32=-1.5}", "mesh={segments={extra=[\"[0,1]x{1}\"]}}"])
             .unwrap();
-        assert_eq!((c.file.material.e31, c.file.material.young), (Some(-1.5), Some(58.7102)));
+        assert_eq!(
+            (c.file.material.tables()[0].e31, c.file.material.tables()[0].young),
+            (Some(-1.5), Some(58.7102))
+        );
         assert!(c.origin.text.contains("extra"), "{}", c.origin.text);
         let c = case(MINIMAL, &["friction={mu=0.3}"]).unwrap();
         assert_eq!(c.file.friction.map(|f| f.mu), Some(0.3));
@@ -492,6 +499,30 @@ gap = 0.1
         let linear = case(MINIMAL, &["material.law=\"linear\""]).unwrap();
         assert!(linear.hypothesis_warnings(&linear.problem().unwrap().materials).is_empty());
         assert!(c.uniqueness_note().unwrap().contains("M_h·L_p + L_h·M_p"));
+    }
+
+    #[test]
+    fn the_rectangle_s_regions_are_boxes_of_cell_centroids() {
+        let material = MINIMAL
+            [MINIMAL.find("[material]").unwrap() + 11..MINIMAL.find("[boundary]").unwrap()]
+            .to_string();
+        let text = MINIMAL.replace(&format!("[material]\n{material}"), "")
+            .replace("[boundary]", &format!(
+                "[mesh.regions]\nlower = [\"[0,4]x[0,0.5]\"]\nupper = [\"[0,4]x[0.5,1]\"]\n[[material]]\nname = \"soft\"\nregions = [\"lower\"]\n{}\n[[material]]\nname = \"hard\"\nregions = [\"upper\"]\n{material}\n[boundary]",
+                material.replace("young = 100.0", "young = 50.0")
+            ));
+        let problem = case(&text, &[]).unwrap().problem().unwrap();
+        let materials = &problem.materials;
+        assert_eq!(materials.cell_counts(problem.mesh.n_cells()), vec![16, 16]);
+        for c in 0..problem.mesh.n_cells() {
+            let y: f64 =
+                problem.mesh.cell(c).iter().map(|&n| problem.mesh.node(n)[1]).sum::<f64>() / 3.0;
+            let young = problem.material(c).elasticity().unwrap().young();
+            assert!((young - if y < 0.5 { 50.0 } else { 100.0 }).abs() < 1e-9, "cell {c}: {young}");
+        }
+        let moved = case(&text.replace("[0,4]x[0,0.5]", "[5,6]x[0,1]"), &[]).unwrap();
+        let e = moved.problem().err().unwrap().to_string();
+        assert!(e.contains("mesh.regions.lower") && e.contains("holds no cell"), "{e}");
     }
 
     #[test]

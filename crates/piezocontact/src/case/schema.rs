@@ -138,6 +138,10 @@ pub struct MeshSection {
     /// Rectangle: boundary part name → segments such as "\[0,2\]x{0}".
     #[serde(default)]
     pub segments: BTreeMap<String, Vec<String>>,
+    /// Rectangle: region name → boxes such as "\[0,12\]x\[1,2\]" (the cells whose centroid
+    /// lies in one), for `[[material]]` regions.
+    #[serde(default)]
+    pub regions: BTreeMap<String, Vec<String>>,
 }
 
 /// Diagonal direction in the case file.
@@ -165,6 +169,11 @@ pub enum LawKey {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSection {
+    /// Its name in outputs and overrides (required when there are several).
+    pub name: Option<String>,
+    /// The regions it fills: physical groups of dimension d of the mesh file, or the
+    /// rectangle's `[mesh.regions]` (required when there are several).
+    pub regions: Option<Vec<String>>,
     /// "hencky" (the paper's g, the default of the isotropic form) or "linear" (g ≡ µ1, the
     /// only law of `c` and `s`).
     pub law: Option<LawKey>,
@@ -205,6 +214,54 @@ pub struct MaterialSection {
     /// The material's axes by Euler angles [φ1, Φ, φ2] in degrees: the columns of
     /// Rz(φ1)·Rx(Φ)·Rz(φ2) (3D).
     pub euler: Option<Vec<f64>>,
+}
+
+/// `[material]` (one table) or `[[material]]` (a table per material).
+#[derive(Clone, Debug)]
+pub enum MaterialTables {
+    /// `[material]`.
+    One(Box<MaterialSection>),
+    /// `[[material]]`.
+    Many(Vec<MaterialSection>),
+}
+
+impl MaterialTables {
+    /// The tables, in the file's order.
+    pub fn tables(&self) -> &[MaterialSection] {
+        match self {
+            Self::One(table) => std::slice::from_ref(table),
+            Self::Many(tables) => tables,
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for MaterialTables {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = MaterialTables;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a [material] table or [[material]] tables")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<Self::Value, A::Error> {
+                let table = MaterialSection::deserialize(
+                    serde::de::value::MapAccessDeserializer::new(map),
+                )?;
+                Ok(MaterialTables::One(Box::new(table)))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                seq: A,
+            ) -> Result<Self::Value, A::Error> {
+                let tables = Vec::deserialize(serde::de::value::SeqAccessDeserializer::new(seq))?;
+                Ok(MaterialTables::Many(tables))
+            }
+        }
+        deserializer.deserialize_any(Visitor)
+    }
 }
 
 /// An entry of a list that is a vector (numbers) or a matrix (rows of numbers).
@@ -611,7 +668,7 @@ pub struct CaseFile {
     #[serde(default)]
     pub units: Units,
     pub mesh: MeshSection,
-    pub material: MaterialSection,
+    pub material: MaterialTables,
     pub boundary: BoundarySection,
     #[serde(default)]
     pub loads: LoadsSection,

@@ -275,6 +275,34 @@ impl Material {
         if self.dim == 2 { [0.0, 1.0, 0.0] } else { self.axes.map(|row| row[2]) }
     }
 
+    /// Whether the tensors are transversely isotropic about the last axis (unchanged by a turn
+    /// about it, to 1e-9 of their largest entries): a ceramic poled along ±z, AlN, ZnO; always
+    /// in 2D, whose continuum has no turn.
+    pub fn is_transversely_isotropic(&self) -> bool {
+        if self.dim == 2 {
+            return true;
+        }
+        let turn = orientation::axes_from_euler([37.0, 0.0, 0.0]);
+        let near = |a: &[f64], b: &[f64]| {
+            let scale = a.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-9 * scale)
+        };
+        let flat3 = |t: &Tensor3| t.iter().flatten().flatten().copied().collect::<Vec<f64>>();
+        let flat2 = |t: &Matrix3| t.iter().flatten().copied().collect::<Vec<f64>>();
+        let elastic = match &self.elastic {
+            Elastic::Isotropic(_) => true,
+            Elastic::Anisotropic(c) => {
+                let flat4 = |t: &Tensor4| {
+                    t.iter().flatten().flatten().flatten().copied().collect::<Vec<f64>>()
+                };
+                near(&flat4(c), &flat4(&orientation::rotate_stiffness(c, &turn)))
+            }
+        };
+        elastic
+            && near(&flat3(&self.e), &flat3(&orientation::rotate_coupling(&self.e, &turn)))
+            && near(&flat2(&self.beta), &flat2(&orientation::rotate_matrix(&self.beta, &turn)))
+    }
+
     /// Hencky's law, where the material is isotropic.
     pub fn elasticity(&self) -> Option<&Elasticity> {
         match &self.elastic {
@@ -524,6 +552,36 @@ mod tests {
         assert_eq!(m3.e[2][0][0], -5.4);
         assert_eq!(m3.e[1][1][2], 12.3);
         assert_eq!(m3.beta[1][1], m3.beta[0][0]);
+    }
+
+    #[test]
+    fn a_ceramic_is_transversely_isotropic_about_its_poling_only() {
+        let m = pzt(3);
+        assert!(m.is_transversely_isotropic() && pzt(2).is_transversely_isotropic());
+        let el = *m.elasticity().unwrap();
+        let mut constants = Constants {
+            elastic: ElasticConstants::Isotropic(el),
+            e: PiezoConstants { e31: -5.4, e33: 15.8, e15: 12.3 }.coupling(),
+            permittivity: m.beta,
+        };
+        let along_x = orientation::axes_from_poling([1.0, 0.0, 0.0]);
+        assert!(
+            !Material::from_constants(3, &constants, &along_x).unwrap().is_transversely_isotropic()
+        );
+        let down = orientation::axes_from_poling([0.0, 0.0, -1.0]);
+        assert!(
+            Material::from_constants(3, &constants, &down).unwrap().is_transversely_isotropic()
+        );
+        // A stiffness with c11 ≠ c22 is not, even poled along z.
+        let mut c = voigt::isotropic_stiffness(el.k0, el.mu1);
+        c[1][1] *= 1.1;
+        constants.elastic = ElasticConstants::Stiffness(Box::new(c));
+        let identity = orientation::IDENTITY;
+        assert!(
+            !Material::from_constants(3, &constants, &identity)
+                .unwrap()
+                .is_transversely_isotropic()
+        );
     }
 
     #[test]

@@ -2,10 +2,11 @@
 //!
 //! Cells are the elements of the highest dimension (linear triangles in 2D, linear tetrahedra
 //! in 3D); each physical group of dimension d − 1 becomes a boundary part named by its
-//! physical name (or by its tag when it has none). `mshio` does not read `$PhysicalNames`, so
+//! physical name (or by its tag when it has none), and each of dimension d a region (a set of
+//! cells, for materials). `mshio` does not read `$PhysicalNames`, so
 //! that section, ASCII in both encodings, is read here.
 
-use super::{BoundaryPart, Mesh};
+use super::{BoundaryPart, Mesh, Region};
 use crate::error::{Error, Result};
 use mshio::mshfile::ElementType;
 use std::collections::{BTreeMap, HashMap};
@@ -96,6 +97,7 @@ pub fn read(bytes: &[u8]) -> Result<Mesh> {
     let tags = entity_physical_tags(&msh);
     let mut cells = Vec::new();
     let mut facets: BTreeMap<i32, Vec<usize>> = BTreeMap::new();
+    let mut regions: BTreeMap<i32, Vec<usize>> = BTreeMap::new();
     for block in blocks(&msh) {
         let wanted = if block.entity_dim == dim {
             cell_type
@@ -113,23 +115,14 @@ pub fn read(bytes: &[u8]) -> Result<Mesh> {
                 if dim == 2 { "triangles and segments" } else { "tetrahedra and triangles" }
             )));
         }
-        let mut flat = Vec::with_capacity(block.elements.len() * wanted_nodes(wanted));
-        for element in &block.elements {
-            if element.nodes.len() != wanted_nodes(wanted) {
-                return Err(Error::Gmsh(format!(
-                    "element {} has {} nodes, a {:?} has {}",
-                    element.element_tag,
-                    element.nodes.len(),
-                    wanted,
-                    wanted_nodes(wanted)
-                )));
-            }
-            for &tag in &element.nodes {
-                flat.push(node_index(tag)?);
-            }
-        }
+        let flat = element_nodes(block, wanted, &node_index)?;
         if block.entity_dim == dim {
+            let first = cells.len() / (dim as usize + 1);
             cells.extend(flat);
+            let last = cells.len() / (dim as usize + 1);
+            for &g in tags.get(&(block.entity_dim, block.entity_tag)).into_iter().flatten() {
+                regions.entry(g).or_default().extend(first..last);
+            }
         } else if let Some(groups) = tags.get(&(block.entity_dim, block.entity_tag)) {
             for &g in groups {
                 facets.entry(g).or_default().extend_from_slice(&flat);
@@ -142,7 +135,35 @@ pub fn read(bytes: &[u8]) -> Result<Mesh> {
         .collect();
     let others = physical_groups(&msh, &names).into_iter().filter(|g| g.dim != dim - 1);
     let others = others.map(|g| (g.name, other_group(g.dim))).collect();
-    Ok(Mesh::new(dim as usize, coords, cells, parts)?.with_other_groups(others))
+    let regions = regions
+        .into_iter()
+        .map(|(tag, cells)| Region { name: group_name(&names, dim, tag), cells })
+        .collect();
+    Mesh::new(dim as usize, coords, cells, parts)?.with_other_groups(others).with_regions(regions)
+}
+
+/// The node indices of a block's elements, `wanted`'s count per element.
+fn element_nodes(
+    block: &mshio::mshfile::ElementBlock<u64, i32>,
+    wanted: ElementType,
+    node_index: &impl Fn(u64) -> Result<usize>,
+) -> Result<Vec<usize>> {
+    let mut flat = Vec::with_capacity(block.elements.len() * wanted_nodes(wanted));
+    for element in &block.elements {
+        if element.nodes.len() != wanted_nodes(wanted) {
+            return Err(Error::Gmsh(format!(
+                "element {} has {} nodes, a {:?} has {}",
+                element.element_tag,
+                element.nodes.len(),
+                wanted,
+                wanted_nodes(wanted)
+            )));
+        }
+        for &tag in &element.nodes {
+            flat.push(node_index(tag)?);
+        }
+    }
+    Ok(flat)
 }
 
 /// A triangulated surface: points (3 coordinates) and triangles of point indices.

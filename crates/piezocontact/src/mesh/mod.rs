@@ -41,6 +41,16 @@ impl BoundaryPart {
     }
 }
 
+/// A named set of cells: a physical group of dimension d of a Gmsh file, or the cells of a
+/// rectangle's boxes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Region {
+    /// Its name.
+    pub name: String,
+    /// Its cells, ascending.
+    pub cells: Vec<usize>,
+}
+
 /// A validated simplicial mesh.
 #[derive(Clone, Debug)]
 pub struct Mesh {
@@ -52,6 +62,8 @@ pub struct Mesh {
     /// group of volumes in the mesh file, a group of facets inside the body), so that a case
     /// naming one is told.
     other_groups: Vec<(String, String)>,
+    /// Named sets of cells (materials' regions).
+    regions: Vec<Region>,
 }
 
 /// Sorted facet key (unused slots are `usize::MAX`).
@@ -91,7 +103,8 @@ impl Mesh {
                 requirement: "must be 2 (triangles) or 3 (tetrahedra)".into(),
             });
         }
-        let mut mesh = Self { dim, coords, cells, parts, other_groups: Vec::new() };
+        let mut mesh =
+            Self { dim, coords, cells, parts, other_groups: Vec::new(), regions: Vec::new() };
         if mesh.n_cells() == 0 {
             return Err(Error::NoCells { dim, what: "the mesh is empty".into() });
         }
@@ -147,6 +160,29 @@ impl Mesh {
     pub fn with_other_groups(mut self, other_groups: Vec<(String, String)>) -> Self {
         self.other_groups.extend(other_groups);
         self
+    }
+
+    /// The mesh with named sets of cells (each sorted here); an error when a cell index is out
+    /// of range.
+    pub fn with_regions(mut self, mut regions: Vec<Region>) -> Result<Self> {
+        for region in &mut regions {
+            region.cells.sort_unstable();
+            region.cells.dedup();
+            if let Some(&c) = region.cells.iter().find(|&&c| c >= self.n_cells()) {
+                return Err(Error::Gmsh(format!(
+                    "the region '{}' holds cell {c}, and the mesh has {} cells",
+                    region.name,
+                    self.n_cells()
+                )));
+            }
+        }
+        self.regions = regions;
+        Ok(self)
+    }
+
+    /// The named sets of cells.
+    pub fn regions(&self) -> &[Region] {
+        &self.regions
     }
 
     /// Index of the part called `name`, or an error listing the parts the mesh has, and

@@ -79,7 +79,8 @@ impl FromStr for Segment {
 }
 
 impl Segment {
-    fn contains(&self, p: &[f64], tol: f64) -> bool {
+    /// Whether the point p lies in the box, to `tol` on each axis.
+    pub fn contains(&self, p: &[f64], tol: f64) -> bool {
         self.ranges.iter().zip(p).all(|(&(a, b), &x)| x >= a - tol && x <= b + tol)
     }
 }

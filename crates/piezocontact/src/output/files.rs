@@ -200,7 +200,8 @@ pub fn write_summary(out: &Path, summary: &serde_json::Value) -> Result<()> {
 }
 
 /// The solution as a ParaView file: point data u (3 components), phi and `extra`; cell data
-/// sigma (3 × 3), D (3 components).
+/// sigma (3 × 3), D (3 components), material (the index of each cell's, in the case's order)
+/// and poling (3 components).
 pub fn solution_vtu(
     problem: &Problem,
     dofs: &DofMap,
@@ -219,6 +220,10 @@ pub fn solution_vtu(
     let fields = element_fields(problem, dofs, x)?;
     let sigma: Vec<f64> = fields.sigma.iter().flatten().copied().collect();
     let d: Vec<f64> = fields.electric_displacement.iter().flatten().copied().collect();
+    // Each cell's material (its index in the case's order) and poling (material axis 3).
+    let materials = &problem.materials;
+    let material: Vec<f64> = (0..mesh.n_cells()).map(|c| materials.index_of(c) as f64).collect();
+    let poling: Vec<f64> = (0..mesh.n_cells()).flat_map(|c| materials.of(c).poling()).collect();
     let mut points = vec![
         Field { name: "u", components: 3, values: &u },
         Field { name: "phi", components: 1, values: &phi },
@@ -234,6 +239,8 @@ pub fn solution_vtu(
         &[
             Field { name: "sigma", components: 9, values: &sigma },
             Field { name: "D", components: 3, values: &d },
+            Field { name: "material", components: 1, values: &material },
+            Field { name: "poling", components: 3, values: &poling },
         ],
     ))
 }

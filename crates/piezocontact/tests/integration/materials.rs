@@ -318,3 +318,138 @@ fn a_dielectric_block_carries_no_charge() {
     }
     assert!(run.reactions.charges.iter().all(|q| q.abs() < 1e-12), "{:?}", run.reactions.charges);
 }
+
+/// A PZT-5A layer (z > 0.5, the stress-charge form) on a dielectric substrate (z < 0.5,
+/// isotropic), rollers on both lateral faces of each direction and under the bottom, both
+/// outer faces grounded, a pressure p on top: the piecewise-uniform state with ε_xx = ε_yy = 0,
+/// σ_zz = −p in both layers, D_z continuous and ϕ(top) = 0. In the substrate ε_S = −p/c33_S,
+/// D_z = −κ g_S; in the layer c33 ε_L + e33 g_L = −p, D_z = e33 ε_L − β33 g_L; with
+/// g_S h_S + g_L h_L = 0 and equal heights, e33 ε_L = g_L (β33 + κ).
+#[test]
+fn a_piezoelectric_layer_on_a_dielectric_substrate_takes_the_piecewise_uniform_state() {
+    let (p, young, poisson, kappa_rel) = (0.5, 169.0, 0.22, 11.7);
+    let text = format!(
+        r#"
+[mesh]
+file = "{mesh}"
+
+[[material]]
+name = "substrate"
+regions = ["substrate"]
+law = "linear"
+young = {young}
+poisson = {poisson}
+eps0 = {EPS0}
+eps_rel = [{kappa_rel}, {kappa_rel}, {kappa_rel}]
+
+[[material]]
+name = "layer"
+regions = ["layer"]
+{layer}
+[boundary]
+grounded = ["bottom", "top"]
+
+[[boundary.support]]
+parts = ["x0", "x1"]
+fix = ["x"]
+
+[[boundary.support]]
+parts = ["y0", "y1"]
+fix = ["y"]
+
+[[boundary.support]]
+parts = ["bottom"]
+fix = ["z"]
+
+[[boundary.traction]]
+parts = ["top"]
+f2 = [0.0, 0.0, {f}]
+"#,
+        mesh = mesh_file("two-layers.msh").display(),
+        layer = stress_charge(),
+        f = -p,
+    );
+    let (built, run) = solve(&text);
+    let counts = built.problem.materials.cell_counts(built.problem.mesh.n_cells());
+    assert!(counts.iter().all(|&n| n > 0), "{counts:?}");
+    // The substrate: c33 = λ + 2µ of the isotropic law.
+    let c33_s = young * (1.0 - poisson) / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
+    let (kappa, beta33, e33, c33_l) = (kappa_rel * EPS0, 830.0 * EPS0, E[2][2], C[2][2]);
+    let eps_s = -p / c33_s;
+    let g_l = -p / (c33_l * (beta33 + kappa) / e33 + e33);
+    let (eps_l, g_s) = (g_l * (beta33 + kappa) / e33, -g_l);
+    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
+    let mesh = &built.problem.mesh;
+    let (strain, field) = (eps_s.abs().max(eps_l.abs()), g_l.abs());
+    for node in 0..mesh.n_nodes() {
+        let z = mesh.node(node)[2];
+        let (below, above) = (z.min(0.5), (z - 0.5).max(0.0));
+        let (u_z, phi) = (eps_s * below + eps_l * above, g_s * below + g_l * above);
+        let got = [x[dofs.u(node, 0)], x[dofs.u(node, 1)], x[dofs.u(node, 2)]];
+        assert!(got[0].abs() < 1e-9 * strain && got[1].abs() < 1e-9 * strain, "{got:?} at z = {z}");
+        assert!((got[2] - u_z).abs() < 1e-9 * strain, "u_z at z = {z}: {} vs {u_z}", got[2]);
+        let got_phi = x[dofs.phi(node)];
+        assert!((got_phi - phi).abs() < 1e-9 * field, "ϕ at z = {z}: {got_phi} vs {phi}");
+    }
+    // The bottom roller carries p A; the top electrode holds −D_z A.
+    let d_z = -kappa * g_s;
+    let charges = &run.reactions.charges;
+    assert!(
+        (charges[1] + d_z * AREA).abs() < 1e-9 * (d_z * AREA).abs(),
+        "{charges:?} vs {}",
+        -d_z * AREA
+    );
+}
+
+/// Regions that overlap, leave a cell out, or name what is no region are errors naming the
+/// groups, the cell and the fix; an override reaches a material by its name.
+#[test]
+fn bad_regions_are_errors_and_overrides_name_the_material() {
+    let two = |first: &str, second: &str| {
+        format!(
+            "[mesh]\nfile = \"{mesh}\"\n[[material]]\nname = \"a\"\n{first}\n{body}\n[[material]]\nname = \"b\"\n{second}\n{body}\n[boundary]\ngrounded = [\"bottom\"]\nclamped = [\"bottom\"]\n",
+            mesh = mesh_file("two-layers.msh").display(),
+            body = stress_charge(),
+        )
+    };
+    let cases = [
+        (
+            two("regions = [\"substrate\", \"layer\"]", "regions = [\"layer\"]"),
+            "belongs to one material",
+        ),
+        (two("regions = [\"substrate\"]", "regions = []"), "belongs to no material"),
+        (two("regions = [\"substrate\"]", "regions = [\"top\"]"), "'top' is a boundary part"),
+        (
+            two("regions = [\"substrate\"]", "regions = [\"lid\"]"),
+            "the regions 'substrate', 'layer'",
+        ),
+        (two("regions = [\"substrate\"]", ""), "material 'b' has no regions"),
+        (
+            two("regions = [\"substrate\"]", "regions = [\"layer\"]")
+                .replace("name = \"b\"", "name = \"a\""),
+            "two materials are named 'a'",
+        ),
+    ];
+    for (text, expected) in cases {
+        let message =
+            build(&text).err().unwrap_or_else(|| panic!("accepted: {expected}")).to_string();
+        assert!(message.contains(expected), "{expected}: {message}");
+    }
+    let text = two("regions = [\"substrate\"]", "regions = [\"layer\"]");
+    let case = |sets: &[&str]| {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        Case::from_text("two.toml".as_ref(), &text, &sets)
+    };
+    let turned = case(&["material.b.poling=[1.0, 0.0, 0.0]"]).unwrap().build().unwrap();
+    let list = turned.problem.materials.list();
+    assert_eq!(
+        (list[0].material.poling(), list[1].material.poling()),
+        ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0])
+    );
+    let e = case(&["material.c.young=1"]).err().unwrap().to_string();
+    assert!(e.contains("no [[material]] is named 'c'") && e.contains("a, b"), "{e}");
+    let e = case(&["material.young=1"]).err().unwrap().to_string();
+    assert!(e.contains("name one, as material.<name>"), "{e}");
+    let e = case(&["material.b.eps0=-1"]).unwrap().build().err().unwrap().to_string();
+    assert!(e.contains("material.b.eps0 = -1") && e.contains("two.toml:"), "{e}");
+}
