@@ -108,6 +108,9 @@ enum Command {
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
     },
+    /// List the material library: each preset's constants in its source's form, in SI, with
+    /// the source; a case names one with `preset = "NAME"` in its material table.
+    Materials,
     /// Print what a Gmsh MSH 4.1 file holds, or why it cannot be read; exits 1 when the file
     /// cannot be used as a mesh.
     MeshInfo {
@@ -250,6 +253,10 @@ fn run(command: Command) -> Result<Outcome> {
         }
         Command::Check { case, set } => check(&case, &set).map(|_| Outcome::Done),
         Command::MeshInfo { file } => mesh_info(&file).map(|_| Outcome::Done),
+        Command::Materials => {
+            print::presets();
+            Ok(Outcome::Done)
+        }
         Command::Bench { sizes, mesh, lu, contact, case, path, one, ordering, backend } => {
             if let Some(spec) = one {
                 return bench::one::measure_one(&spec).map(|_| Outcome::Done);

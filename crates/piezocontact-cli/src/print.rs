@@ -395,3 +395,45 @@ pub fn material(built: &Built) -> piezocontact::Result<()> {
     );
     Ok(())
 }
+
+/// Prints the material library (`piezocontact materials`): each preset's nonzero constants in
+/// its source's form, in SI.
+pub fn presets() {
+    use piezocontact::material::library::{PresetElastic, PresetPiezo, presets};
+    let labels = ["11", "22", "33", "23", "13", "12"];
+    let voigt = ["1", "2", "3", "4", "5", "6"];
+    for preset in presets() {
+        say!("{} — {}", preset.name, preset.source);
+        let PresetElastic::Stiffness(c) = preset.elastic;
+        let mut line = String::from("  c^E [GPa]:");
+        for i in 0..6 {
+            for j in i..6 {
+                if c[i][j] != 0.0 {
+                    line += &format!(" c{}{}={:.4}", voigt[i], voigt[j], c[i][j] / 1e9);
+                }
+            }
+        }
+        say!("{line}");
+        let (name, unit, scale, coupling) = match preset.piezo {
+            PresetPiezo::None => ("", "", 1.0, None),
+            PresetPiezo::Stress(e) => ("e", "C/m²", 1.0, Some(e)),
+            PresetPiezo::Strain(d) => ("d", "pC/N", 1e12, Some(d)),
+        };
+        if let Some(x) = coupling {
+            let mut line = format!("  {name} [{unit}]:");
+            for (i, row) in x.iter().enumerate() {
+                for (j, v) in row.iter().enumerate() {
+                    if *v != 0.0 {
+                        line += &format!(" {name}{}{}={:.4}", i + 1, voigt[j], v * scale);
+                    }
+                }
+            }
+            say!("{line}");
+        } else {
+            say!("  a dielectric: no piezoelectric coupling");
+        }
+        let kind = if matches!(preset.piezo, PresetPiezo::Strain(_)) { "ε^T" } else { "ε^S" };
+        let [a, b, c3] = preset.permittivity;
+        say!("  {kind}/ε0 [-]: {}={a} {}={b} {}={c3}", labels[0], labels[1], labels[2]);
+    }
+}

@@ -220,6 +220,35 @@ fn a_gmsh_case_runs_and_mesh_info_describes_the_file() {
     );
 }
 
+/// `materials` lists every preset with its source and constants.
+#[test]
+fn materials_lists_the_library() {
+    let o = piezocontact(&["materials"]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    for name in [
+        "PZT-4",
+        "PZT-5A",
+        "PZT-5H",
+        "BaTiO3",
+        "AlN",
+        "ZnO",
+        "LiNbO3",
+        "quartz",
+        "PVDF",
+        "silicon",
+        "alumina",
+        "fused-silica",
+        "epoxy",
+    ] {
+        assert!(t.contains(&format!("{name} — ")), "{name}: {t}");
+    }
+    assert!(
+        t.contains("c33=110.9000") && t.contains("e33=15.8000") && t.contains("d33=-33.0000"),
+        "{t}"
+    );
+}
+
 /// Every committed case is valid: `check` reads it and its mesh and says so.
 #[test]
 fn every_committed_case_checks() {

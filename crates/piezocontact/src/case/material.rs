@@ -6,6 +6,7 @@
 use super::file::Case;
 use super::schema::{DEFAULTS, LawKey, MaterialSection, MaterialTables, NumberOrRow};
 use crate::error::{Error, Result};
+use crate::material::library::{self, EPS0_SI, Preset, PresetElastic, PresetPiezo, UnitScale};
 use crate::material::voigt::{self, Coupling, Matrix3, Voigt};
 use crate::material::{
     Constants, ElasticConstants, ElasticLaw, Elasticity, Material, NamedMaterial, PiezoConstants,
@@ -155,6 +156,23 @@ impl Table<'_> {
         Ok(orientation::axes_from_poling([a, b, c]))
     }
 
+    /// The preset the table names, with the case's units to convert it to; an error naming
+    /// the presets for an unknown one, or the unit label that is not converted.
+    fn preset(&self) -> Result<Option<(Preset, UnitScale)>> {
+        let Some(name) = &self.table.preset else { return Ok(None) };
+        let at = self.locate("preset");
+        let preset = library::find(name).map_err(|names| {
+            input!("{at}: {}.preset = \"{name}\" is no preset of the library ({names}; `piezocontact materials` lists them)", self.key)
+        })?;
+        let u = &self.case.file.units;
+        let scale = UnitScale::of_labels(&u.length, &u.stress, &u.charge, &u.potential).map_err(|label| {
+            input!(
+                "{at}: the preset {name} is in SI and the case's unit '{label}' is none piezocontact converts (m, mm, µm; Pa, MPa, GPa; C, µC, nC, pC; V, kV, GV …): give the constants in the case's units instead"
+            )
+        })?;
+        Ok(Some((preset, scale)))
+    }
+
     /// The constants in the material's own axes, every group checked.
     pub fn constants(&self) -> Result<Constants> {
         let elastic = self.elastic_constants()?;
@@ -190,8 +208,13 @@ impl Table<'_> {
         let at = self.locate("");
         match given.as_slice() {
             [] => {
+                if let Some((preset, scale)) = self.preset()? {
+                    let PresetElastic::Stiffness(c) = preset.elastic;
+                    let c = c.map(|row| row.map(|v| v * scale.stress()));
+                    return Ok(ElasticConstants::Stiffness(Box::new(c)));
+                }
                 return Err(input!(
-                    "{at}: {k} has no elastic constants: give young and poisson (isotropic), c (the 6 × 6 stiffness) or s (the 6 × 6 compliance)"
+                    "{at}: {k} has no elastic constants: give young and poisson (isotropic), c (the 6 × 6 stiffness), s (the 6 × 6 compliance) or a preset"
                 ));
             }
             [_] => {}
@@ -265,9 +288,15 @@ impl Table<'_> {
             let [e31, e33, e15] = values;
             return Ok(Piezo::Stress(PiezoConstants { e31, e33, e15 }.coupling()));
         }
-        Ok(match (&m.e, &m.d) {
-            (Some(e), _) => Piezo::Stress(self.matrix("e", e)?),
-            (_, Some(d)) => Piezo::Strain(self.matrix("d", d)?),
+        let scaled = |x: Coupling, f: f64| x.map(|row| row.map(|v| v * f));
+        Ok(match (&m.e, &m.d, self.preset()?) {
+            (Some(e), _, _) => Piezo::Stress(self.matrix("e", e)?),
+            (_, Some(d), _) => Piezo::Strain(self.matrix("d", d)?),
+            (None, None, Some((preset, scale))) => match preset.piezo {
+                PresetPiezo::Stress(e) => Piezo::Stress(scaled(e, scale.piezo_stress())),
+                PresetPiezo::Strain(d) => Piezo::Strain(scaled(d, scale.piezo_strain())),
+                PresetPiezo::None => Piezo::Stress([[0.0; 6]; 3]),
+            },
             _ => Piezo::Stress([[0.0; 6]; 3]),
         })
     }
@@ -276,13 +305,19 @@ impl Table<'_> {
     /// diagonal) [charge/(potential·length)].
     fn permittivity(&self) -> Result<Matrix3> {
         let (k, m) = (&self.key, self.table);
+        let shorthand = m.beta11_rel.is_some() || m.beta33_rel.is_some();
+        if let (None, false, Some((preset, scale))) = (&m.eps_rel, shorthand, self.preset()?) {
+            // The preset's relative permittivity, times eps0 where given, else the vacuum's.
+            let eps0 = m.eps0.unwrap_or(EPS0_SI * scale.permittivity());
+            let [a, b, c] = preset.permittivity.map(|v| v * eps0);
+            return Ok([[a, 0.0, 0.0], [0.0, b, 0.0], [0.0, 0.0, c]]);
+        }
         let eps0 = m.eps0.ok_or_else(|| {
             input!(
                 "{}: {k}.eps0 is missing: the vacuum permittivity in the case's units (8.854e-12 F/m in SI)",
                 self.locate("")
             )
         })?;
-        let shorthand = m.beta11_rel.is_some() || m.beta33_rel.is_some();
         let relative = match (&m.eps_rel, shorthand) {
             (Some(_), true) => {
                 return Err(input!(

@@ -174,6 +174,9 @@ pub struct MaterialSection {
     /// The regions it fills: physical groups of dimension d of the mesh file, or the
     /// rectangle's `[mesh.regions]` (required when there are several).
     pub regions: Option<Vec<String>>,
+    /// A material of the library (`piezocontact materials` lists them), in SI converted to the
+    /// case's units: it fills every group the table does not give.
+    pub preset: Option<String>,
     /// "hencky" (the paper's g, the default of the isotropic form) or "linear" (g ≡ µ1, the
     /// only law of `c` and `s`).
     pub law: Option<LawKey>,

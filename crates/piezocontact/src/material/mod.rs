@@ -12,6 +12,7 @@
 //! axes. In 2D (the paper's continuum) the plane holds material axes 2 (x) and 3 (y), so
 //! e_{y,xx} = e32, e_{y,yy} = e33, e_{x,xy} = e24, β = diag(β22, β33) (model §2).
 
+pub mod library;
 pub mod orientation;
 pub mod voigt;
 

@@ -453,3 +453,37 @@ fn bad_regions_are_errors_and_overrides_name_the_material() {
     let e = case(&["material.b.eps0=-1"]).unwrap().build().err().unwrap().to_string();
     assert!(e.contains("material.b.eps0 = -1") && e.contains("two.toml:"), "{e}");
 }
+
+/// The library's PZT-5A (Berlincourt's stress-charge form, in SI) converted to the case's
+/// units (m, GPa, C, GV) gives the short-circuited block of the same constants written out; a
+/// key beside the preset replaces its group; unknown presets and units are errors.
+#[test]
+fn a_preset_is_the_material_written_out() {
+    let p = 0.5;
+    let (_, written) = solve(&block(&stress_charge(), p));
+    // The preset converts by the case's unit labels: these numbers are in GPa and GV.
+    let units = "[units]\nstress = \"GPa\"\npotential = \"GV\"\n[mesh]";
+    let with_units = |material: &str| block(material, p).replace("[mesh]", units);
+    let (_, preset) = solve(&with_units(&format!("preset = \"PZT-5A\"\neps0 = {EPS0}\n")));
+    let scale = written.solution.x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let distance = written
+        .solution
+        .x
+        .iter()
+        .zip(&preset.solution.x)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(distance < 1e-12 * scale, "{distance:e} of {scale:e}");
+    // The elastic group replaced by an isotropic one: Hencky's law is then the default.
+    let built = build(&with_units("preset = \"PZT-5A\"\nyoung = 60.0\npoisson = 0.3\n")).unwrap();
+    let material = built.problem.material(0);
+    assert!(material.elasticity().is_some() && !material.is_linear());
+    // Without eps0 the vacuum's, 8.854e-12 F/m, in C/(GV·m).
+    let beta = built.problem.material(0).beta[2][2];
+    assert!((beta - 830.0 * 8.854_187_812_8e-3).abs() < 1e-12 * beta, "{beta}");
+    let e = build(&block("preset = \"PZT-8\"\n", p)).err().unwrap().to_string();
+    assert!(e.contains("no preset of the library") && e.contains("PZT-5A"), "{e}");
+    let inches =
+        block("preset = \"silicon\"\n", p).replace("[mesh]", "[units]\nlength = \"in\"\n[mesh]");
+    let e = build(&inches).err().unwrap().to_string();
+    assert!(e.contains("'in' is none piezocontact converts"), "{e}");
+}
