@@ -9,4 +9,5 @@ pub mod processes;
 pub mod progress;
 pub mod reproduce;
 pub mod say;
+pub mod sheet;
 pub mod sweep;

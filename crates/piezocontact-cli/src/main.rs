@@ -449,9 +449,7 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
     if let Some(loading) = &built.loading {
         print::loading(loading, built.problem.mesh.dim(), &built.units);
     }
-    for named in built.problem.materials.list() {
-        print::indentation_moduli(named, &built.units);
-    }
+    piezocontact_cli::sheet::data_sheets(&case, &built)?;
     for warning in &built.warnings {
         say!("warning: {warning}");
     }

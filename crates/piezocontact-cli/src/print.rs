@@ -195,20 +195,11 @@ pub fn loading(loading: &Loading, dim: usize, units: &Units) {
     );
 }
 
-/// Prints the indentation moduli of the material's half-space, poled along its outward
-/// normal (the classical solutions with C* in place of E*).
+/// Prints the indentation moduli of the half-space of a material transversely isotropic
+/// about the last axis, indented along it (the classical solutions with C* in place of E*).
 pub fn indentation_moduli(named: &NamedMaterial, units: &Units) {
     let (s, material) = (&units.stress, &named.material);
-    say!(
-        "indentation of a half-space of material '{}' poled along its outward normal (small strain):",
-        named.name
-    );
-    if !material.is_transversely_isotropic() {
-        say!(
-            "  no closed form is given: the material is not transversely isotropic about the normal"
-        );
-        return;
-    }
+    say!("  indentation of its half-space along the poling (small strain):");
     if let Some(el) = material.elasticity() {
         let e_star = plane_strain_modulus(el.young(), el.poisson());
         say!("  E/(1 − ν²)          = {e_star:.6} {s} (without the piezoelectric coupling)");

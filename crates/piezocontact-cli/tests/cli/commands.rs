@@ -249,6 +249,36 @@ fn materials_lists_the_library() {
     );
 }
 
+/// `check`'s data sheet of the library's PZT-5A (Berlincourt's stress-charge form) gives the
+/// coupling factors that Berlincourt publishes, k33 = 0.705, k31 = −0.34, k15 = 0.685, to 2 %
+/// (the constants are rounded to three figures); quartz, not transversely isotropic, has none.
+#[test]
+fn check_prints_each_material_s_data_sheet() {
+    let dir = temp_dir("sheet");
+    let case = |preset: &str| {
+        format!(
+            "[units]\nstress = \"GPa\"\npotential = \"GV\"\n[mesh]\nfile = \"{}\"\n[material]\npreset = \"{preset}\"\n[boundary]\nclamped = [\"bottom\"]\ngrounded = [\"bottom\"]\n",
+            root().join("meshes/box-faces.msh").display()
+        )
+    };
+    std::fs::write(dir.join("pzt.toml"), case("PZT-5A")).unwrap();
+    let o = piezocontact(&["check", dir.join("pzt.toml").to_str().unwrap()]);
+    let t = text(&o);
+    assert!(o.status.success() && t.contains("s^E [1/GPa]:") && t.contains("g = (ε^T)⁻¹ d"), "{t}");
+    let line = t.lines().find(|l| l.contains("coupling factors")).unwrap_or_else(|| panic!("{t}"));
+    let value = |name: &str| -> f64 {
+        let after = line.split(&format!("{name} = ")).nth(1).unwrap();
+        after.split(',').next().unwrap().trim().parse().unwrap()
+    };
+    for (name, published) in [("k33", 0.705), ("k31", -0.34), ("k15", 0.685)] {
+        assert!((value(name) - published).abs() < 0.02 * published.abs(), "{name}: {line}");
+    }
+    assert!(t.contains("C* insulating tip"), "{t}");
+    std::fs::write(dir.join("quartz.toml"), case("quartz")).unwrap();
+    let t = text(&piezocontact(&["check", dir.join("quartz.toml").to_str().unwrap()]));
+    assert!(t.contains("no closed form is given") && !t.contains("coupling factors"), "{t}");
+}
+
 /// Every committed case is valid: `check` reads it and its mesh and says so.
 #[test]
 fn every_committed_case_checks() {
