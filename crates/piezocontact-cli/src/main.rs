@@ -119,48 +119,57 @@ enum Command {
     },
     /// Time assembly, symbolic analysis, numeric factorisation and solve on the paper's
     /// rectangle at several mesh sizes, or on a Gmsh mesh, beside faer's bare LDLᵀ.
-    Bench {
-        /// Mesh sizes NXxNY, comma separated (default 96x16,384x64,1536x256; with
-        /// --contact 96x16,192x32,384x64,768x128).
-        #[arg(long, value_delimiter = ',')]
-        sizes: Option<Vec<String>>,
-        /// A Gmsh MSH 4.1 mesh (2D or 3D) instead of the rectangle: every boundary part is
-        /// clamped and grounded; with --contact, a mesh with the parts of
-        /// meshes/indent-3d.geo, run as cases/indentation-3d.toml.
-        #[arg(long, conflicts_with = "sizes")]
-        mesh: Option<PathBuf>,
-        /// Also time faer's sparse LU on the same matrices, for comparison.
-        #[arg(long)]
-        lu: bool,
-        /// The fill-reducing orderings to measure, comma separated: amd, nd (METIS's nested
-        /// dissection), auto (nested dissection in 3D, else the smaller factor of both). Each runs on 1 thread and on all.
-        #[arg(long, value_delimiter = ',', default_value = "amd,nd", value_parser = bench::factorisation::parse_ordering, conflicts_with = "contact")]
-        ordering: Vec<piezocontact::linalg::Ordering>,
-        /// Time the exact contact solver (newton) on PV1 and PV2 (µ = k_e = 0.2, 0.6) of the
-        /// paper's bar against one plain factorisation of the same mesh, each in a process of
-        /// its own to measure its peak memory.
-        #[arg(long, conflicts_with = "lu")]
-        contact: bool,
-        /// With --contact: a contact case (a .toml file) instead, run as PV1 and as PV2 with
-        /// µ = 0.3, e.g. cases/block-3d.toml (a block whose whole bottom face touches) or
-        /// cases/bar-3d.toml (a bar bent onto a plane along part of its bottom face); with
-        /// --path: the case whose loading path is timed.
-        #[arg(long, conflicts_with = "sizes")]
-        case: Option<PathBuf>,
-        /// Time a loading path (each step from the last, the factorisation kept) against the
-        /// same steps solved cold, in the same run: the path of --case (default
-        /// cases/indentation-curve.toml), --mesh replacing its mesh.
-        #[arg(long, conflicts_with_all = ["contact", "lu", "sizes"])]
-        path: bool,
-        /// The linear-solver backend to time on --mesh: "faer" (default) or "petsc" (PETSc +
-        /// MUMPS on the processes of mpirun, beside faer's in the same run; a build with the
-        /// feature `petsc`).
-        #[arg(long, default_value = "faer", value_parser = ["faer", "petsc"], requires = "mesh", conflicts_with_all = ["contact", "path", "lu"])]
-        backend: String,
-        /// One measurement of --contact (internal).
-        #[arg(long, hide = true)]
-        one: Option<String>,
-    },
+    Bench(BenchArgs),
+}
+
+/// The options of `bench`.
+#[derive(clap::Args)]
+struct BenchArgs {
+    /// Mesh sizes NXxNY, comma separated (default 96x16,384x64,1536x256; with
+    /// --contact 96x16,192x32,384x64,768x128).
+    #[arg(long, value_delimiter = ',')]
+    sizes: Option<Vec<String>>,
+    /// A Gmsh MSH 4.1 mesh (2D or 3D) instead of the rectangle: every boundary part is
+    /// clamped and grounded; with --contact, a mesh with the parts of
+    /// meshes/indent-3d.geo, run as cases/indentation-3d.toml.
+    #[arg(long, conflicts_with = "sizes")]
+    mesh: Option<PathBuf>,
+    /// Also time faer's sparse LU on the same matrices, for comparison.
+    #[arg(long)]
+    lu: bool,
+    /// The fill-reducing orderings to measure, comma separated: amd, nd (METIS's nested
+    /// dissection), auto (nested dissection in 3D, else the smaller factor of both). Each runs on 1 thread and on all.
+    #[arg(long, value_delimiter = ',', default_value = "amd,nd", value_parser = bench::factorisation::parse_ordering, conflicts_with = "contact")]
+    ordering: Vec<piezocontact::linalg::Ordering>,
+    /// Time the exact contact solver (newton) on PV1 and PV2 (µ = k_e = 0.2, 0.6) of the
+    /// paper's bar against one plain factorisation of the same mesh, each in a process of
+    /// its own to measure its peak memory.
+    #[arg(long, conflicts_with = "lu")]
+    contact: bool,
+    /// With --contact: a contact case (a .toml file) instead, run as PV1 and as PV2 with
+    /// µ = 0.3, e.g. cases/block-3d.toml (a block whose whole bottom face touches) or
+    /// cases/bar-3d.toml (a bar bent onto a plane along part of its bottom face); with
+    /// --path: the case whose loading path is timed.
+    #[arg(long, conflicts_with = "sizes")]
+    case: Option<PathBuf>,
+    /// Time a loading path (each step from the last, the factorisation kept) against the
+    /// same steps solved cold, in the same run: the path of --case (default
+    /// cases/indentation-curve.toml), --mesh replacing its mesh.
+    #[arg(long, conflicts_with_all = ["contact", "lu", "sizes"])]
+    path: bool,
+    /// The linear-solver backend to time on --mesh: "faer" (default) or "petsc" (PETSc +
+    /// MUMPS on the processes of mpirun, beside faer's in the same run; a build with the
+    /// feature `petsc`).
+    #[arg(long, default_value = "faer", value_parser = ["faer", "petsc"], requires = "mesh", conflicts_with_all = ["contact", "path", "lu"])]
+    backend: String,
+    /// Time the assembly of B̌ on --mesh (default meshes/block-100k.msh) with one material
+    /// and with four by region (the quadrants of its bounding box), the median of 5
+    /// interleaved runs of each.
+    #[arg(long, conflicts_with_all = ["contact", "path", "lu", "sizes", "case"])]
+    materials: bool,
+    /// One measurement of --contact (internal).
+    #[arg(long, hide = true)]
+    one: Option<String>,
 }
 
 /// Parses a number of seconds ≥ 0.
@@ -257,41 +266,48 @@ fn run(command: Command) -> Result<Outcome> {
             print::presets();
             Ok(Outcome::Done)
         }
-        Command::Bench { sizes, mesh, lu, contact, case, path, one, ordering, backend } => {
-            if let Some(spec) = one {
-                return bench::one::measure_one(&spec).map(|_| Outcome::Done);
-            }
-            if backend == "petsc" {
-                return bench_backend(mesh.as_deref()).map(|_| Outcome::Done);
-            }
-            if path {
-                let case = case.unwrap_or_else(|| PathBuf::from("cases/indentation-curve.toml"));
-                return bench::path::path(&case, mesh.as_deref()).map(|_| Outcome::Done);
-            }
-            if case.is_some() && !contact {
-                anyhow::bail!("--case goes with --contact (a case's mesh) or --path (with --mesh)");
-            }
-            if case.is_some() && mesh.is_some() {
-                anyhow::bail!(
-                    "bench --contact takes its mesh from --case or from --mesh, not both: drop one"
-                );
-            }
-            if contact {
-                return bench_contact(case.as_deref(), mesh.as_deref(), sizes)
-                    .map(|_| Outcome::Done);
-            }
-            let sizes =
-                sizes.unwrap_or_else(|| bench::factorisation::SIZES.map(String::from).to_vec());
-            let target = match &mesh {
-                Some(path) => bench::factorisation::Target::Mesh(path),
-                None => bench::factorisation::Target::Sizes(&sizes),
-            };
-            let all = rayon::current_num_threads();
-            let threads = if all > 1 { vec![1, all] } else { vec![1] };
-            let variants = bench::factorisation::Variants { orderings: ordering, threads };
-            bench::factorisation::run(&target, &variants, lu).map(|_| Outcome::Done)
-        }
+        Command::Bench(args) => bench_command(args),
     }
+}
+
+/// `bench`: the measurement its options choose.
+fn bench_command(args: BenchArgs) -> Result<Outcome> {
+    let BenchArgs { sizes, mesh, lu, contact, case, path, materials, one, ordering, backend } =
+        args;
+    if let Some(spec) = one {
+        return bench::one::measure_one(&spec).map(|_| Outcome::Done);
+    }
+    if materials {
+        let mesh = mesh.unwrap_or_else(|| PathBuf::from("meshes/block-100k.msh"));
+        return bench::materials::run(&mesh).map(|_| Outcome::Done);
+    }
+    if backend == "petsc" {
+        return bench_backend(mesh.as_deref()).map(|_| Outcome::Done);
+    }
+    if path {
+        let case = case.unwrap_or_else(|| PathBuf::from("cases/indentation-curve.toml"));
+        return bench::path::path(&case, mesh.as_deref()).map(|_| Outcome::Done);
+    }
+    if case.is_some() && !contact {
+        anyhow::bail!("--case goes with --contact (a case's mesh) or --path (with --mesh)");
+    }
+    if case.is_some() && mesh.is_some() {
+        anyhow::bail!(
+            "bench --contact takes its mesh from --case or from --mesh, not both: drop one"
+        );
+    }
+    if contact {
+        return bench_contact(case.as_deref(), mesh.as_deref(), sizes).map(|_| Outcome::Done);
+    }
+    let sizes = sizes.unwrap_or_else(|| bench::factorisation::SIZES.map(String::from).to_vec());
+    let target = match &mesh {
+        Some(path) => bench::factorisation::Target::Mesh(path),
+        None => bench::factorisation::Target::Sizes(&sizes),
+    };
+    let all = rayon::current_num_threads();
+    let threads = if all > 1 { vec![1, all] } else { vec![1] };
+    let variants = bench::factorisation::Variants { orderings: ordering, threads };
+    bench::factorisation::run(&target, &variants, lu).map(|_| Outcome::Done)
 }
 
 /// `bench --contact`: on the case's mesh, on one mesh file, or on a list of sizes.

@@ -6,6 +6,7 @@
 //! - [`contact`]: a contact solve against one plain factorisation of the same mesh, each in a
 //!   process of its own;
 //! - [`path`]: a loading path solved as a path against its steps solved cold;
+//! - [`materials`]: the assembly with one material and with four by region;
 //! - `petsc` (feature `petsc`): the PETSc + MUMPS backend under mpirun beside faer;
 //! - [`one`]: `bench --one SPEC`, one measurement of the above in a child process.
 //!
@@ -16,6 +17,7 @@
 
 pub mod contact;
 pub mod factorisation;
+pub mod materials;
 pub mod one;
 pub mod path;
 #[cfg(feature = "petsc")]

@@ -523,6 +523,21 @@ fn bench_prints_the_phases() {
     }
 }
 
+/// `bench --materials` prints both sides and their ratio; on the box every quadrant holds
+/// cells.
+#[test]
+fn bench_materials_prints_both_sides() {
+    let o = piezocontact(&["bench", "--materials", "--mesh", "meshes/box-faces.msh"]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(
+        t.contains("one material") && t.contains("four materials") && t.contains("four / one"),
+        "{t}"
+    );
+    let counts = t.lines().find(|l| l.contains("four materials")).unwrap();
+    assert!(!counts.contains(" 0,") && !counts.contains(", 0]"), "{counts}");
+}
+
 /// Width and height from a PNG's IHDR chunk, after checking the signature.
 fn png_size(bytes: &[u8]) -> (u32, u32) {
     assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "not a PNG");

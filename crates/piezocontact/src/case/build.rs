@@ -115,7 +115,6 @@ impl Case {
                 ("mesh.nx", m.nx.is_some()),
                 ("mesh.ny", m.ny.is_some()),
                 ("mesh.segments", !m.segments.is_empty()),
-                ("mesh.regions", !m.regions.is_empty()),
             ] {
                 if set {
                     return Err(input!(
@@ -133,13 +132,13 @@ impl Case {
                 ),
                 cause: e.to_string(),
             })?;
-            return gmsh::read(&bytes).map_err(|e| input!("{}: {e}", full.display()));
+            let mesh = gmsh::read(&bytes).map_err(|e| input!("{}: {e}", full.display()))?;
+            return self.with_box_regions(mesh);
         }
         let (rectangle, parts) = self.rectangle()?;
         self.check_memory(rectangle.nx, rectangle.ny)?;
         let mesh = rectangle.mesh(&parts).map_err(|e| self.context(e))?;
-        let regions = self.rectangle_regions(&mesh)?;
-        mesh.with_regions(regions).map_err(|e| self.context(e))
+        self.with_box_regions(mesh)
     }
 
     /// The built-in rectangle of `[mesh]` and its parts' segments.

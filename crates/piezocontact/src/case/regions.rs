@@ -102,12 +102,18 @@ impl Case {
         })
     }
 
-    /// The regions of `[mesh.regions]` on the rectangle's mesh: the cells whose centroid lies
-    /// in one of each region's boxes.
-    pub(super) fn rectangle_regions(&self, mesh: &Mesh) -> Result<Vec<Region>> {
-        let mut regions = Vec::new();
+    /// The mesh with the regions of `[mesh.regions]` beside its own (a file's volume
+    /// groups): the cells whose centroid lies in one of each region's boxes.
+    pub(super) fn with_box_regions(&self, mesh: Mesh) -> Result<Mesh> {
+        let mut regions = mesh.regions().to_vec();
         for (name, specs) in &self.file.mesh.regions {
             let key = format!("mesh.regions.{name}");
+            if regions.iter().any(|r| &r.name == name) {
+                return Err(input!(
+                    "{}: {key}: the mesh file has a region '{name}' already: give the boxes another name",
+                    self.locate(&key)
+                ));
+            }
             let boxes: Result<Vec<Segment>, _> = specs.iter().map(|s| s.parse()).collect();
             let boxes = boxes.map_err(|e| input!("{}: {e}", self.locate(&key)))?;
             if boxes.is_empty() {
@@ -117,7 +123,7 @@ impl Case {
                 ));
             }
             let cells: Vec<usize> = (0..mesh.n_cells())
-                .filter(|&c| boxes.iter().any(|b| b.contains(&centroid(mesh, c), 0.0)))
+                .filter(|&c| boxes.iter().any(|b| b.contains(&centroid(&mesh, c), 0.0)))
                 .collect();
             if cells.is_empty() {
                 return Err(input!(
@@ -127,7 +133,7 @@ impl Case {
             }
             regions.push(Region { name: name.clone(), cells });
         }
-        Ok(regions)
+        mesh.with_regions(regions).map_err(|e| self.context(e))
     }
 }
 

@@ -138,8 +138,8 @@ pub struct MeshSection {
     /// Rectangle: boundary part name → segments such as "\[0,2\]x{0}".
     #[serde(default)]
     pub segments: BTreeMap<String, Vec<String>>,
-    /// Rectangle: region name → boxes such as "\[0,12\]x\[1,2\]" (the cells whose centroid
-    /// lies in one), for `[[material]]` regions.
+    /// Region name → boxes such as "\[0,12\]x\[1,2\]" (the cells whose centroid lies in
+    /// one), for `[[material]]` regions, beside a mesh file's volume groups.
     #[serde(default)]
     pub regions: BTreeMap<String, Vec<String>>,
 }

@@ -435,6 +435,20 @@ fn bad_regions_are_errors_and_overrides_name_the_material() {
             build(&text).err().unwrap_or_else(|| panic!("accepted: {expected}")).to_string();
         assert!(message.contains(expected), "{expected}: {message}");
     }
+    // Boxes beside a file's volume groups: a new name selects cells, a taken one is refused.
+    let with_boxes = |name: &str| {
+        two("regions = [\"substrate\"]", &format!("regions = [\"{name}\"]")).replacen(
+            "[[material]]",
+            &format!("[mesh.regions]\n{name} = [\"[0,2]x[0,1]x[0.5,1]\"]\n[[material]]"),
+            1,
+        )
+    };
+    let problem = build(&with_boxes("upper")).unwrap().problem;
+    let counts = problem.materials.cell_counts(problem.mesh.n_cells());
+    let layer = problem.mesh.regions().iter().find(|r| r.name == "layer").unwrap();
+    assert_eq!(counts[1], layer.cells.len(), "{counts:?}");
+    let message = build(&with_boxes("layer")).err().unwrap().to_string();
+    assert!(message.contains("has a region 'layer' already"), "{message}");
     let text = two("regions = [\"substrate\"]", "regions = [\"layer\"]");
     let case = |sets: &[&str]| {
         let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
