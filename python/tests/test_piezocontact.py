@@ -211,6 +211,32 @@ def test_supports_and_expressions_read_as_in_the_case_file(tmp_path):
         piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
 
 
+def test_materials_by_region_and_presets_read_as_in_the_case_file(tmp_path):
+    material = {"law": "linear", "young": 100.0, "poisson": 0.3, "e32": -5.4, "e33": 15.8, "e24": 12.3,
+                "eps0": 8.885e-3, "beta22_rel": 916.0, "beta33_rel": 830.0}
+    case = {
+        "mesh": {"x": [0.0, 4.0], "y": [0.0, 1.0], "nx": 8, "ny": 2,
+                 "segments": {"left": ["{0}x[0,1]"], "top": ["[0,4]x{1}"]},
+                 "regions": {"lower": ["[0,4]x[0,0.5]"], "upper": ["[0,4]x[0.5,1]"]}},
+        "material": material,
+        "boundary": {"clamped": ["left"], "grounded": ["left"],
+                     "traction": [{"parts": ["top"], "f2": [0.0, -1.0]}]},
+    }
+    one = piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
+    # The same constants split into two named materials by region: the same solution.
+    case["material"] = [dict(material, name="soft", regions=["lower"]),
+                        dict(material, name="hard", regions=["upper"])]
+    two = piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
+    assert np.abs(two.u - one.u).max() <= 1e-12 * np.abs(one.u).max()
+    # A stiffer upper material moves the tip less; an unknown region is named.
+    case["material"][1]["young"] = 200.0
+    stiffer = piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
+    assert np.abs(stiffer.u).max() < np.abs(one.u).max()
+    case["material"][1]["regions"] = ["lid"]
+    with pytest.raises(ValueError, match="no region of the mesh"):
+        piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
+
+
 def test_write_writes_the_files_of_run(tmp_path):
     solution = piezocontact.solve(PAPER_72, COARSE)
     out = tmp_path / "out"
