@@ -216,3 +216,11 @@ fn indentation_3d_is_faers() {
         same_contact("indentation-3d.toml", &[], 1e-9);
     });
 }
+
+/// Two materials by region, both stiffness tensors from the library (PZT-5A on silicon).
+#[test]
+fn a_film_on_silicon_is_faers() {
+    on_processes("a_film_on_silicon_is_faers", || {
+        same_contact("film-on-silicon.toml", &[], 1e-9);
+    });
+}
