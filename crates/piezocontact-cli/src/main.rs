@@ -472,8 +472,15 @@ fn check(path: &Path, set: &[String]) -> Result<()> {
     if let Some(note) = case.uniqueness_note() {
         say!("note: {note}");
     }
+    let settings = case.contact_settings()?;
+    if built.model.is_none() {
+        say!(
+            "solver: no contact, so one direct solve per load factor (with secant steps while Hencky's law is not met); the contact methods' settings are not used"
+        );
+        return Ok(());
+    }
     say!("contact and solver settings (in the case's units):");
-    for (key, value) in case.contact_settings()? {
+    for (key, value) in settings {
         say!("  {key:<22} = {value}");
     }
     Ok(())

@@ -59,8 +59,10 @@
 //! - [`linalg`]: the linear-solver seam (backends and their capabilities) and sparse LDLᵀ, the
 //!   only module naming faer.
 //! - [`element`]: P1 simplex geometry and quadrature.
-//! - [`mesh`]: meshes with named boundary parts (structured rectangle, Gmsh MSH 4.1).
-//! - [`material`]: Hencky law g, piezoelectric and permittivity tensors.
+//! - [`mesh`]: meshes with named boundary parts and regions (structured rectangle, Gmsh MSH
+//!   4.1).
+//! - [`material`]: Hencky law g, full tensors in Voigt notation (both forms), orientation, the
+//!   cited library, the materials of the cells.
 //! - [`oracles`]: closed-form solutions the tests and the reproduction compare with.
 //! - [`problem`]: a checked problem: mesh, material, boundary roles, loads.
 //! - [`dofs`]: DOF numbering [u; ϕ] and Dirichlet elimination.

@@ -39,6 +39,7 @@ fn case_reader_corpus() {
         ("loading-path.toml", 3),
         ("materials-two-layers.toml", 3),
         ("materials-strain-charge.toml", 3),
+        ("materials-preset-units.toml", 3),
     ] {
         assert!(built.contains(&(name.to_string(), dim)), "{name} was not built: {built:?}");
     }

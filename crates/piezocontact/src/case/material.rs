@@ -312,7 +312,9 @@ impl Table<'_> {
             let [a, b, c] = preset.permittivity.map(|v| v * eps0);
             return Ok([[a, 0.0, 0.0], [0.0, b, 0.0], [0.0, 0.0, c]]);
         }
-        let eps0 = m.eps0.ok_or_else(|| {
+        // Beside a preset, whose units are known, eps0 defaults to the vacuum's.
+        let vacuum = self.preset()?.map(|(_, scale)| EPS0_SI * scale.permittivity());
+        let eps0 = m.eps0.or(vacuum).ok_or_else(|| {
             input!(
                 "{}: {k}.eps0 is missing: the vacuum permittivity in the case's units (8.854e-12 F/m in SI)",
                 self.locate("")

@@ -503,6 +503,10 @@ fn a_preset_is_the_material_written_out() {
     // Without eps0 the vacuum's, 8.854e-12 F/m, in C/(GV·m).
     let beta = built.problem.material(0).beta[2][2];
     assert!((beta - 830.0 * 8.854_187_812_8e-3).abs() < 1e-12 * beta, "{beta}");
+    // A dielectric group beside a preset, without eps0: the vacuum's too.
+    let built = build(&with_units("preset = \"silicon\"\neps_rel = [4.0, 4.0, 4.0]\n")).unwrap();
+    let beta = built.problem.material(0).beta[0][0];
+    assert!((beta - 4.0 * 8.854_187_812_8e-3).abs() < 1e-12 * beta, "{beta}");
     let e = build(&block("preset = \"PZT-8\"\n", p)).err().unwrap().to_string();
     assert!(e.contains("no preset of the library") && e.contains("PZT-5A"), "{e}");
     let inches =
