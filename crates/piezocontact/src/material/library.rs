@@ -1,7 +1,7 @@
 //! The material library: cited constants of common piezoelectric and dielectric materials,
 //! each stored in its source's own form, in SI (Pa, C/m², C/N) with relative permittivities,
 //! in the material's axes (axis 3 the poling or the crystal's c axis). A case names one by
-//! `preset`; [`Preset::in_units`] converts it to the case's units.
+//! `preset`; [`UnitScale`] converts it to the case's units by their labels.
 
 use super::voigt::{Coupling, Voigt};
 
