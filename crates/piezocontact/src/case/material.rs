@@ -4,9 +4,10 @@
 //! the mesh, and the regions it fills.
 
 use super::file::Case;
-use super::schema::{DEFAULTS, LawKey, MaterialSection, MaterialTables, NumberOrRow};
+use super::schema::{DEFAULTS, LawKey, MaterialSection, MaterialTables, NumberOrRow, PlaneKey};
 use crate::error::{Error, Result};
 use crate::material::library::{self, EPS0_SI, Preset, PresetElastic, PresetPiezo, UnitScale};
+use crate::material::plane::{Plane, plane_material};
 use crate::material::voigt::{self, Coupling, Matrix3, Voigt};
 use crate::material::{
     Constants, ElasticConstants, ElasticLaw, Elasticity, Material, NamedMaterial, PiezoConstants,
@@ -96,6 +97,15 @@ impl Table<'_> {
     /// The material in dimension `dim`, named.
     pub fn material(&self, dim: usize) -> Result<NamedMaterial> {
         let m = self.table;
+        let name = m.name.clone().unwrap_or_else(|| "material".into());
+        if let Some(plane) = self.plane(dim)? {
+            let constants = self.constants()?;
+            let solid = Material::from_constants(3, &constants, &self.plane_axes()?)
+                .map_err(|e| self.context(e))?;
+            let material =
+                plane_material(&solid, &constants.elastic, plane).map_err(|e| self.context(e))?;
+            return Ok(NamedMaterial { name, material });
+        }
         let tensors = [
             ("c", m.c.is_some()),
             ("s", m.s.is_some()),
@@ -114,8 +124,49 @@ impl Table<'_> {
         let axes = self.axes(dim)?;
         let material = Material::from_constants(dim, &self.constants()?, &axes)
             .map_err(|e| self.context(e))?;
-        let name = m.name.clone().unwrap_or_else(|| "material".into());
         Ok(NamedMaterial { name, material })
+    }
+
+    /// The plane model of `mesh.plane` (None: the 3D body or the paper's 2D continuum).
+    fn plane(&self, dim: usize) -> Result<Option<Plane>> {
+        let plane = self.case.file.mesh.plane.unwrap_or(PlaneKey::Continuum);
+        match (plane, dim) {
+            (PlaneKey::Continuum, _) => Ok(None),
+            (_, 3) => Err(input!(
+                "{}: mesh.plane = {plane:?} is for 2D meshes: remove it for a 3D body",
+                self.case.locate("mesh.plane")
+            )),
+            (PlaneKey::Strain, _) => Ok(Some(Plane::Strain)),
+            (PlaneKey::Stress, _) => Ok(Some(Plane::Stress)),
+        }
+    }
+
+    /// The material's axes in a plane model: `poling` a vector of the plane (default +y);
+    /// axis 1 is the poling turned by −90° in the plane and axis 2 = −e_z.
+    fn plane_axes(&self) -> Result<Matrix3> {
+        let k = &self.key;
+        if self.table.euler.is_some() {
+            return Err(input!(
+                "{}: {k}.euler: the plane models turn a material in the plane only: give poling, a vector of the plane",
+                self.locate("euler")
+            ));
+        }
+        let Some(p) = &self.table.poling else {
+            return Ok(orientation::axes_from_poling([0.0, 1.0, 0.0]));
+        };
+        let at = self.locate("poling");
+        let in_plane = match p[..] {
+            [x, y] | [x, y, 0.0] => [x, y],
+            _ => {
+                return Err(input!(
+                    "{at}: {k}.poling = {p:?} must be a vector of the plane, [x, y]"
+                ));
+            }
+        };
+        if in_plane.iter().any(|v| !v.is_finite()) || in_plane == [0.0, 0.0] {
+            return Err(input!("{at}: {k}.poling = {p:?} must be a finite, nonzero vector"));
+        }
+        Ok(orientation::axes_from_poling([in_plane[0], in_plane[1], 0.0]))
     }
 
     /// The material's axes in the mesh ([`orientation`]): from `poling` or `euler`, else the

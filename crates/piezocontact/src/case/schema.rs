@@ -133,6 +133,9 @@ pub struct MeshSection {
     pub nx: Option<usize>,
     /// Rectangle: cells along y.
     pub ny: Option<usize>,
+    /// The 2D model: "continuum" (the paper's, the default), "strain" (plane strain) or
+    /// "stress" (plane stress), slices of a 3D body.
+    pub plane: Option<PlaneKey>,
     /// Rectangle: "right" (lower-left–upper-right diagonal, default) or "left".
     pub diagonal: Option<DiagonalKey>,
     /// Rectangle: boundary part name → segments such as "\[0,2\]x{0}".
@@ -142,6 +145,15 @@ pub struct MeshSection {
     /// one), for `[[material]]` regions, beside a mesh file's volume groups.
     #[serde(default)]
     pub regions: BTreeMap<String, Vec<String>>,
+}
+
+/// The 2D model in the case file.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[serde(rename_all = "lowercase")]
+pub enum PlaneKey {
+    Continuum,
+    Strain,
+    Stress,
 }
 
 /// Diagonal direction in the case file.

@@ -14,6 +14,7 @@
 
 pub mod library;
 pub mod orientation;
+pub mod plane;
 pub mod voigt;
 
 use crate::error::{Error, Result};

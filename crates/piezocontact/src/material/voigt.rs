@@ -163,6 +163,37 @@ pub fn inverse<const N: usize>(a: &[[f64; N]; N]) -> Result<[[f64; N]; N]> {
     Ok(inv)
 }
 
+/// A⁻¹ of a general square matrix by Gauss–Jordan elimination with partial pivoting; `None`
+/// when a pivot vanishes (A singular).
+pub fn general_inverse<const N: usize>(a: &[[f64; N]; N]) -> Option<[[f64; N]; N]> {
+    let mut m = *a;
+    let mut inv = [[0.0; N]; N];
+    (0..N).for_each(|i| inv[i][i] = 1.0);
+    for col in 0..N {
+        let pivot = (col..N).max_by(|&p, &q| m[p][col].abs().total_cmp(&m[q][col].abs()))?;
+        if m[pivot][col] == 0.0 || !m[pivot][col].is_finite() {
+            return None;
+        }
+        m.swap(col, pivot);
+        inv.swap(col, pivot);
+        let d = m[col][col];
+        for j in 0..N {
+            m[col][j] /= d;
+            inv[col][j] /= d;
+        }
+        for row in 0..N {
+            if row != col {
+                let f = m[row][col];
+                for j in 0..N {
+                    m[row][j] -= f * m[col][j];
+                    inv[row][j] -= f * inv[col][j];
+                }
+            }
+        }
+    }
+    Some(inv)
+}
+
 /// The stress-charge form (c^E, e, ε^S) of a material given in the strain-charge form's
 /// d [charge/force] and ε^T, with its stiffness c^E = (s^E)⁻¹ \[stress\] already known:
 /// e = d c^E, ε^S = ε^T − e dᵀ.

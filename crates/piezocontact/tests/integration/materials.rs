@@ -514,3 +514,99 @@ fn a_preset_is_the_material_written_out() {
     let e = build(&inches).err().unwrap().to_string();
     assert!(e.contains("'in' is none piezocontact converts"), "{e}");
 }
+
+/// A 2D block [0,2]×[0,1] of the plane model `plane`, on rollers on its left (along x) and
+/// bottom (along y), its top and bottom grounded, a pressure p on top.
+fn plane_block(plane: &str, material: &str, p: f64) -> String {
+    format!(
+        r#"
+[mesh]
+x = [0.0, 2.0]
+y = [0.0, 1.0]
+nx = 4
+ny = 2
+plane = "{plane}"
+[mesh.segments]
+left = ["{{0}}x[0,1]"]
+bottom = ["[0,2]x{{0}}"]
+top = ["[0,2]x{{1}}"]
+[material]
+{material}
+[boundary]
+grounded = ["bottom", "top"]
+[[boundary.support]]
+parts = ["left"]
+fix = ["x"]
+[[boundary.support]]
+parts = ["bottom"]
+fix = ["y"]
+[[boundary.traction]]
+parts = ["top"]
+f2 = [0.0, {f}]
+"#,
+        f = -p
+    )
+}
+
+/// The 2D solution against u = (a x, b y), ϕ = 0, and the electrodes' charges per unit
+/// thickness against ±D_y times the width 2.
+fn assert_plane_state(run: &StaticRun, built: &Built, (a, b): (f64, f64), d_y: f64) {
+    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
+    let mesh = &built.problem.mesh;
+    let scale = a.abs().max(b.abs());
+    for node in 0..mesh.n_nodes() {
+        let q = mesh.node(node);
+        let got = [x[dofs.u(node, 0)], x[dofs.u(node, 1)]];
+        assert!(
+            (got[0] - a * q[0]).abs() < 1e-9 * scale,
+            "u_x at {q:?}: {} vs {}",
+            got[0],
+            a * q[0]
+        );
+        assert!(
+            (got[1] - b * q[1]).abs() < 1e-9 * scale,
+            "u_y at {q:?}: {} vs {}",
+            got[1],
+            b * q[1]
+        );
+    }
+    let charges = &run.reactions.charges;
+    let q = d_y * 2.0;
+    assert!((charges[0] - q).abs() < 1e-9 * q.abs(), "bottom: {} vs {q}", charges[0]);
+    assert!((charges[1] + q).abs() < 1e-9 * q.abs(), "top: {} vs {}", charges[1], -q);
+}
+
+/// Plane strain of PZT-5A poled along y (material axis 1 = x, 3 = y, 2 out of the plane):
+/// ε_zz = 0 and E = 0, so σ_xx = c11 a + c13 b = 0, σ_yy = c13 a + c33 b = −p, and D_y = e31 a +
+/// e33 b; plane stress of the strain-charge form: σ = −p e_y e_y in full, so ε_xx = s13 σ_yy,
+/// ε_yy = s33 σ_yy, D_y = d33 σ_yy.
+#[test]
+fn plane_strain_and_plane_stress_take_the_uniform_states_of_the_3d_law() {
+    let p = 0.5;
+    let (built, run) = solve(&plane_block("strain", &stress_charge(), p));
+    let (c11, c13, c33) = (C[0][0], C[0][2], C[2][2]);
+    let b = -p * c11 / (c11 * c33 - c13 * c13);
+    let a = -c13 * b / c11;
+    assert_plane_state(&run, &built, (a, b), E[2][0] * a + E[2][2] * b);
+    let (built, run) = solve(&plane_block("stress", &strain_charge(), p));
+    let sigma = -p;
+    assert_plane_state(&run, &built, (S[0][2] * sigma, S[2][2] * sigma), D[2][2] * sigma);
+    // Hencky's law, euler angles and 3D poling vectors are refused in the plane models.
+    let hencky = "young = 60.0\npoisson = 0.3\ne31 = -5.4\ne33 = 15.8\ne15 = 12.3\neps0 = 1.0\nbeta11_rel = 1.0\nbeta33_rel = 1.0";
+    for (plane, material, expected) in [
+        ("strain", hencky.to_string(), "linear law"),
+        (
+            "stress",
+            format!("{}euler = [0.0, 0.0, 0.0]\n", stress_charge()),
+            "poling, a vector of the plane",
+        ),
+        (
+            "strain",
+            format!("{}poling = [0.0, 0.0, 1.0]\n", stress_charge()),
+            "a vector of the plane",
+        ),
+    ] {
+        let e = build(&plane_block(plane, &material, p)).err().unwrap().to_string();
+        assert!(e.contains(expected), "{plane}: {e}");
+    }
+}
