@@ -5,6 +5,7 @@ use piezocontact::case::Built;
 use piezocontact::case::schema::Units;
 use piezocontact::contact::Loading;
 use piezocontact::material::NamedMaterial;
+use piezocontact::material::plane::Plane;
 use piezocontact::oracles::{Piezoelectric, plane_strain_modulus};
 use piezocontact::run::{ContactRun, PathRun, Run, StaticPathRun, StaticRun};
 use std::path::Path;
@@ -33,6 +34,7 @@ fn contact_run(run: &ContactRun, built: &Built, out: &Path) {
         mesh.n_nodes(),
         mesh.n_cells()
     );
+    plane_note(built);
     say!(
         "  outer iterations   = {} ({})",
         solution.outer_iterations(),
@@ -223,6 +225,14 @@ pub fn indentation_moduli(named: &NamedMaterial, units: &Units) {
     }
 }
 
+/// Says, for a plane model, that its forces and charges are per unit thickness.
+fn plane_note(built: &Built) {
+    if let Some(plane) = built.plane {
+        let model = if plane == Plane::Stress { "plane stress" } else { "plane strain" };
+        say!("  {model}: forces and charges are per unit thickness");
+    }
+}
+
 /// Prints a run without contact.
 fn static_run(run: &StaticRun, built: &Built, out: &Path) {
     let (units, problem, t) = (&built.units, &built.problem, run.solution.timings);
@@ -233,6 +243,7 @@ fn static_run(run: &StaticRun, built: &Built, out: &Path) {
         problem.mesh.n_cells(),
         run.solution.dofs.n_free()
     );
+    plane_note(built);
     say!("  max |u|            = {:.6e} {}", run.max_u, units.length);
     let (lo, hi) = run.phi_range;
     say!("  phi range          = [{lo:.6e}, {hi:.6e}] {}", units.potential);
@@ -268,6 +279,7 @@ pub fn mesh(built: &Built) {
         mesh.n_cells(),
         units.length
     );
+    plane_note(built);
     let unit = if mesh.dim() == 2 { units.length.clone() } else { format!("{}^2", units.length) };
     for (p, part) in mesh.parts().iter().enumerate() {
         say!(

@@ -15,6 +15,7 @@ use crate::contact::law::{Conduction, Friction, NormalCompliance, Regularization
 use crate::contact::{ContactModel, Loading};
 use crate::error::{Error, Result};
 use crate::linalg::LinearSolver;
+use crate::material::plane::Plane;
 use crate::mesh::rectangle::{Diagonal, Rectangle, Segment, SegmentParts};
 use crate::mesh::{Mesh, gmsh};
 use crate::problem::{
@@ -53,6 +54,9 @@ pub struct Built {
     pub units: Units,
     /// The case's file and text, for the locations in messages.
     pub origin: Origin,
+    /// The plane model of a 2D slice of a 3D body (`mesh.plane`); `None` for a 3D body or the
+    /// paper's 2D continuum.
+    pub plane: Option<Plane>,
 }
 
 impl Built {
@@ -85,6 +89,7 @@ impl Case {
         }
         let mut warnings = self.hypothesis_warnings(&problem.materials);
         warnings.extend(self.setting_warnings());
+        let problem_dim = problem.mesh.dim();
         Ok(Built {
             problem,
             model,
@@ -95,6 +100,7 @@ impl Case {
             title: self.file.title.clone(),
             units: self.file.units.clone(),
             origin: self.origin.clone(),
+            plane: self.plane_model(problem_dim)?,
         })
     }
 

@@ -70,6 +70,23 @@ impl Case {
     }
 }
 
+impl Case {
+    /// The plane model of `mesh.plane` for a mesh of dimension `dim` (None: the 3D body or
+    /// the paper's 2D continuum).
+    pub fn plane_model(&self, dim: usize) -> Result<Option<Plane>> {
+        let plane = self.file.mesh.plane.unwrap_or(PlaneKey::Continuum);
+        match (plane, dim) {
+            (PlaneKey::Continuum, _) => Ok(None),
+            (_, 3) => Err(input!(
+                "{}: mesh.plane = {plane:?} is for 2D meshes: remove it for a 3D body",
+                self.locate("mesh.plane")
+            )),
+            (PlaneKey::Strain, _) => Ok(Some(Plane::Strain)),
+            (PlaneKey::Stress, _) => Ok(Some(Plane::Stress)),
+        }
+    }
+}
+
 impl Table<'_> {
     /// "file:line" of the key `sub` of this table (of the table itself for "").
     fn locate(&self, sub: &str) -> String {
@@ -98,7 +115,7 @@ impl Table<'_> {
     pub fn material(&self, dim: usize) -> Result<NamedMaterial> {
         let m = self.table;
         let name = m.name.clone().unwrap_or_else(|| "material".into());
-        if let Some(plane) = self.plane(dim)? {
+        if let Some(plane) = self.case.plane_model(dim)? {
             let constants = self.constants()?;
             let solid = Material::from_constants(3, &constants, &self.plane_axes()?)
                 .map_err(|e| self.context(e))?;
@@ -125,20 +142,6 @@ impl Table<'_> {
         let material = Material::from_constants(dim, &self.constants()?, &axes)
             .map_err(|e| self.context(e))?;
         Ok(NamedMaterial { name, material })
-    }
-
-    /// The plane model of `mesh.plane` (None: the 3D body or the paper's 2D continuum).
-    fn plane(&self, dim: usize) -> Result<Option<Plane>> {
-        let plane = self.case.file.mesh.plane.unwrap_or(PlaneKey::Continuum);
-        match (plane, dim) {
-            (PlaneKey::Continuum, _) => Ok(None),
-            (_, 3) => Err(input!(
-                "{}: mesh.plane = {plane:?} is for 2D meshes: remove it for a 3D body",
-                self.case.locate("mesh.plane")
-            )),
-            (PlaneKey::Strain, _) => Ok(Some(Plane::Strain)),
-            (PlaneKey::Stress, _) => Ok(Some(Plane::Stress)),
-        }
     }
 
     /// The material's axes in a plane model: `poling` a vector of the plane (default +y);

@@ -7,13 +7,14 @@ use crate::case::Built;
 use crate::contact::ContactModel;
 use crate::dofs::DofMap;
 use crate::error::Error;
+use crate::material::plane::Plane;
 use crate::system::Timings;
 use serde_json::{Value, json};
 
 /// Fields common to every summary.json: the case, its mesh and unknowns, the backend.
 pub fn common_summary(built: &Built, dofs: &DofMap) -> Value {
     let (units, mesh) = (&built.units, &built.problem.mesh);
-    json!({
+    let mut summary = json!({
         "case": built.origin.path.display().to_string(),
         "title": built.title,
         "units": { "length": units.length, "stress": units.stress, "charge": units.charge, "potential": units.potential },
@@ -23,7 +24,16 @@ pub fn common_summary(built: &Built, dofs: &DofMap) -> Value {
         "dofs": { "total": dofs.n_total(), "free": dofs.n_free(), "free_u": dofs.n_free_u(), "free_phi": dofs.n_free() - dofs.n_free_u() },
         "backend": { "name": built.linear.backend_name(), "processes": crate::linalg::processes() },
         "threads": rayon::current_num_threads(),
-    })
+    });
+    // A plane model says that its forces and charges are per unit thickness.
+    if let Some(plane) = built.plane {
+        let model = if plane == Plane::Stress { "plane stress" } else { "plane strain" };
+        merge(
+            &mut summary,
+            json!({ "model": model, "per_unit_thickness": "forces [stress·length] and charges [charge/length] are per unit thickness" }),
+        );
+    }
+    summary
 }
 
 /// The summary.json of a validated case that the solver refused before it had a result (a

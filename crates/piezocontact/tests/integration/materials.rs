@@ -591,6 +591,10 @@ fn plane_strain_and_plane_stress_take_the_uniform_states_of_the_3d_law() {
     let (built, run) = solve(&plane_block("stress", &strain_charge(), p));
     let sigma = -p;
     assert_plane_state(&run, &built, (S[0][2] * sigma, S[2][2] * sigma), D[2][2] * sigma);
+    // summary.json says the model and that its forces and charges are per unit thickness.
+    let summary = piezocontact::report::summary::common_summary(&built, &run.solution.dofs);
+    assert_eq!(summary["model"], "plane stress");
+    assert!(summary["per_unit_thickness"].as_str().unwrap().contains("per unit thickness"));
     // Hencky's law, euler angles and 3D poling vectors are refused in the plane models.
     let hencky = "young = 60.0\npoisson = 0.3\ne31 = -5.4\ne33 = 15.8\ne15 = 12.3\neps0 = 1.0\nbeta11_rel = 1.0\nbeta33_rel = 1.0";
     for (plane, material, expected) in [
