@@ -595,6 +595,33 @@ fn plane_strain_and_plane_stress_take_the_uniform_states_of_the_3d_law() {
     let summary = piezocontact::report::summary::common_summary(&built, &run.solution.dofs);
     assert_eq!(summary["model"], "plane stress");
     assert!(summary["per_unit_thickness"].as_str().unwrap().contains("per unit thickness"));
+    // Plane strain poled along x (axis 3 = x, axis 1 = −y), short-circuited between its x
+    // faces and pressed along x: σ_xx = c33 a + c13 b = −p, σ_yy = c13 a + c11 b = 0, and the
+    // charge of the left face D_x = e33 a + e31 b times its height 1.
+    let along_x = plane_block("strain", &format!("{}poling = [1.0, 0.0]\n", stress_charge()), p)
+        .replace("top = [\"[0,2]x{1}\"]", "top = [\"[0,2]x{1}\"]\nright = [\"{2}x[0,1]\"]")
+        .replace("grounded = [\"bottom\", \"top\"]", "grounded = [\"left\", \"right\"]")
+        .replace("parts = [\"top\"]\nf2", "parts = [\"right\"]\nf2")
+        .replace(&format!("f2 = [0.0, {}]", -p), &format!("f2 = [{}, 0.0]", -p));
+    let (built, run) = solve(&along_x);
+    let a = -p * c11 / (c33 * c11 - c13 * c13);
+    let b = -c13 * a / c11;
+    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
+    for node in 0..built.problem.mesh.n_nodes() {
+        let q = built.problem.mesh.node(node);
+        let got = [x[dofs.u(node, 0)], x[dofs.u(node, 1)]];
+        assert!(
+            (got[0] - a * q[0]).abs() < 1e-9 * a.abs()
+                && (got[1] - b * q[1]).abs() < 1e-9 * a.abs(),
+            "{got:?} at {q:?}"
+        );
+    }
+    let d_x = E[2][2] * a + E[2][0] * b;
+    let charges = &run.reactions.charges;
+    assert!(
+        (charges[0] - d_x).abs() < 1e-9 * d_x.abs() && (charges[1] + d_x).abs() < 1e-9 * d_x.abs(),
+        "{charges:?} vs ±{d_x}"
+    );
     // Hencky's law, euler angles and 3D poling vectors are refused in the plane models.
     let hencky = "young = 60.0\npoisson = 0.3\ne31 = -5.4\ne33 = 15.8\ne15 = 12.3\neps0 = 1.0\nbeta11_rel = 1.0\nbeta33_rel = 1.0";
     for (plane, material, expected) in [
