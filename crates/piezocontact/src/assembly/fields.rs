@@ -5,7 +5,6 @@
 use super::kernel::{element_matrix, local_dofs, simplex};
 use crate::dofs::DofMap;
 use crate::error::Result;
-use crate::material::deviator_norm_squared;
 use crate::problem::Problem;
 use rayon::prelude::*;
 
@@ -230,13 +229,16 @@ fn deviator_tensor<const D: usize, const N: usize>(
     c: usize,
 ) -> Result<[[f64; 3]; 3]> {
     let (eps, _) = cell_gradients::<D, N>(problem, dofs, x, c)?;
-    let trace = (0..D).map(|i| eps[i][i]).sum::<f64>() / D as f64;
+    let m = problem.material(c).deviator_dim;
+    let trace = (0..D).map(|i| eps[i][i]).sum::<f64>() / m as f64;
     let mut deviator = [[0.0; 3]; 3];
     for i in 0..D {
         for j in 0..D {
             deviator[i][j] = eps[i][j] - if i == j { trace } else { 0.0 };
         }
     }
+    // Plane strain: the 3D deviator's out-of-plane entry (ε_zz = 0).
+    (D..m).for_each(|k| deviator[k][k] = -trace);
     Ok(deviator)
 }
 
@@ -301,7 +303,8 @@ fn deviator_at<const D: usize, const N: usize>(
     x: &[f64],
     c: usize,
 ) -> Result<f64> {
-    Ok(deviator_norm_squared(&cell_gradients::<D, N>(problem, dofs, x, c)?.0))
+    let eps = cell_gradients::<D, N>(problem, dofs, x, c)?.0;
+    Ok(problem.material(c).deviator_norm_squared(&eps))
 }
 
 #[cfg(test)]

@@ -99,7 +99,7 @@ fn elastic_entry<const D: usize, const N: usize>(
             let ab: f64 = (0..D).map(|m| grad[a][m] * grad[b][m]).sum();
             let delta = if i == j { ab } else { 0.0 };
             let (gi, gj) = (grad[a][i] * grad[b][j], grad[a][j] * grad[b][i]);
-            el.k0 * gi + 2.0 * g * (0.5 * (delta + gj) - gi / D as f64)
+            el.k0 * gi + 2.0 * g * (0.5 * (delta + gj) - gi / material.deviator_dim as f64)
         }
         Elastic::Anisotropic(c) => {
             let mut entry = 0.0;

@@ -189,6 +189,9 @@ pub struct Material {
     pub reference_modulus: f64,
     /// The material's axes in mesh coordinates, the columns of a rotation ([`orientation`]).
     pub axes: Matrix3,
+    /// The dimension m of Hencky's deviator ε^D = ε − (tr ε / m) I: the body's own, but 3 in
+    /// plane strain (ε_zz = 0 enters the 3D deviator as −tr ε / 3).
+    pub deviator_dim: usize,
 }
 
 impl Material {
@@ -251,7 +254,15 @@ impl Material {
             }
         }
         if dim == 3 {
-            return Ok(Self { dim, elastic, e, beta, reference_modulus, axes: *axes });
+            return Ok(Self {
+                dim,
+                elastic,
+                e,
+                beta,
+                reference_modulus,
+                axes: *axes,
+                deviator_dim: dim,
+            });
         }
         if matches!(elastic, Elastic::Anisotropic(_)) {
             return Err(invalid_text(
@@ -269,12 +280,25 @@ impl Material {
                 }
             }
         }
-        Ok(Self { dim, elastic, e: e2, beta: beta2, reference_modulus, axes: *axes })
+        Ok(Self {
+            dim,
+            elastic,
+            e: e2,
+            beta: beta2,
+            reference_modulus,
+            axes: *axes,
+            deviator_dim: dim,
+        })
     }
 
     /// The poling, material axis 3, in mesh coordinates padded to 3 (y in 2D).
     pub fn poling(&self) -> [f64; 3] {
-        if self.dim == 2 { [0.0, 1.0, 0.0] } else { self.axes.map(|row| row[2]) }
+        // The continuum keeps the identity: its plane holds material axes 2 and 3.
+        if self.dim == 2 && self.axes == orientation::IDENTITY {
+            [0.0, 1.0, 0.0]
+        } else {
+            self.axes.map(|row| row[2])
+        }
     }
 
     /// Whether the tensors are transversely isotropic about the last axis (unchanged by a turn
@@ -343,7 +367,8 @@ impl Material {
             for k in 0..D {
                 let elastic = match &self.elastic {
                     Elastic::Isotropic(el) => {
-                        let dev = eps[j][k] - if j == k { tr / D as f64 } else { 0.0 };
+                        let dev =
+                            eps[j][k] - if j == k { tr / self.deviator_dim as f64 } else { 0.0 };
                         2.0 * g * dev + if j == k { el.k0 * tr } else { 0.0 }
                     }
                     Elastic::Anisotropic(c) => (0..D)
@@ -381,7 +406,25 @@ impl Material {
         eps: &[[f64; D]; D],
         grad_phi: &[f64; D],
     ) -> [[f64; D]; D] {
-        self.stress(eps, grad_phi, self.modulus(deviator_norm_squared(eps)))
+        self.stress(eps, grad_phi, self.modulus(self.deviator_norm_squared(eps)))
+    }
+
+    /// ‖ε^D‖² of this material's deviator ([`Material::deviator_dim`]): in plane strain the
+    /// out-of-plane entry −tr ε / 3 counts too.
+    pub fn deviator_norm_squared<const D: usize>(&self, eps: &[[f64; D]; D]) -> f64 {
+        let m = self.deviator_dim;
+        if m == D {
+            return deviator_norm_squared(eps);
+        }
+        let tr: f64 = (0..D).map(|i| eps[i][i]).sum::<f64>() / m as f64;
+        let mut s = (m - D) as f64 * tr * tr;
+        for i in 0..D {
+            for j in 0..D {
+                let dev = eps[i][j] - if i == j { tr } else { 0.0 };
+                s += dev * dev;
+            }
+        }
+        s
     }
 }
 

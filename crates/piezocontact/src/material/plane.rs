@@ -19,7 +19,9 @@ pub enum Plane {
 }
 
 /// The 2D material of `plane` (strain or stress) from the 3D material `solid` (mesh axes) and
-/// the elastic constants it was made of; Hencky's law is refused (a linear law is needed).
+/// the elastic constants it was made of. Hencky's law stays in plane strain, with the 3D
+/// deviator ([`Material::deviator_dim`] 3); plane stress refuses it (its condensation is
+/// nonlinear).
 pub fn plane_material(
     solid: &Material,
     elastic: &ElasticConstants,
@@ -28,11 +30,16 @@ pub fn plane_material(
     if let ElasticConstants::Isotropic(el) = elastic
         && el.law != super::ElasticLaw::Linear
     {
-        return Err(invalid_text(
-            "material.law",
-            "hencky",
-            "the plane models take a linear law here: set law = \"linear\" (Hencky's law is for the 3D body and the paper's 2D continuum)",
-        ));
+        if plane == Plane::Stress {
+            return Err(invalid_text(
+                "material.law",
+                "hencky",
+                "plane stress takes a linear law (the condensation of Hencky's law is nonlinear): set law = \"linear\", or use plane strain",
+            ));
+        }
+        // The in-plane components of the 3D tensors are those of `solid`: the kernels read
+        // the first two indices.
+        return Ok(Material { dim: 2, deviator_dim: 3, ..solid.clone() });
     }
     let c = match &solid.elastic {
         Elastic::Isotropic(el) => voigt::isotropic_stiffness(el.k0, el.mu1),
@@ -50,6 +57,7 @@ pub fn plane_material(
         beta,
         reference_modulus: solid.reference_modulus,
         axes: solid.axes,
+        deviator_dim: 2,
     })
 }
 

@@ -622,10 +622,10 @@ fn plane_strain_and_plane_stress_take_the_uniform_states_of_the_3d_law() {
         (charges[0] - d_x).abs() < 1e-9 * d_x.abs() && (charges[1] + d_x).abs() < 1e-9 * d_x.abs(),
         "{charges:?} vs ±{d_x}"
     );
-    // Hencky's law, euler angles and 3D poling vectors are refused in the plane models.
+    // Hencky's law in plane stress, euler angles and 3D poling vectors are refused.
     let hencky = "young = 60.0\npoisson = 0.3\ne31 = -5.4\ne33 = 15.8\ne15 = 12.3\neps0 = 1.0\nbeta11_rel = 1.0\nbeta33_rel = 1.0";
     for (plane, material, expected) in [
-        ("strain", hencky.to_string(), "linear law"),
+        ("stress", hencky.to_string(), "plane stress takes a linear law"),
         (
             "stress",
             format!("{}euler = [0.0, 0.0, 0.0]\n", stress_charge()),
@@ -639,5 +639,59 @@ fn plane_strain_and_plane_stress_take_the_uniform_states_of_the_3d_law() {
     ] {
         let e = build(&plane_block(plane, &material, p)).err().unwrap().to_string();
         assert!(e.contains(expected), "{plane}: {e}");
+    }
+}
+
+/// Hencky's law in plane strain takes the 3D deviator (ε_zz = 0): a block compressed by
+/// δ along x between rollers, free on top, takes ε_xx = −δ and the ε_yy = b of σ_yy =
+/// k0 tr ε + 2 g(t) (b − tr ε/3) = 0, t = ‖ε^D‖² with ε^D = diag(−δ − tr/3, b − tr/3, −tr/3),
+/// found here by bisection with the law's g; the solver's secant steps stop at a residual of
+/// 1e-8, so the nodal values are checked to 1e-6.
+#[test]
+fn hencky_s_law_in_plane_strain_takes_the_3d_deviator() {
+    let (young, poisson, t0, delta) = (60.0, 0.3, 6e-5, 0.01);
+    let material = format!(
+        "law = \"hencky\"\nt0 = {t0}\nyoung = {young}\npoisson = {poisson}\ne31 = 0.0\ne33 = 0.0\ne15 = 0.0\neps0 = 1.0\nbeta11_rel = 1.0\nbeta33_rel = 1.0"
+    );
+    let text = plane_block("strain", &material, 0.0)
+        .replace("top = [\"[0,2]x{1}\"]", "top = [\"[0,2]x{1}\"]\nright = [\"{2}x[0,1]\"]")
+        .replace("grounded = [\"bottom\", \"top\"]", "grounded = [\"bottom\"]")
+        .replace(
+            "[[boundary.traction]]",
+            &format!("[[boundary.support]]\nparts = [\"right\"]\nfix = [\"x\"]\ndisplacement = [{}]\n[[boundary.traction]]", -2.0 * delta),
+        );
+    let (built, run) = solve(&text);
+    let (k0, mu1) = (young / (3.0 - 6.0 * poisson), young / (2.0 + 2.0 * poisson));
+    let g = |t: f64| if t <= t0 { mu1 } else { mu1 * (t0 / t) * (1.0 + (t / t0).ln()) };
+    // ‖ε^D‖² and σ_yy with the deviator of dimension m (3: plane strain; 2: the continuum).
+    let norm = |b: f64, m: f64| {
+        let mean = (b - delta) / m;
+        (-delta - mean).powi(2) + (b - mean).powi(2) + (m - 2.0) * mean * mean
+    };
+    let root = |m: f64| {
+        let sigma_yy = |b: f64| k0 * (b - delta) + 2.0 * g(norm(b, m)) * (b - (b - delta) / m);
+        let (mut lo, mut hi) = (0.0, delta);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if sigma_yy(mid) < 0.0 { lo = mid } else { hi = mid }
+        }
+        0.5 * (lo + hi)
+    };
+    let b = root(3.0);
+    let t = norm(b, 3.0);
+    assert!(t > t0 && t < std::f64::consts::E * t0, "t = {t} for t0 = {t0}");
+    // The 2D continuum's deviator gives another b, far beyond the tolerance below.
+    assert!((root(2.0) - b).abs() > 1e-3 * delta, "{} vs {b}", root(2.0));
+    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
+    for node in 0..built.problem.mesh.n_nodes() {
+        let q = built.problem.mesh.node(node);
+        let got = [x[dofs.u(node, 0)], x[dofs.u(node, 1)]];
+        assert!((got[0] + delta * q[0]).abs() < 1e-6 * delta, "u_x at {q:?}: {}", got[0]);
+        assert!(
+            (got[1] - b * q[1]).abs() < 1e-6 * delta,
+            "u_y at {q:?}: {} vs {}",
+            got[1],
+            b * q[1]
+        );
     }
 }
