@@ -489,7 +489,8 @@ impl Materials {
         counts
     }
 
-    /// Whether every cell map is given (several materials) or none (one).
+    /// The number of cells mapped to a material: 0 when one material covers the body, else
+    /// every cell's.
     pub fn n_mapped(&self) -> usize {
         self.of_cell.len()
     }
