@@ -65,6 +65,13 @@ fn run_writes_a_summary_a_contact_table_and_a_vtu_that_a_reader_accepts() {
     assert_eq!(summary["elements"], 2 * 24 * 4);
     assert_eq!(summary["dofs"]["total"], 3 * 125);
     assert_eq!(summary["units"]["stress"], "GPa");
+    // The lone material of the paper's case, poled along y.
+    let material = &summary["materials"][0];
+    assert_eq!(summary["materials"].as_array().map(Vec::len), Some(1));
+    assert_eq!((&material["name"], &material["law"]), (&"material".into(), &"hencky".into()));
+    assert_eq!(material["cells"], summary["elements"]);
+    assert_eq!(material["piezoelectric"], true);
+    assert_eq!(material["poling"], serde_json::json!([0.0, 1.0, 0.0]));
     let outer = summary["outer_iterations"].as_u64().unwrap() as usize;
     assert_eq!(summary["inner_iterations"].as_array().unwrap().len(), outer);
     assert_eq!(summary["outer_criterion_history"].as_array().unwrap().len(), outer);

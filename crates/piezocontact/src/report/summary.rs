@@ -24,6 +24,7 @@ pub fn common_summary(built: &Built, dofs: &DofMap) -> Value {
         "dofs": { "total": dofs.n_total(), "free": dofs.n_free(), "free_u": dofs.n_free_u(), "free_phi": dofs.n_free() - dofs.n_free_u() },
         "backend": { "name": built.linear.backend_name(), "processes": crate::linalg::processes() },
         "threads": rayon::current_num_threads(),
+        "materials": materials_json(built),
     });
     // A plane model says that its forces and charges are per unit thickness.
     if let Some(plane) = built.plane {
@@ -34,6 +35,24 @@ pub fn common_summary(built: &Built, dofs: &DofMap) -> Value {
         );
     }
     summary
+}
+
+/// summary.json's `materials`: each material's name, its cells, its law ("hencky", "linear"
+/// or "tensor"), whether it is piezoelectric, and its poling in mesh coordinates.
+fn materials_json(built: &Built) -> Value {
+    let materials = &built.problem.materials;
+    let counts = materials.cell_counts(built.problem.mesh.n_cells());
+    let list = materials.list().iter().zip(counts).map(|(named, cells)| {
+        let m = &named.material;
+        let law = match m.elasticity() {
+            Some(el) if el.law == crate::material::ElasticLaw::Linear => "linear",
+            Some(_) => "hencky",
+            None => "tensor",
+        };
+        let piezoelectric = m.e.iter().flatten().flatten().any(|v| *v != 0.0);
+        json!({ "name": named.name, "cells": cells, "law": law, "piezoelectric": piezoelectric, "poling": m.poling() })
+    });
+    Value::Array(list.collect())
 }
 
 /// The summary.json of a validated case that the solver refused before it had a result (a
