@@ -402,12 +402,13 @@ pub fn material(built: &Built) -> piezocontact::Result<()> {
 /// Prints the material library (`piezocontact materials`): each preset's nonzero constants in
 /// its source's form, in SI.
 pub fn presets() {
-    use piezocontact::material::library::{PresetElastic, PresetPiezo, presets};
+    use piezocontact::material::library::presets;
+    use piezocontact::material::voigt::PiezoForm;
     let labels = ["11", "22", "33", "23", "13", "12"];
     let voigt = ["1", "2", "3", "4", "5", "6"];
     for preset in presets() {
         say!("{} — {}", preset.name, preset.source);
-        let PresetElastic::Stiffness(c) = preset.elastic;
+        let c = preset.stiffness;
         let mut line = String::from("  c^E [GPa]:");
         for i in 0..6 {
             for j in i..6 {
@@ -418,9 +419,9 @@ pub fn presets() {
         }
         say!("{line}");
         let (name, unit, scale, coupling) = match preset.piezo {
-            PresetPiezo::None => ("", "", 1.0, None),
-            PresetPiezo::Stress(e) => ("e", "C/m²", 1.0, Some(e)),
-            PresetPiezo::Strain(d) => ("d", "pC/N", 1e12, Some(d)),
+            PiezoForm::None => ("", "", 1.0, None),
+            PiezoForm::Stress(e) => ("e", "C/m²", 1.0, Some(e)),
+            PiezoForm::Strain(d) => ("d", "pC/N", 1e12, Some(d)),
         };
         if let Some(x) = coupling {
             let mut line = format!("  {name} [{unit}]:");
@@ -435,7 +436,7 @@ pub fn presets() {
         } else {
             say!("  a dielectric: no piezoelectric coupling");
         }
-        let kind = if matches!(preset.piezo, PresetPiezo::Strain(_)) { "ε^T" } else { "ε^S" };
+        let kind = if matches!(preset.piezo, PiezoForm::Strain(_)) { "ε^T" } else { "ε^S" };
         let [a, b, c3] = preset.permittivity;
         say!("  {kind}/ε0 [-]: {}={a} {}={b} {}={c3}", labels[0], labels[1], labels[2]);
     }

@@ -6,21 +6,13 @@
 use super::file::Case;
 use super::schema::{DEFAULTS, LawKey, MaterialSection, MaterialTables, NumberOrRow, PlaneKey};
 use crate::error::{Error, Result};
-use crate::material::library::{self, EPS0_SI, Preset, PresetElastic, PresetPiezo, UnitScale};
+use crate::material::library::{self, EPS0_SI, Preset, UnitScale};
 use crate::material::plane::{Plane, plane_material};
-use crate::material::voigt::{self, Coupling, Matrix3, Voigt};
+use crate::material::voigt::{self, Coupling, Matrix3, PiezoForm, Voigt};
 use crate::material::{
     Constants, ElasticConstants, ElasticLaw, Elasticity, Material, NamedMaterial, PiezoConstants,
     orientation,
 };
-
-/// The piezoelectric group as given: a stress-charge or a strain-charge coupling.
-enum Piezo {
-    /// e [charge/length²] (zero for a dielectric).
-    Stress(Coupling),
-    /// d [charge/force].
-    Strain(Coupling),
-}
 
 /// One material table with the dotted key that names it in messages and overrides:
 /// `material` for `[material]` (or a lone unnamed `[[material]]`), `material.<name>` for a
@@ -233,21 +225,16 @@ impl Table<'_> {
         let c = elastic.stiffness();
         let piezo = self.piezo_form()?;
         let given = self.permittivity()?;
-        let (e, permittivity) = match piezo {
-            Piezo::Stress(e) => (e, given),
-            Piezo::Strain(d) => voigt::stress_charge(&c, &d, &given),
-        };
+        let (e, permittivity) = piezo.stress_charge(&c, &given);
         let smallest = voigt::smallest_eigenvalue(&permittivity)?;
         if smallest.is_nan() || smallest <= 0.0 {
-            let what = match piezo {
-                Piezo::Strain(_) => "ε^S = ε^T − d c^E dᵀ",
-                Piezo::Stress(_) => "the permittivity ε^S",
-            };
+            let strain = matches!(piezo, PiezoForm::Strain(_));
+            let what = if strain { "ε^S = ε^T − d c^E dᵀ" } else { "the permittivity ε^S" };
             return Err(input!(
                 "{}: {}: {what} is not positive definite (smallest eigenvalue {smallest:e}): check the dielectric constants{}",
                 self.locate("eps0"),
                 self.key,
-                if matches!(piezo, Piezo::Strain(_)) { " (ε^T with d) and d" } else { "" }
+                if strain { " (ε^T with d) and d" } else { "" }
             ));
         }
         Ok(Constants { elastic, e, permittivity })
@@ -263,8 +250,7 @@ impl Table<'_> {
         match given.as_slice() {
             [] => {
                 if let Some((preset, scale)) = self.preset()? {
-                    let PresetElastic::Stiffness(c) = preset.elastic;
-                    let c = c.map(|row| row.map(|v| v * scale.stress()));
+                    let c = preset.stiffness.map(|row| row.map(|v| v * scale.stress()));
                     return Ok(ElasticConstants::Stiffness(Box::new(c)));
                 }
                 return Err(input!(
@@ -315,7 +301,7 @@ impl Table<'_> {
     }
 
     /// The piezoelectric group: the ceramic shorthand, e or d; none for a dielectric.
-    fn piezo_form(&self) -> Result<Piezo> {
+    fn piezo_form(&self) -> Result<PiezoForm> {
         let (k, m) = (&self.key, self.table);
         let shorthand = [("e31", m.e31), ("e33", m.e33), ("e15", m.e15)];
         let any_shorthand = shorthand.iter().any(|s| s.1.is_some());
@@ -340,18 +326,18 @@ impl Table<'_> {
                 self.finite(key, *value)?;
             }
             let [e31, e33, e15] = values;
-            return Ok(Piezo::Stress(PiezoConstants { e31, e33, e15 }.coupling()));
+            return Ok(PiezoForm::Stress(PiezoConstants { e31, e33, e15 }.coupling()));
         }
         let scaled = |x: Coupling, f: f64| x.map(|row| row.map(|v| v * f));
         Ok(match (&m.e, &m.d, self.preset()?) {
-            (Some(e), _, _) => Piezo::Stress(self.matrix("e", e)?),
-            (_, Some(d), _) => Piezo::Strain(self.matrix("d", d)?),
+            (Some(e), _, _) => PiezoForm::Stress(self.matrix("e", e)?),
+            (_, Some(d), _) => PiezoForm::Strain(self.matrix("d", d)?),
             (None, None, Some((preset, scale))) => match preset.piezo {
-                PresetPiezo::Stress(e) => Piezo::Stress(scaled(e, scale.piezo_stress())),
-                PresetPiezo::Strain(d) => Piezo::Strain(scaled(d, scale.piezo_strain())),
-                PresetPiezo::None => Piezo::Stress([[0.0; 6]; 3]),
+                PiezoForm::Stress(e) => PiezoForm::Stress(scaled(e, scale.piezo_stress())),
+                PiezoForm::Strain(d) => PiezoForm::Strain(scaled(d, scale.piezo_strain())),
+                PiezoForm::None => PiezoForm::None,
             },
-            _ => Piezo::Stress([[0.0; 6]; 3]),
+            _ => PiezoForm::None,
         })
     }
 

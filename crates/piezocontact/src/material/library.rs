@@ -3,28 +3,10 @@
 //! in the material's axes (axis 3 the poling or the crystal's c axis). A case names one by
 //! `preset`; [`UnitScale`] converts it to the case's units by their labels.
 
-use super::voigt::{Coupling, Voigt};
+use super::voigt::{Coupling, PiezoForm, Voigt};
 
 /// The vacuum permittivity ε0 [F/m] (CODATA 2018).
 pub const EPS0_SI: f64 = 8.854_187_812_8e-12;
-
-/// A preset's elastic constants.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum PresetElastic {
-    /// c^E \[Pa\].
-    Stiffness(Voigt),
-}
-
-/// A preset's piezoelectric constants.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum PresetPiezo {
-    /// A dielectric: no coupling.
-    None,
-    /// e [C/m²] (with ε^S).
-    Stress(Coupling),
-    /// d [C/N] (with ε^T).
-    Strain(Coupling),
-}
 
 /// A material of the library.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,11 +15,11 @@ pub struct Preset {
     pub name: &'static str,
     /// Where the constants come from.
     pub source: &'static str,
-    /// The elastic constants.
-    pub elastic: PresetElastic,
-    /// The piezoelectric constants.
-    pub piezo: PresetPiezo,
-    /// The relative permittivity's diagonal: ε^T/ε0 with [`PresetPiezo::Strain`], else ε^S/ε0.
+    /// c^E \[Pa\].
+    pub stiffness: Voigt,
+    /// The piezoelectric constants, e [C/m²] or d [C/N].
+    pub piezo: PiezoForm,
+    /// The relative permittivity's diagonal: ε^T/ε0 with [`PiezoForm::Strain`], else ε^S/ε0.
     pub permittivity: [f64; 3],
     /// The other form's relative permittivity where the source gives both (ε^T/ε0 beside e,
     /// ε^S/ε0 beside d), for the check of the conversion.
@@ -178,32 +160,32 @@ fn ceramics() -> Vec<Preset> {
         Preset {
             name: "PZT-4",
             source: BERLINCOURT,
-            elastic: PresetElastic::Stiffness(g(hexagonal(139.0, 77.8, 74.0, 115.0, 25.6, 30.6))),
-            piezo: PresetPiezo::Stress(ceramic(-5.2, 15.1, 12.7)),
+            stiffness: g(hexagonal(139.0, 77.8, 74.0, 115.0, 25.6, 30.6)),
+            piezo: PiezoForm::Stress(ceramic(-5.2, 15.1, 12.7)),
             permittivity: [730.0, 730.0, 635.0],
             other_permittivity: Some([1475.0, 1475.0, 1300.0]),
         },
         Preset {
             name: "PZT-5A",
             source: BERLINCOURT,
-            elastic: PresetElastic::Stiffness(g(hexagonal(120.3, 75.2, 75.1, 110.9, 21.1, 22.55))),
-            piezo: PresetPiezo::Stress(ceramic(-5.4, 15.8, 12.3)),
+            stiffness: g(hexagonal(120.3, 75.2, 75.1, 110.9, 21.1, 22.55)),
+            piezo: PiezoForm::Stress(ceramic(-5.4, 15.8, 12.3)),
             permittivity: [916.0, 916.0, 830.0],
             other_permittivity: Some([1730.0, 1730.0, 1700.0]),
         },
         Preset {
             name: "PZT-5H",
             source: BERLINCOURT,
-            elastic: PresetElastic::Stiffness(g(hexagonal(126.0, 79.5, 84.1, 117.0, 23.0, 23.25))),
-            piezo: PresetPiezo::Stress(ceramic(-6.5, 23.3, 17.0)),
+            stiffness: g(hexagonal(126.0, 79.5, 84.1, 117.0, 23.0, 23.25)),
+            piezo: PiezoForm::Stress(ceramic(-6.5, 23.3, 17.0)),
             permittivity: [1700.0, 1700.0, 1470.0],
             other_permittivity: Some([3130.0, 3130.0, 3400.0]),
         },
         Preset {
             name: "BaTiO3",
             source: BERLINCOURT,
-            elastic: PresetElastic::Stiffness(g(hexagonal(150.0, 66.0, 66.0, 146.0, 44.0, 42.0))),
-            piezo: PresetPiezo::Stress(ceramic(-4.3, 17.5, 11.4)),
+            stiffness: g(hexagonal(150.0, 66.0, 66.0, 146.0, 44.0, 42.0)),
+            piezo: PiezoForm::Stress(ceramic(-4.3, 17.5, 11.4)),
             permittivity: [1115.0, 1115.0, 1260.0],
             other_permittivity: Some([1450.0, 1450.0, 1700.0]),
         },
@@ -216,38 +198,32 @@ fn crystals() -> Vec<Preset> {
         Preset {
             name: "AlN",
             source: "Tsubouchi & Mikoshiba, IEEE Trans. Sonics Ultrason. 32 (1985) 634",
-            elastic: PresetElastic::Stiffness(g(hexagonal(
-                345.0, 125.0, 120.0, 395.0, 118.0, 110.0,
-            ))),
-            piezo: PresetPiezo::Stress(ceramic(-0.58, 1.55, -0.48)),
+            stiffness: g(hexagonal(345.0, 125.0, 120.0, 395.0, 118.0, 110.0)),
+            piezo: PiezoForm::Stress(ceramic(-0.58, 1.55, -0.48)),
             permittivity: [8.0, 8.0, 9.5],
             other_permittivity: None,
         },
         Preset {
             name: "ZnO",
             source: "Auld, Acoustic Fields and Waves in Solids I (1973), Appendix 2",
-            elastic: PresetElastic::Stiffness(g(hexagonal(
-                209.7, 121.1, 105.1, 210.9, 42.47, 44.29,
-            ))),
-            piezo: PresetPiezo::Stress(ceramic(-0.573, 1.32, -0.48)),
+            stiffness: g(hexagonal(209.7, 121.1, 105.1, 210.9, 42.47, 44.29)),
+            piezo: PiezoForm::Stress(ceramic(-0.573, 1.32, -0.48)),
             permittivity: [8.55, 8.55, 10.2],
             other_permittivity: None,
         },
         Preset {
             name: "LiNbO3",
             source: "Warner, Onoe & Coquin, J. Acoust. Soc. Am. 42 (1967) 1223",
-            elastic: PresetElastic::Stiffness(g(trigonal(203.0, 53.0, 75.0, 9.0, 245.0, 60.0))),
-            piezo: PresetPiezo::Stress(lithium_niobate()),
+            stiffness: g(trigonal(203.0, 53.0, 75.0, 9.0, 245.0, 60.0)),
+            piezo: PiezoForm::Stress(lithium_niobate()),
             permittivity: [44.0, 44.0, 29.0],
             other_permittivity: Some([84.0, 84.0, 30.0]),
         },
         Preset {
             name: "quartz",
             source: "Bechmann, Phys. Rev. 110 (1958) 1060 (α-quartz, right-handed, IEEE 1949 axes)",
-            elastic: PresetElastic::Stiffness(g(trigonal(
-                86.74, 6.99, 11.91, -17.91, 107.2, 57.94,
-            ))),
-            piezo: PresetPiezo::Stress(quartz()),
+            stiffness: g(trigonal(86.74, 6.99, 11.91, -17.91, 107.2, 57.94)),
+            piezo: PiezoForm::Stress(quartz()),
             permittivity: [4.52, 4.52, 4.68],
             other_permittivity: None,
         },
@@ -260,40 +236,40 @@ fn dielectrics() -> Vec<Preset> {
         Preset {
             name: "PVDF",
             source: "Measurement Specialties, Piezo Film Sensors Technical Manual (1999), Table 1 (E = 2.5 GPa within its 2–4 GPa, ν = 0.34)",
-            elastic: PresetElastic::Stiffness(g(isotropic(2.5, 0.34))),
-            piezo: PresetPiezo::Strain(pvdf()),
+            stiffness: g(isotropic(2.5, 0.34)),
+            piezo: PiezoForm::Strain(pvdf()),
             permittivity: [12.0, 12.0, 12.0],
             other_permittivity: None,
         },
         Preset {
             name: "silicon",
             source: "Hopcroft, Nix & Kenny, J. Microelectromech. Syst. 19 (2010) 229 (cubic axes <100>); ε_r 11.7",
-            elastic: PresetElastic::Stiffness(g(cubic(165.7, 63.9, 79.6))),
-            piezo: PresetPiezo::None,
+            stiffness: g(cubic(165.7, 63.9, 79.6)),
+            piezo: PiezoForm::None,
             permittivity: [11.7; 3],
             other_permittivity: None,
         },
         Preset {
             name: "alumina",
             source: "CoorsTek AD-995 data sheet: E = 370 GPa, ν = 0.22, ε_r = 9.7",
-            elastic: PresetElastic::Stiffness(g(isotropic(370.0, 0.22))),
-            piezo: PresetPiezo::None,
+            stiffness: g(isotropic(370.0, 0.22)),
+            piezo: PiezoForm::None,
             permittivity: [9.7; 3],
             other_permittivity: None,
         },
         Preset {
             name: "fused-silica",
             source: "Corning HPFS 7980 data sheet: E = 72.7 GPa, ν = 0.16, ε_r = 3.8",
-            elastic: PresetElastic::Stiffness(g(isotropic(72.7, 0.16))),
-            piezo: PresetPiezo::None,
+            stiffness: g(isotropic(72.7, 0.16)),
+            piezo: PiezoForm::None,
             permittivity: [3.8; 3],
             other_permittivity: None,
         },
         Preset {
             name: "epoxy",
             source: "typical cured bisphenol-A epoxy (e.g. EPON 828 with an amine hardener): E = 3.5 GPa, ν = 0.35, ε_r = 3.6",
-            elastic: PresetElastic::Stiffness(g(isotropic(3.5, 0.35))),
-            piezo: PresetPiezo::None,
+            stiffness: g(isotropic(3.5, 0.35)),
+            piezo: PiezoForm::None,
             permittivity: [3.6; 3],
             other_permittivity: None,
         },
@@ -346,11 +322,11 @@ mod tests {
     #[test]
     fn the_presets_are_definite_and_their_two_permittivities_agree() {
         for preset in presets() {
-            let PresetElastic::Stiffness(c) = preset.elastic;
+            let c = preset.stiffness;
             assert!(voigt::smallest_eigenvalue(&c).unwrap() > 0.0, "{}", preset.name);
             assert!(preset.permittivity.iter().all(|v| *v > 1.0), "{}", preset.name);
             let Some(other) = preset.other_permittivity else { continue };
-            let PresetPiezo::Stress(e) = preset.piezo else { panic!("{}", preset.name) };
+            let PiezoForm::Stress(e) = preset.piezo else { panic!("{}", preset.name) };
             let [a, b, c3] = preset.permittivity.map(|v| v * EPS0_SI);
             let eps_s = [[a, 0.0, 0.0], [0.0, b, 0.0], [0.0, 0.0, c3]];
             let (_, _, eps_t) = voigt::strain_charge(&c, &e, &eps_s).unwrap();

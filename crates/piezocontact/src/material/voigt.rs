@@ -194,6 +194,30 @@ pub fn general_inverse<const N: usize>(a: &[[f64; N]; N]) -> Option<[[f64; N]; N
     Some(inv)
 }
 
+/// A piezoelectric group as given: none (a dielectric), the stress-charge e [charge/length²]
+/// (beside ε^S) or the strain-charge d [charge/force] (beside ε^T).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PiezoForm {
+    /// A dielectric: no coupling.
+    None,
+    /// e, with ε^S.
+    Stress(Coupling),
+    /// d, with ε^T.
+    Strain(Coupling),
+}
+
+impl PiezoForm {
+    /// e and ε^S of this group beside the stiffness c^E \[stress\] and the permittivity it
+    /// goes with (ε^T for d, else ε^S).
+    pub fn stress_charge(&self, c: &Voigt, permittivity: &Matrix3) -> (Coupling, Matrix3) {
+        match self {
+            Self::None => ([[0.0; 6]; 3], *permittivity),
+            Self::Stress(e) => (*e, *permittivity),
+            Self::Strain(d) => stress_charge(c, d, permittivity),
+        }
+    }
+}
+
 /// The stress-charge form (c^E, e, ε^S) of a material given in the strain-charge form's
 /// d [charge/force] and ε^T, with its stiffness c^E = (s^E)⁻¹ \[stress\] already known:
 /// e = d c^E, ε^S = ε^T − e dᵀ.
