@@ -221,10 +221,11 @@ impl Table<'_> {
 
     /// The constants in the material's own axes, every group checked.
     pub fn constants(&self) -> Result<Constants> {
-        let elastic = self.elastic_constants()?;
+        let preset = self.preset()?;
+        let elastic = self.elastic_constants(preset)?;
         let c = elastic.stiffness();
-        let piezo = self.piezo_form()?;
-        let given = self.permittivity()?;
+        let piezo = self.piezo_form(preset)?;
+        let given = self.permittivity(preset)?;
         let (e, permittivity) = piezo.stress_charge(&c, &given);
         let smallest = voigt::smallest_eigenvalue(&permittivity)?;
         if smallest.is_nan() || smallest <= 0.0 {
@@ -241,7 +242,7 @@ impl Table<'_> {
     }
 
     /// The elastic group: young and poisson (Hencky's law), c or s.
-    fn elastic_constants(&self) -> Result<ElasticConstants> {
+    fn elastic_constants(&self, preset: Option<(Preset, UnitScale)>) -> Result<ElasticConstants> {
         let (k, m) = (&self.key, self.table);
         let isotropic = m.young.is_some() || m.poisson.is_some();
         let forms = [("young and poisson", isotropic), ("c", m.c.is_some()), ("s", m.s.is_some())];
@@ -249,7 +250,7 @@ impl Table<'_> {
         let at = self.locate("");
         match given.as_slice() {
             [] => {
-                if let Some((preset, scale)) = self.preset()? {
+                if let Some((preset, scale)) = preset {
                     let c = preset.stiffness.map(|row| row.map(|v| v * scale.stress()));
                     return Ok(ElasticConstants::Stiffness(Box::new(c)));
                 }
@@ -301,7 +302,7 @@ impl Table<'_> {
     }
 
     /// The piezoelectric group: the ceramic shorthand, e or d; none for a dielectric.
-    fn piezo_form(&self) -> Result<PiezoForm> {
+    fn piezo_form(&self, preset: Option<(Preset, UnitScale)>) -> Result<PiezoForm> {
         let (k, m) = (&self.key, self.table);
         let shorthand = [("e31", m.e31), ("e33", m.e33), ("e15", m.e15)];
         let any_shorthand = shorthand.iter().any(|s| s.1.is_some());
@@ -329,7 +330,7 @@ impl Table<'_> {
             return Ok(PiezoForm::Stress(PiezoConstants { e31, e33, e15 }.coupling()));
         }
         let scaled = |x: Coupling, f: f64| x.map(|row| row.map(|v| v * f));
-        Ok(match (&m.e, &m.d, self.preset()?) {
+        Ok(match (&m.e, &m.d, preset) {
             (Some(e), _, _) => PiezoForm::Stress(self.matrix("e", e)?),
             (_, Some(d), _) => PiezoForm::Strain(self.matrix("d", d)?),
             (None, None, Some((preset, scale))) => match preset.piezo {
@@ -343,17 +344,17 @@ impl Table<'_> {
 
     /// The dielectric group times ε0: beta11_rel and beta33_rel, or eps_rel (3 × 3 or its
     /// diagonal) [charge/(potential·length)].
-    fn permittivity(&self) -> Result<Matrix3> {
+    fn permittivity(&self, preset: Option<(Preset, UnitScale)>) -> Result<Matrix3> {
         let (k, m) = (&self.key, self.table);
         let shorthand = m.beta11_rel.is_some() || m.beta33_rel.is_some();
-        if let (None, false, Some((preset, scale))) = (&m.eps_rel, shorthand, self.preset()?) {
+        if let (None, false, Some((preset, scale))) = (&m.eps_rel, shorthand, preset) {
             // The preset's relative permittivity, times eps0 where given, else the vacuum's.
             let eps0 = m.eps0.unwrap_or(EPS0_SI * scale.permittivity());
             let [a, b, c] = preset.permittivity.map(|v| v * eps0);
             return Ok([[a, 0.0, 0.0], [0.0, b, 0.0], [0.0, 0.0, c]]);
         }
         // Beside a preset, whose units are known, eps0 defaults to the vacuum's.
-        let vacuum = self.preset()?.map(|(_, scale)| EPS0_SI * scale.permittivity());
+        let vacuum = preset.map(|(_, scale)| EPS0_SI * scale.permittivity());
         let eps0 = m.eps0.or(vacuum).ok_or_else(|| {
             input!(
                 "{}: {k}.eps0 is missing: the vacuum permittivity in the case's units (8.854e-12 F/m in SI)",

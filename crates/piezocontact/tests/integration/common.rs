@@ -10,7 +10,7 @@ use piezocontact::material::{
 use piezocontact::mesh::rectangle::{Diagonal, Rectangle, Segment};
 use piezocontact::mesh::{Mesh, gmsh};
 use piezocontact::problem::{BodyLoads, Boundary, Problem, constant_vector};
-use piezocontact::run::{ContactRun, PathRun, Run};
+use piezocontact::run::{ContactRun, PathRun, Run, StaticRun};
 use std::path::PathBuf;
 
 /// ε0 in the paper cases' units (m, GPa, C, GV): 8.885e−12 C/(V m) = 8.885e−3 C/(GV m).
@@ -223,4 +223,36 @@ pub fn arch_problem() -> Problem {
         ..Boundary::default()
     };
     Problem::new(mesh, pzt(2, ElasticLaw::Linear), boundary, BodyLoads::default()).unwrap()
+}
+
+/// Builds a case from its text (named "block.toml" in messages).
+pub fn build_text(text: &str) -> piezocontact::Result<Built> {
+    Case::from_text("block.toml".as_ref(), text, &[])?.build()
+}
+
+/// Solves a case without contact from its text.
+pub fn solve_static(text: &str) -> (Built, StaticRun) {
+    let built = build_text(text).unwrap();
+    match Run::solve(&built, default_solver(), &|_| {}).unwrap() {
+        Run::Static(run) => (built, run),
+        _ => panic!("not a run without contact"),
+    }
+}
+
+/// Asserts that u at every node is `expected(position)` (d components) to `tolerance`.
+pub fn assert_displacements(
+    built: &Built,
+    run: &StaticRun,
+    expected: impl Fn(&[f64]) -> Vec<f64>,
+    tolerance: f64,
+) {
+    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
+    let mesh = &built.problem.mesh;
+    for node in 0..mesh.n_nodes() {
+        let p = mesh.node(node);
+        for (k, want) in expected(p).iter().enumerate() {
+            let got = x[dofs.u(node, k)];
+            assert!((got - want).abs() < tolerance, "u_{k} at {p:?}: {got} vs {want}");
+        }
+    }
 }

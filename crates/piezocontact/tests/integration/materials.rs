@@ -6,7 +6,7 @@
 //! PZT-5A after Berlincourt, Curran & Jaffe (1964), in GPa, C/m², C/GN (= 10⁻⁹ C/N) and ε0:
 //! c^E, e, ε^S in the stress-charge form, s^E, d, ε^T in the strain-charge form.
 
-use super::common::{EPS0, mesh_file};
+use super::common::{EPS0, assert_displacements, build_text, mesh_file, solve_static};
 use piezocontact::case::{Built, Case};
 use piezocontact::linalg::default_solver;
 use piezocontact::material::voigt::{self, Coupling, Voigt};
@@ -103,39 +103,21 @@ f2 = {f2:?}
     )
 }
 
-fn build(text: &str) -> piezocontact::Result<Built> {
-    Case::from_text("block.toml".as_ref(), text, &[])?.build()
-}
-
-fn solve(text: &str) -> (Built, StaticRun) {
-    let built = build(text).unwrap();
-    match Run::solve(&built, default_solver(), &|_| {}).unwrap() {
-        Run::Static(run) => (built, run),
-        _ => panic!("not a run without contact"),
-    }
-}
-
 /// The nodal solution against u = (a x, a y, c z), ϕ = 0, to 1e-9 of the largest strain; the
 /// charges of the grounded bottom and top against ∓D_z A (the charge an electrode holds is
 /// −D·n, n the body's outward normal).
 fn assert_short_circuited(built: &Built, run: &StaticRun, (a, c): (f64, f64), d_z: f64) {
-    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
-    let mesh = &built.problem.mesh;
     let scale = a.abs().max(c.abs()) * 2.0;
+    assert_displacements(built, run, |p| vec![a * p[0], a * p[1], c * p[2]], 1e-9 * scale);
+    // ϕ vanishes to round-off on the scale D_z/β33 · height.
+    let mesh = &built.problem.mesh;
     for node in 0..mesh.n_nodes() {
-        let p = mesh.node(node);
-        let expected = [a * p[0], a * p[1], c * p[2]];
-        for k in 0..3 {
-            let got = x[dofs.u(node, k)];
-            assert!(
-                (got - expected[k]).abs() < 1e-9 * scale,
-                "u_{k} at {p:?}: {got} vs {}",
-                expected[k]
-            );
-        }
-        // ϕ vanishes to round-off on the scale D_z/β33 · height.
-        let phi = x[dofs.phi(node)];
-        assert!(phi.abs() < 1e-12 * d_z.abs() / (830.0 * EPS0), "ϕ at {p:?}: {phi}");
+        let phi = run.solution.x[run.solution.dofs.phi(node)];
+        assert!(
+            phi.abs() < 1e-12 * d_z.abs() / (830.0 * EPS0),
+            "ϕ at {:?}: {phi}",
+            mesh.node(node)
+        );
     }
     let charges = &run.reactions.charges;
     let q = d_z * AREA;
@@ -148,7 +130,7 @@ fn assert_short_circuited(built: &Built, run: &StaticRun, (a, c): (f64, f64), d_
 #[test]
 fn a_short_circuited_block_of_the_stiffness_form_takes_the_uniform_state() {
     let p = 0.5;
-    let (built, run) = solve(&block(&stress_charge(), p));
+    let (built, run) = solve_static(&block(&stress_charge(), p));
     let (c11, c12, c13, c33) = (C[0][0], C[0][1], C[0][2], C[2][2]);
     let c = -p / (c33 - 2.0 * c13 * c13 / (c11 + c12));
     let a = -c13 * c / (c11 + c12);
@@ -161,7 +143,7 @@ fn a_short_circuited_block_of_the_stiffness_form_takes_the_uniform_state() {
 #[test]
 fn a_short_circuited_block_of_the_compliance_form_has_the_strains_of_the_strain_charge_law() {
     let p = 0.5;
-    let (built, run) = solve(&block(&strain_charge(), p));
+    let (built, run) = solve_static(&block(&strain_charge(), p));
     let sigma_zz = -p;
     assert_short_circuited(
         &built,
@@ -177,30 +159,19 @@ fn a_short_circuited_block_of_the_compliance_form_has_the_strains_of_the_strain_
 fn a_block_poled_along_x_has_the_rotated_strains() {
     let p = 0.5;
     let material = format!("{}poling = [1.0, 0.0, 0.0]\n", strain_charge());
-    let (built, run) = solve(&block_pressed(&material, ["x0", "x1"], ("x1", [-p, 0.0, 0.0])));
+    let (built, run) =
+        solve_static(&block_pressed(&material, ["x0", "x1"], ("x1", [-p, 0.0, 0.0])));
     let sigma_xx = -p;
     let (a, c) = (S[2][2] * sigma_xx, S[0][2] * sigma_xx);
-    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
-    let mesh = &built.problem.mesh;
-    for node in 0..mesh.n_nodes() {
-        let q = mesh.node(node);
-        let expected = [a * q[0], c * q[1], c * q[2]];
-        for k in 0..3 {
-            let got = x[dofs.u(node, k)];
-            assert!(
-                (got - expected[k]).abs() < 1e-9 * a.abs(),
-                "u_{k} at {q:?}: {got} vs {}",
-                expected[k]
-            );
-        }
-    }
+    assert_displacements(&built, &run, |q| vec![a * q[0], c * q[1], c * q[2]], 1e-9 * a.abs());
     let d_x = D[2][2] * sigma_xx;
     let charges = &run.reactions.charges;
     assert!((charges[0] - d_x).abs() < 1e-9 * d_x.abs(), "x0: {} vs {d_x}", charges[0]);
     assert!((charges[1] + d_x).abs() < 1e-9 * d_x.abs(), "x1: {} vs {}", charges[1], -d_x);
     // The same material by Euler angles: the same axes, the same state.
     let material = format!("{}euler = [90.0, 90.0, 180.0]\n", strain_charge());
-    let (_, turned) = solve(&block_pressed(&material, ["x0", "x1"], ("x1", [-p, 0.0, 0.0])));
+    let (_, turned) = solve_static(&block_pressed(&material, ["x0", "x1"], ("x1", [-p, 0.0, 0.0])));
+    let x = &run.solution.x;
     let distance = x.iter().zip(&turned.solution.x).fold(0.0_f64, |m, (u, v)| m.max((u - v).abs()));
     assert!(distance < 1e-9 * a.abs(), "{distance:e}");
 }
@@ -295,8 +266,9 @@ fn bad_material_tables_are_errors_naming_the_key() {
         ),
     ];
     for (material, expected) in cases {
-        let e =
-            build(&block(&material, 0.5)).err().unwrap_or_else(|| panic!("accepted: {material}"));
+        let e = build_text(&block(&material, 0.5))
+            .err()
+            .unwrap_or_else(|| panic!("accepted: {material}"));
         let message = e.to_string();
         assert!(
             message.contains(expected) && message.contains("block.toml"),
@@ -311,20 +283,11 @@ fn bad_material_tables_are_errors_naming_the_key() {
 fn a_dielectric_block_carries_no_charge() {
     let p = 0.5;
     let material = format!("c = {}\neps0 = {EPS0}\neps_rel = [4.0, 4.0, 4.0]\n", rows(&C));
-    let (built, run) = solve(&block(&material, p));
+    let (built, run) = solve_static(&block(&material, p));
     let (c11, c12, c13, c33) = (C[0][0], C[0][1], C[0][2], C[2][2]);
     let c = -p / (c33 - 2.0 * c13 * c13 / (c11 + c12));
     let a = -c13 * c / (c11 + c12);
-    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
-    let mesh = &built.problem.mesh;
-    for node in 0..mesh.n_nodes() {
-        let q = mesh.node(node);
-        let got = [x[dofs.u(node, 0)], x[dofs.u(node, 2)]];
-        assert!(
-            (got[0] - a * q[0]).abs() < 1e-9 * c.abs()
-                && (got[1] - c * q[2]).abs() < 1e-9 * c.abs()
-        );
-    }
+    assert_displacements(&built, &run, |q| vec![a * q[0], a * q[1], c * q[2]], 1e-9 * c.abs());
     assert!(run.reactions.charges.iter().all(|q| q.abs() < 1e-12), "{:?}", run.reactions.charges);
 }
 
@@ -378,7 +341,7 @@ f2 = [0.0, 0.0, {f}]
         layer = stress_charge(),
         f = -p,
     );
-    let (built, run) = solve(&text);
+    let (built, run) = solve_static(&text);
     let counts = built.problem.materials.cell_counts(built.problem.mesh.n_cells());
     assert!(counts.iter().all(|&n| n > 0), "{counts:?}");
     // The substrate: c33 = λ + 2µ of the isotropic law.
@@ -441,7 +404,7 @@ fn bad_regions_are_errors_and_overrides_name_the_material() {
     ];
     for (text, expected) in cases {
         let message =
-            build(&text).err().unwrap_or_else(|| panic!("accepted: {expected}")).to_string();
+            build_text(&text).err().unwrap_or_else(|| panic!("accepted: {expected}")).to_string();
         assert!(message.contains(expected), "{expected}: {message}");
     }
     // Boxes beside a file's volume groups: a new name selects cells, a taken one is refused.
@@ -452,11 +415,11 @@ fn bad_regions_are_errors_and_overrides_name_the_material() {
             1,
         )
     };
-    let problem = build(&with_boxes("upper")).unwrap().problem;
+    let problem = build_text(&with_boxes("upper")).unwrap().problem;
     let counts = problem.materials.cell_counts(problem.mesh.n_cells());
     let layer = problem.mesh.regions().iter().find(|r| r.name == "layer").unwrap();
     assert_eq!(counts[1], layer.cells.len(), "{counts:?}");
-    let message = build(&with_boxes("layer")).err().unwrap().to_string();
+    let message = build_text(&with_boxes("layer")).err().unwrap().to_string();
     assert!(message.contains("has a region 'layer' already"), "{message}");
     let text = two("regions = [\"substrate\"]", "regions = [\"layer\"]");
     let case = |sets: &[&str]| {
@@ -483,11 +446,11 @@ fn bad_regions_are_errors_and_overrides_name_the_material() {
 #[test]
 fn a_preset_is_the_material_written_out() {
     let p = 0.5;
-    let (_, written) = solve(&block(&stress_charge(), p));
+    let (_, written) = solve_static(&block(&stress_charge(), p));
     // The preset converts by the case's unit labels: these numbers are in GPa and GV.
     let units = "[units]\nstress = \"GPa\"\npotential = \"GV\"\n[mesh]";
     let with_units = |material: &str| block(material, p).replace("[mesh]", units);
-    let (_, preset) = solve(&with_units(&format!("preset = \"PZT-5A\"\neps0 = {EPS0}\n")));
+    let (_, preset) = solve_static(&with_units(&format!("preset = \"PZT-5A\"\neps0 = {EPS0}\n")));
     let scale = written.solution.x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let distance = written
         .solution
@@ -497,21 +460,23 @@ fn a_preset_is_the_material_written_out() {
         .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
     assert!(distance < 1e-12 * scale, "{distance:e} of {scale:e}");
     // The elastic group replaced by an isotropic one: Hencky's law is then the default.
-    let built = build(&with_units("preset = \"PZT-5A\"\nyoung = 60.0\npoisson = 0.3\n")).unwrap();
+    let built =
+        build_text(&with_units("preset = \"PZT-5A\"\nyoung = 60.0\npoisson = 0.3\n")).unwrap();
     let material = built.problem.material(0);
     assert!(material.elasticity().is_some() && !material.is_linear());
     // Without eps0 the vacuum's, 8.854e-12 F/m, in C/(GV·m).
     let beta = built.problem.material(0).beta[2][2];
     assert!((beta - 830.0 * 8.854_187_812_8e-3).abs() < 1e-12 * beta, "{beta}");
     // A dielectric group beside a preset, without eps0: the vacuum's too.
-    let built = build(&with_units("preset = \"silicon\"\neps_rel = [4.0, 4.0, 4.0]\n")).unwrap();
+    let built =
+        build_text(&with_units("preset = \"silicon\"\neps_rel = [4.0, 4.0, 4.0]\n")).unwrap();
     let beta = built.problem.material(0).beta[0][0];
     assert!((beta - 4.0 * 8.854_187_812_8e-3).abs() < 1e-12 * beta, "{beta}");
-    let e = build(&block("preset = \"PZT-8\"\n", p)).err().unwrap().to_string();
+    let e = build_text(&block("preset = \"PZT-8\"\n", p)).err().unwrap().to_string();
     assert!(e.contains("no preset of the library") && e.contains("PZT-5A"), "{e}");
     let inches =
         block("preset = \"silicon\"\n", p).replace("[mesh]", "[units]\nlength = \"in\"\n[mesh]");
-    let e = build(&inches).err().unwrap().to_string();
+    let e = build_text(&inches).err().unwrap().to_string();
     assert!(e.contains("'in' is none piezocontact converts"), "{e}");
 }
 
@@ -551,25 +516,8 @@ f2 = [0.0, {f}]
 /// The 2D solution against u = (a x, b y), ϕ = 0, and the electrodes' charges per unit
 /// thickness against ±D_y times the width 2.
 fn assert_plane_state(run: &StaticRun, built: &Built, (a, b): (f64, f64), d_y: f64) {
-    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
-    let mesh = &built.problem.mesh;
     let scale = a.abs().max(b.abs());
-    for node in 0..mesh.n_nodes() {
-        let q = mesh.node(node);
-        let got = [x[dofs.u(node, 0)], x[dofs.u(node, 1)]];
-        assert!(
-            (got[0] - a * q[0]).abs() < 1e-9 * scale,
-            "u_x at {q:?}: {} vs {}",
-            got[0],
-            a * q[0]
-        );
-        assert!(
-            (got[1] - b * q[1]).abs() < 1e-9 * scale,
-            "u_y at {q:?}: {} vs {}",
-            got[1],
-            b * q[1]
-        );
-    }
+    assert_displacements(built, run, |q| vec![a * q[0], b * q[1]], 1e-9 * scale);
     let charges = &run.reactions.charges;
     let q = d_y * 2.0;
     assert!((charges[0] - q).abs() < 1e-9 * q.abs(), "bottom: {} vs {q}", charges[0]);
@@ -583,12 +531,12 @@ fn assert_plane_state(run: &StaticRun, built: &Built, (a, b): (f64, f64), d_y: f
 #[test]
 fn plane_strain_and_plane_stress_take_the_uniform_states_of_the_3d_law() {
     let p = 0.5;
-    let (built, run) = solve(&plane_block("strain", &stress_charge(), p));
+    let (built, run) = solve_static(&plane_block("strain", &stress_charge(), p));
     let (c11, c13, c33) = (C[0][0], C[0][2], C[2][2]);
     let b = -p * c11 / (c11 * c33 - c13 * c13);
     let a = -c13 * b / c11;
     assert_plane_state(&run, &built, (a, b), E[2][0] * a + E[2][2] * b);
-    let (built, run) = solve(&plane_block("stress", &strain_charge(), p));
+    let (built, run) = solve_static(&plane_block("stress", &strain_charge(), p));
     let sigma = -p;
     assert_plane_state(&run, &built, (S[0][2] * sigma, S[2][2] * sigma), D[2][2] * sigma);
     // summary.json says the model and that its forces and charges are per unit thickness.
@@ -603,19 +551,10 @@ fn plane_strain_and_plane_stress_take_the_uniform_states_of_the_3d_law() {
         .replace("grounded = [\"bottom\", \"top\"]", "grounded = [\"left\", \"right\"]")
         .replace("parts = [\"top\"]\nf2", "parts = [\"right\"]\nf2")
         .replace(&format!("f2 = [0.0, {}]", -p), &format!("f2 = [{}, 0.0]", -p));
-    let (built, run) = solve(&along_x);
+    let (built, run) = solve_static(&along_x);
     let a = -p * c11 / (c33 * c11 - c13 * c13);
     let b = -c13 * a / c11;
-    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
-    for node in 0..built.problem.mesh.n_nodes() {
-        let q = built.problem.mesh.node(node);
-        let got = [x[dofs.u(node, 0)], x[dofs.u(node, 1)]];
-        assert!(
-            (got[0] - a * q[0]).abs() < 1e-9 * a.abs()
-                && (got[1] - b * q[1]).abs() < 1e-9 * a.abs(),
-            "{got:?} at {q:?}"
-        );
-    }
+    assert_displacements(&built, &run, |q| vec![a * q[0], b * q[1]], 1e-9 * a.abs());
     let d_x = E[2][2] * a + E[2][0] * b;
     let charges = &run.reactions.charges;
     assert!(
@@ -637,7 +576,7 @@ fn plane_strain_and_plane_stress_take_the_uniform_states_of_the_3d_law() {
             "a vector of the plane",
         ),
     ] {
-        let e = build(&plane_block(plane, &material, p)).err().unwrap().to_string();
+        let e = build_text(&plane_block(plane, &material, p)).err().unwrap().to_string();
         assert!(e.contains(expected), "{plane}: {e}");
     }
 }
@@ -660,7 +599,7 @@ fn hencky_s_law_in_plane_strain_takes_the_3d_deviator() {
             "[[boundary.traction]]",
             &format!("[[boundary.support]]\nparts = [\"right\"]\nfix = [\"x\"]\ndisplacement = [{}]\n[[boundary.traction]]", -2.0 * delta),
         );
-    let (built, run) = solve(&text);
+    let (built, run) = solve_static(&text);
     let (k0, mu1) = (young / (3.0 - 6.0 * poisson), young / (2.0 + 2.0 * poisson));
     let g = |t: f64| if t <= t0 { mu1 } else { mu1 * (t0 / t) * (1.0 + (t / t0).ln()) };
     // ‖ε^D‖² and σ_yy with the deviator of dimension m (3: plane strain; 2: the continuum).
@@ -682,16 +621,5 @@ fn hencky_s_law_in_plane_strain_takes_the_3d_deviator() {
     assert!(t > t0 && t < std::f64::consts::E * t0, "t = {t} for t0 = {t0}");
     // The 2D continuum's deviator gives another b, far beyond the tolerance below.
     assert!((root(2.0) - b).abs() > 1e-3 * delta, "{} vs {b}", root(2.0));
-    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
-    for node in 0..built.problem.mesh.n_nodes() {
-        let q = built.problem.mesh.node(node);
-        let got = [x[dofs.u(node, 0)], x[dofs.u(node, 1)]];
-        assert!((got[0] + delta * q[0]).abs() < 1e-6 * delta, "u_x at {q:?}: {}", got[0]);
-        assert!(
-            (got[1] - b * q[1]).abs() < 1e-6 * delta,
-            "u_y at {q:?}: {} vs {}",
-            got[1],
-            b * q[1]
-        );
-    }
+    assert_displacements(&built, &run, |q| vec![-delta * q[0], b * q[1]], 1e-6 * delta);
 }

@@ -3,8 +3,8 @@
 //! (σ = k0 tr(ε) I + 2µ1 ε^D + Eᵀ∇ϕ, D = Eε − β∇ϕ), each support's reaction, and the errors
 //! of bad support tables.
 
-use super::common::{EPS0, mesh_file};
-use piezocontact::case::{Built, Case};
+use super::common::{EPS0, assert_displacements, build_text, mesh_file, solve_static};
+use piezocontact::case::Built;
 use piezocontact::linalg::default_solver;
 use piezocontact::run::{Run, StaticRun};
 
@@ -55,18 +55,6 @@ fix = ["z"]
     )
 }
 
-fn build(text: &str) -> piezocontact::Result<Built> {
-    Case::from_text("block.toml".as_ref(), text, &[])?.build()
-}
-
-fn solve(text: &str) -> (Built, StaticRun) {
-    let built = build(text).unwrap();
-    match Run::solve(&built, default_solver(), &|_| {}).unwrap() {
-        Run::Static(run) => (built, run),
-        _ => panic!("not a run without contact"),
-    }
-}
-
 /// k0 and µ1 of the block.
 fn moduli() -> (f64, f64) {
     (YOUNG / (3.0 - 6.0 * POISSON), YOUNG / (2.0 + 2.0 * POISSON))
@@ -75,21 +63,11 @@ fn moduli() -> (f64, f64) {
 /// The uniform state (ε_xx = ε_yy = a, ε_zz = c, ∂_zϕ = g) against the nodal solution: u =
 /// (a x, a y, c z), ϕ = g z, to `1e-9` of its largest value.
 fn assert_uniform(built: &Built, run: &StaticRun, (a, c, g): (f64, f64, f64)) {
-    let (dofs, x) = (&run.solution.dofs, &run.solution.x);
-    let mesh = &built.problem.mesh;
     let scale = a.abs().max(c.abs()) * 2.0;
+    assert_displacements(built, run, |p| vec![a * p[0], a * p[1], c * p[2]], 1e-9 * scale);
+    let mesh = &built.problem.mesh;
     for node in 0..mesh.n_nodes() {
-        let p = mesh.node(node);
-        let expected = [a * p[0], a * p[1], c * p[2]];
-        for k in 0..3 {
-            let got = x[dofs.u(node, k)];
-            assert!(
-                (got - expected[k]).abs() < 1e-9 * scale,
-                "u_{k} at {p:?}: {got} vs {}",
-                expected[k]
-            );
-        }
-        let phi = x[dofs.phi(node)];
+        let (p, phi) = (mesh.node(node), run.solution.x[run.solution.dofs.phi(node)]);
         assert!(
             (phi - g * p[2]).abs() < 1e-9 * g.abs().max(1e-300),
             "ϕ at {p:?}: {phi} vs {}",
@@ -114,7 +92,7 @@ fn a_block_on_rollers_under_a_pressure_takes_the_uniform_state() {
         [0.0; 3],
         &format!("[[boundary.traction]]\nparts = [\"top\"]\nf2 = [0.0, 0.0, {}]\n", -p),
     );
-    let (built, run) = solve(&text);
+    let (built, run) = solve_static(&text);
     let (k0, mu1) = moduli();
     let trace = -p / (3.0 * k0);
     let (a, c) = (trace / 3.0 + p / (6.0 * mu1), trace / 3.0 - p / (3.0 * mu1));
@@ -137,7 +115,7 @@ fn a_block_compressed_by_a_prescribed_displacement_takes_the_uniform_state() {
         "[[boundary.support]]\nname = \"press\"\nparts = [\"top\"]\nfix = [\"z\"]\ndisplacement = [{}]\n",
         -delta
     );
-    let (built, run) = solve(&block([0.0; 3], &top));
+    let (built, run) = solve_static(&block([0.0; 3], &top));
     let (k0, mu1) = moduli();
     let c = -delta;
     let a = c * (2.0 * mu1 / 3.0 - k0) / (2.0 * k0 + 2.0 * mu1 / 3.0);
@@ -160,7 +138,7 @@ fn a_piezoelectric_block_on_rollers_takes_the_uniform_state_with_no_charge_on_to
         [e31, e33, 12.3],
         &format!("[[boundary.traction]]\nparts = [\"top\"]\nf2 = [0.0, 0.0, {}]\n", -p),
     );
-    let (built, run) = solve(&text);
+    let (built, run) = solve_static(&text);
     let (k0, mu1) = moduli();
     let beta33 = 830.0 * EPS0;
     // Rows: σ_xx, σ_zz, D_z; columns: a, c, g.
@@ -191,7 +169,7 @@ fn a_piezoelectric_block_on_rollers_takes_the_uniform_state_with_no_charge_on_to
 /// refused with its free motions named; a support on a Γ3 node is refused naming the node.
 #[test]
 fn bad_supports_are_errors_naming_the_key() {
-    let error = |extra: &str| build(&block([0.0; 3], extra)).err().expect(extra).to_string();
+    let error = |extra: &str| build_text(&block([0.0; 3], extra)).err().expect(extra).to_string();
     let table = |body: &str| format!("[[boundary.support]]\n{body}\n");
     let cases = [
         (table("parts = [\"top\"]\nfix = []"), "fix is empty"),
@@ -229,12 +207,12 @@ fn bad_supports_are_errors_naming_the_key() {
     let x_roller = "[[boundary.support]]\nparts = [\"x0\"]\nfix = [\"x\"]\n";
     let y_roller = "[[boundary.support]]\nparts = [\"y0\"]\nfix = [\"y\"]\n";
     let text = block([0.0; 3], "").replace(x_roller, "");
-    let e = build(&text).err().unwrap().to_string();
+    let e = build_text(&text).err().unwrap().to_string();
     assert!(e.contains("the body can translate along x: its clamps and supports"), "{e}");
-    let e = build(&text.replace(y_roller, "")).err().unwrap().to_string();
+    let e = build_text(&text.replace(y_roller, "")).err().unwrap().to_string();
     let free = "the body can translate along x, translate along y and rotate about z:";
     assert!(e.contains(free), "{e}");
-    let e = build(
+    let e = build_text(
         &block([0.0; 3], "[contact]\ngap = 0.1\n")
             .replace("grounded = [\"bottom\"]", "grounded = [\"bottom\"]\ncontact = [\"top\"]"),
     )
@@ -254,7 +232,7 @@ fn a_path_without_contact_scales_the_prescribed_displacements() {
         "[[boundary.support]]\nname = \"press\"\nparts = [\"top\"]\nfix = [\"z\"]\ndisplacement = [{}]\n[loading]\nload_factors = [0.5, 2.0]\n",
         -delta
     );
-    let built = build(&block([0.0; 3], &extra)).unwrap();
+    let built = build_text(&block([0.0; 3], &extra)).unwrap();
     let Run::StaticPath(path) = Run::solve(&built, default_solver(), &|_| {}).unwrap() else {
         panic!("not a path without contact");
     };
@@ -287,7 +265,7 @@ fn a_path_reports_each_support_s_reaction() {
         "[[boundary.traction]]\nparts = [\"top\"]\nf2 = [0.0, 0.0, {}]\n[loading]\nload_factors = [1.0, 3.0]\n",
         -p
     );
-    let built = build(&block([0.0; 3], &extra)).unwrap();
+    let built = build_text(&block([0.0; 3], &extra)).unwrap();
     let run = Run::solve(&built, default_solver(), &|_| {}).unwrap();
     let columns = run.curve(&built);
     let column = |name: &str| match &columns.iter().find(|(n, _)| n == name).expect(name).1 {
@@ -345,7 +323,7 @@ f2 = ["-{m_over_i} * y", 0.0, 0.0]
 "#,
         mesh = mesh_file(mesh).display()
     );
-    let (built, run) = solve(&text);
+    let (built, run) = solve_static(&text);
     let (problem, dofs, x) = (&built.problem, &run.solution.dofs, &run.solution.x);
     let exact = |p: &[f64]| {
         let (x, y, z) = (p[0], p[1], p[2]);
@@ -479,13 +457,13 @@ c_nu = 100.0
     let sigma_nu = |run: &piezocontact::run::ContactRun| -> Vec<f64> {
         run.rows.iter().map(|r| r.sigma_nu).collect()
     };
-    let path = build(&case(-0.004, "[loading]\nload_factors = [0.5, 1.0]\n")).unwrap();
+    let path = build_text(&case(-0.004, "[loading]\nload_factors = [0.5, 1.0]\n")).unwrap();
     let Run::Path(path) = Run::solve(&path, default_solver(), &|_| {}).unwrap() else {
         panic!("not a contact path");
     };
     assert!(path.converged(), "{:?}", path.failure);
     for (k, displacement) in [-0.002, -0.004].into_iter().enumerate() {
-        let single = super::common::contact_run(&build(&case(displacement, "")).unwrap());
+        let single = super::common::contact_run(&build_text(&case(displacement, "")).unwrap());
         let expected = sigma_nu(&single);
         let got: Vec<f64> = path.rows(k).iter().map(|r| r.sigma_nu).collect();
         let scale = expected.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
