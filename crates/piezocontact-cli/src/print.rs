@@ -312,7 +312,7 @@ fn supports(built: &Built) {
     for support in &problem.boundary.supports {
         let parts: Vec<&str> =
             support.parts.iter().map(|&p| problem.mesh.parts()[p].name.as_str()).collect();
-        let fixed: Vec<&str> = support.fixed.iter().map(|(c, _)| ["x", "y", "z"][*c]).collect();
+        let fixed: Vec<&str> = support.fixed.iter().map(|(d, _)| d.name()).collect();
         say!(
             "  support {:<12} parts {}, fixes {} on {} nodes",
             support.name,

@@ -4,6 +4,11 @@
 //! `n_nodes·d + a`. Dirichlet rows (u on Γ1, ϕ on Γa) are eliminated: the free unknowns are
 //! renumbered with every free u before every free ϕ, so the matrix is `[K_uu G; Gᵀ −K_ϕϕ]`
 //! and the LDLᵀ pivot signs are +1 then −1.
+//!
+//! At a node with a turned frame ([`crate::frames`]: a roller on a face of any orientation)
+//! the d u unknowns are the components in that frame, ũ = R u (R's rows the frame's unit
+//! vectors); global vectors outside the system (x, forces) are in mesh components, and
+//! [`DofMap::expand`] and [`DofMap::to_frames`] turn them.
 
 use crate::error::Result;
 use crate::problem::Problem;
@@ -28,9 +33,13 @@ pub struct DofMap {
     /// `prescribed` holds the multiple a loading path's step asks for
     /// ([`DofMap::scale_displacements`]); empty when they are all 0.
     displacements: Vec<f64>,
-    /// Per u DOF, the clamp or support that fixes it ([`crate::problem::FixedComponent`]'s
+    /// Per u DOF, the clamp or support that fixes it ([`crate::frames::NodeFrame`]'s
     /// table), [`NO_TABLE`] where free.
     table: Vec<usize>,
+    /// The turned frames (rows R in mesh components), by node.
+    frames: Vec<(usize, [[f64; 3]; 3])>,
+    /// Per node, its index in `frames` ([`NO_TABLE`] for the mesh axes); empty without frames.
+    frame_of: Vec<usize>,
 }
 
 impl DofMap {
@@ -42,9 +51,18 @@ impl DofMap {
         let mut prescribed = vec![0.0; total];
         let mut constrained = vec![false; total];
         let mut table = vec![NO_TABLE; n_nodes * dim];
+        let mut frames = Vec::new();
         for f in problem.fixed_displacements()? {
-            let g = f.node * dim + f.component;
-            (constrained[g], prescribed[g], table[g]) = (true, f.value, f.table);
+            for &(i, value, t) in &f.fixed {
+                let g = f.node * dim + i;
+                (constrained[g], prescribed[g], table[g]) = (true, value, t);
+            }
+            frames.extend(f.rows.map(|rows| (f.node, rows)));
+        }
+        let mut frame_of = Vec::new();
+        if !frames.is_empty() {
+            frame_of = vec![NO_TABLE; n_nodes];
+            frames.iter().enumerate().for_each(|(k, (node, _))| frame_of[*node] = k);
         }
         for node in problem.part_nodes(&problem.boundary.grounded) {
             constrained[n_nodes * dim + node] = true;
@@ -65,7 +83,74 @@ impl DofMap {
         }
         let nonzero = prescribed[..n_nodes * dim].iter().any(|v| *v != 0.0);
         let displacements = if nonzero { prescribed[..n_nodes * dim].to_vec() } else { Vec::new() };
-        Ok(Self { dim, n_nodes, free, n_free_u, n_free: next, prescribed, displacements, table })
+        let n_free = next;
+        Ok(Self {
+            dim,
+            n_nodes,
+            free,
+            n_free_u,
+            n_free,
+            prescribed,
+            displacements,
+            table,
+            frames,
+            frame_of,
+        })
+    }
+
+    /// The turned frame of `node` (rows R: its unit vectors in mesh components), `None` for
+    /// the mesh axes.
+    pub fn frame(&self, node: usize) -> Option<&[[f64; 3]; 3]> {
+        match self.frame_of.get(node) {
+            Some(&k) if k != NO_TABLE => Some(&self.frames[k].1),
+            _ => None,
+        }
+    }
+
+    /// The unit vector of u component `i` at `node` in mesh components (3 entries).
+    pub fn direction(&self, node: usize, i: usize) -> [f64; 3] {
+        self.frame(node).map_or_else(|| crate::frames::axis(i), |rows| rows[i])
+    }
+
+    /// Whether some node has a turned frame.
+    pub fn has_frames(&self) -> bool {
+        !self.frames.is_empty()
+    }
+
+    /// Turns the u entries of a global vector (displacements or forces) from mesh
+    /// components to the nodes' frames: ũ = R u.
+    pub fn to_frames(&self, global: &mut [f64]) {
+        self.turn(global, false);
+    }
+
+    /// Turns the u entries of a global vector from the nodes' frames to mesh components:
+    /// u = Rᵀ ũ.
+    pub fn to_mesh(&self, global: &mut [f64]) {
+        self.turn(global, true);
+    }
+
+    /// Turns the u entries of a vector of row scales (sizes of the terms of each row) to the
+    /// nodes' frames: Σ_j |R_ij| s_j bounds the terms of row i of the turned rows.
+    pub fn frame_bound(&self, scale: &mut [f64]) {
+        let d = self.dim;
+        for (node, rows) in &self.frames {
+            let v = &mut scale[node * d..node * d + d];
+            let out: [f64; 3] =
+                std::array::from_fn(|i| (0..d).map(|j| rows[i][j].abs() * v[j]).sum());
+            v.copy_from_slice(&out[..d]);
+        }
+    }
+
+    fn turn(&self, global: &mut [f64], transposed: bool) {
+        let d = self.dim;
+        for (node, rows) in &self.frames {
+            let v = &mut global[node * d..node * d + d];
+            let mut out = [0.0; 3];
+            for (i, o) in out.iter_mut().enumerate().take(d) {
+                *o = (0..d).map(|j| if transposed { rows[j][i] } else { rows[i][j] } * v[j]).sum();
+            }
+            v.copy_from_slice(&out[..d]);
+        }
     }
 
     /// The free unknowns of each node (u components and ϕ).
@@ -120,7 +205,7 @@ impl DofMap {
         self.free[g]
     }
 
-    /// Prescribed value of global DOF `g` (0 for a free DOF).
+    /// Prescribed value of global DOF `g` (0 for a free DOF), a u DOF's in its node's frame.
     pub fn prescribed(&self, g: usize) -> f64 {
         self.prescribed[g]
     }
@@ -143,13 +228,15 @@ impl DofMap {
         (0..self.n_free).map(|k| if k < self.n_free_u { 1 } else { -1 }).collect()
     }
 
-    /// The full global vector from free values and prescribed values.
+    /// The full global vector (in mesh components) from free values and prescribed values.
     pub fn expand(&self, free_values: &[f64]) -> Vec<f64> {
-        (0..self.n_total())
+        let mut global: Vec<f64> = (0..self.n_total())
             .map(|g| match self.free[g] {
                 CONSTRAINED => self.prescribed[g],
                 k => free_values[k],
             })
-            .collect()
+            .collect();
+        self.to_mesh(&mut global);
+        global
     }
 }

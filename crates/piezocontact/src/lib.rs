@@ -124,6 +124,7 @@ pub mod contact;
 pub mod dofs;
 pub mod element;
 pub mod error;
+pub mod frames;
 pub mod interrupt;
 pub mod limits;
 pub mod linalg;

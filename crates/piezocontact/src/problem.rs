@@ -2,8 +2,10 @@
 //! roles and loads. [`Problem::new`] checks the roles once.
 
 use crate::error::{Error, Result};
+use crate::frames::{FixedDirection, NodeFrame, SAME_DIRECTION_DEGREES, axis, node_frame};
 use crate::material::{Material, Materials};
 use crate::mesh::Mesh;
+use crate::mesh::normals::node_normals;
 use crate::mesh::rigid::{free_rigid_motions, motions_sentence};
 use std::sync::Arc;
 
@@ -30,22 +32,28 @@ pub struct Support {
     pub name: String,
     /// The boundary parts it holds.
     pub parts: Vec<usize>,
-    /// The fixed components (0 = x, 1 = y, 2 = z), each with its prescribed displacement
-    /// u_i(x) \[length\].
-    pub fixed: Vec<(usize, ScalarField)>,
+    /// The fixed directions, each with its prescribed displacement u·n(x) \[length\].
+    pub fixed: Vec<(Direction, ScalarField)>,
 }
 
-/// A fixed displacement component of a node.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FixedComponent {
-    /// The node.
-    pub node: usize,
-    /// The component (0 = x, 1 = y, 2 = z).
-    pub component: usize,
-    /// Its prescribed value \[length\].
-    pub value: f64,
-    /// The table it belongs to, for its reaction: an index into [`Problem::support_names`].
-    pub table: usize,
+/// A direction a support fixes u along.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    /// A mesh axis (0 = x, 1 = y, 2 = z).
+    Axis(usize),
+    /// The outward normal of the support's parts at each node (a roller on a face of any
+    /// orientation, [`crate::frames`]).
+    Normal,
+}
+
+impl Direction {
+    /// Its name in a case: "x", "y", "z" or "normal".
+    pub fn name(&self) -> &'static str {
+        match self {
+            Direction::Axis(i) => ["x", "y", "z"][*i],
+            Direction::Normal => "normal",
+        }
+    }
 }
 
 /// Boundary roles of \[P\] (2.4), each a list of mesh part indices. Parts with no role are
@@ -268,51 +276,78 @@ impl Problem {
         }
     }
 
-    /// Every fixed displacement component, each once: the clamp's (every component of its
-    /// nodes) first, then the supports' in order; a component fixed again keeps its first
-    /// table. The same component fixed to two values is an error naming the node.
-    pub fn fixed_displacements(&self) -> Result<Vec<FixedComponent>> {
+    /// The fixed components of every held node in its frame ([`crate::frames`]), ascending
+    /// by node: the clamp's directions (every axis of its nodes) first, then the supports'
+    /// in order; a component fixed again keeps its first table. The same component fixed to
+    /// two values, or a "normal" support on a part that turns at a node by more than
+    /// [`SAME_DIRECTION_DEGREES`], is an error naming the node.
+    pub fn fixed_displacements(&self) -> Result<Vec<NodeFrame>> {
+        let mut entries = self.fixed_directions()?;
+        entries.sort_by_key(|e| e.node);
+        let names = self.support_names();
+        let dim = self.mesh.dim();
+        entries.chunk_by(|a, b| a.node == b.node).map(|at| node_frame(dim, at, &names)).collect()
+    }
+
+    /// Every direction the clamp and the supports fix, in table order.
+    fn fixed_directions(&self) -> Result<Vec<FixedDirection>> {
         let (mesh, b) = (&self.mesh, &self.boundary);
-        let dim = mesh.dim();
-        let mut first: Vec<Option<usize>> = vec![None; mesh.n_nodes() * dim];
-        let mut fixed: Vec<FixedComponent> = Vec::new();
-        let clamp_value = |node: usize| b.clamped_value.as_ref().map(|f| f(mesh.node(node)));
-        let mut clamp = Vec::new();
+        let mut entries = Vec::new();
         for node in self.part_nodes(&b.clamped) {
-            let value = clamp_value(node);
-            clamp.extend((0..dim).map(|i| (node, i, value.as_ref().map_or(0.0, |v| v[i]))));
-        }
-        let tables =
-            std::iter::once((clamp, 0)).chain(b.supports.iter().enumerate().map(|(k, s)| {
-                let entries = self
-                    .part_nodes(&s.parts)
-                    .into_iter()
-                    .flat_map(|node| {
-                        s.fixed.iter().map(move |(i, f)| (node, *i, f(mesh.node(node))))
-                    })
-                    .collect::<Vec<_>>();
-                (entries, k + self.clamp_tables())
+            let value = b.clamped_value.as_ref().map(|f| f(mesh.node(node)));
+            entries.extend((0..mesh.dim()).map(|i| FixedDirection {
+                node,
+                direction: axis(i),
+                value: value.as_ref().map_or(0.0, |v| v[i]),
+                table: 0,
             }));
-        for (entries, table) in tables {
-            for (node, component, value) in entries {
-                let slot = node * dim + component;
-                match first[slot] {
-                    None => {
-                        first[slot] = Some(fixed.len());
-                        fixed.push(FixedComponent { node, component, value, table });
-                    }
-                    Some(k) => check_same_value(&fixed[k], (value, table), &self.support_names())?,
+        }
+        for (k, support) in b.supports.iter().enumerate() {
+            let table = k + self.clamp_tables();
+            let normals = match support.fixed.iter().any(|(d, _)| *d == Direction::Normal) {
+                true => self.support_normals(support)?,
+                false => Vec::new(),
+            };
+            for (j, node) in self.part_nodes(&support.parts).into_iter().enumerate() {
+                for (direction, field) in &support.fixed {
+                    let direction = match direction {
+                        Direction::Axis(i) => axis(*i),
+                        Direction::Normal => normals[j].1,
+                    };
+                    entries.push(FixedDirection {
+                        node,
+                        direction,
+                        value: field(mesh.node(node)),
+                        table,
+                    });
                 }
             }
         }
-        Ok(fixed)
+        Ok(entries)
+    }
+
+    /// The outward normal of a support's parts at each of their nodes (in
+    /// [`Problem::part_nodes`] order), or an error naming a node where the parts turn.
+    fn support_normals(&self, support: &Support) -> Result<Vec<(usize, [f64; 3])>> {
+        node_normals(&self.mesh, &support.parts, SAME_DIRECTION_DEGREES).map_err(|corner| {
+            Error::Input(format!(
+                "the support '{}' fixes the normal component, but its parts turn by {:.3}° at node {} at {:?} (an edge or a corner, where the normal is not one direction): split the parts there into faces of their own, each with its own support, or fix components along the axes",
+                support.name,
+                corner.degrees,
+                corner.node,
+                self.mesh.node(corner.node)
+            ))
+        })
     }
 
     /// Refuses a body that its clamps and supports leave free to move rigidly, naming the
     /// free motions (per piece when the mesh has several).
     fn check_rigid_motions(&self) -> Result<()> {
-        let fixed: Vec<(usize, usize)> =
-            self.fixed_displacements()?.iter().map(|f| (f.node, f.component)).collect();
+        let fixed: Vec<(usize, [f64; 3])> = self
+            .fixed_displacements()?
+            .iter()
+            .flat_map(|f| f.fixed.iter().map(|&(i, ..)| (f.node, f.direction(i))))
+            .collect();
         let pieces = self.mesh.pieces();
         let free = free_rigid_motions(&self.mesh, &pieces, &fixed)?;
         let Some((piece, motions)) = free.first() else { return Ok(()) };
@@ -348,22 +383,4 @@ impl Problem {
     pub fn part_nodes(&self, parts: &[usize]) -> Vec<usize> {
         self.mesh.part_nodes(parts)
     }
-}
-
-/// Refuses `value` from table `table` for a component that `first` fixes already, unless it
-/// is the same value (to 1e-12 relative); `names` are the tables' names.
-fn check_same_value(
-    first: &FixedComponent,
-    (value, table): (f64, usize),
-    names: &[String],
-) -> Result<()> {
-    let scale = first.value.abs().max(value.abs());
-    if (first.value - value).abs() <= 1e-12 * scale {
-        return Ok(());
-    }
-    let axis = ["x", "y", "z"][first.component];
-    Err(Error::Input(format!(
-        "node {} has its displacement along {axis} fixed to {} by '{}' and to {value} by '{}': give both the same value there, or hold the node by one of them",
-        first.node, first.value, names[first.table], names[table]
-    )))
 }

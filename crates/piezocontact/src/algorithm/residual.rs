@@ -101,15 +101,19 @@ pub fn assess(
         imbalance: 0.0,
         charges: Vec::new(),
     };
+    for gdof in 0..dim * problem.mesh.n_nodes() {
+        balance.applied[gdof % dim] += f_ext[gdof];
+        balance.contact[gdof % dim] += contact_force[gdof];
+    }
+    let mut row_scale: Vec<f64> =
+        (0..dofs.n_total()).map(|g| scale[g] + f_ext[g].abs() + contact_force[g].abs()).collect();
+    let mut residual: Vec<f64> =
+        (0..dofs.n_total()).map(|g| f_int[g] - f_ext[g] - contact_force[g]).collect();
+    dofs.to_frames(&mut residual);
+    dofs.frame_bound(&mut row_scale);
     for gdof in 0..dofs.n_total() {
-        let residual = f_int[gdof] - f_ext[gdof] - contact_force[gdof];
-        let row_scale = scale[gdof] + f_ext[gdof].abs() + contact_force[gdof].abs();
+        let (residual, row_scale) = (residual[gdof], row_scale[gdof]);
         let is_u = gdof < dim * problem.mesh.n_nodes();
-        if is_u {
-            let c = gdof % dim;
-            balance.applied[c] += f_ext[gdof];
-            balance.contact[c] += contact_force[gdof];
-        }
         match (dofs.free_index(gdof) == CONSTRAINED, is_u) {
             (true, _) => {}
             (false, true) => {
@@ -197,11 +201,15 @@ pub fn reactions(
     let mut total = vec![0.0; dim];
     let mut supports = vec![vec![0.0; dim]; problem.n_support_tables()];
     let mut phi_reaction = vec![0.0; n];
+    let mut force: Vec<f64> = f_int[..dim * n].iter().zip(f_ext).map(|(i, e)| i - e).collect();
+    dofs.to_frames(&mut force);
     for gdof in (0..dofs.n_total()).filter(|&g| dofs.free_index(g) == CONSTRAINED) {
         if gdof < dim * n {
-            let reaction = f_int[gdof] - f_ext[gdof];
-            total[gdof % dim] += reaction;
-            supports[dofs.support_table(gdof)][gdof % dim] += reaction;
+            let direction = dofs.direction(gdof / dim, gdof % dim);
+            for (c, n_c) in direction.iter().enumerate().take(dim).filter(|(_, n)| **n != 0.0) {
+                total[c] += force[gdof] * n_c;
+                supports[dofs.support_table(gdof)][c] += force[gdof] * n_c;
+            }
         } else {
             phi_reaction[gdof - dim * n] = f_int[gdof] - f_ext[gdof] - contact_force[gdof];
         }

@@ -222,8 +222,19 @@ impl Assembler {
         Ok((self.pattern.matrix(values)?, lifting))
     }
 
-    /// The entries of a global vector at the free DOFs.
+    /// The entries of a global vector (in mesh components) at the free DOFs, in the nodes'
+    /// frames.
     pub fn restrict(&self, global: &[f64]) -> Vec<f64> {
+        let turned;
+        let global = match self.dofs.has_frames() {
+            true => {
+                let mut v = global.to_vec();
+                self.dofs.to_frames(&mut v);
+                turned = v;
+                &turned
+            }
+            false => global,
+        };
         let mut free = vec![0.0; self.dofs.n_free()];
         for (dof, v) in global.iter().enumerate() {
             let k = self.dofs.free_index(dof);
@@ -441,9 +452,12 @@ fn add_cell<const D: usize, const N: usize>(
 ) -> Result<()> {
     let s = simplex::<D, N>(problem, cell.c)?;
     let mut k = element_matrix(problem.material(cell.c), &s, cell.modulus);
-    let global = local_dofs::<D, N>(dofs, problem.mesh.cell(cell.c));
+    let nodes = problem.mesh.cell(cell.c);
+    turn_element::<D, N>(dofs, nodes, &mut k);
+    let global = local_dofs::<D, N>(dofs, nodes);
     if let Some(&(beta, deviator)) = cell.tangent.filter(|(beta, _)| *beta != 0.0) {
-        let a = tangent_vector::<D, N>(&s, &deviator);
+        let mut a = tangent_vector::<D, N>(&s, &deviator);
+        turn_vector::<D, N>(dofs, nodes, &mut a);
         let t: f64 = deviator.iter().flatten().map(|v| v * v).sum();
         let lifting_start = sums.len() - dofs.n_free();
         for p in 0..N * D {
@@ -462,6 +476,46 @@ fn add_cell<const D: usize, const N: usize>(
         add(&sums[slot as usize], value);
     }
     Ok(())
+}
+
+/// Turns an element matrix to the frames of its nodes ([`DofMap::frame`]): Tᵀ K T, with T
+/// block diagonal (Rᵀ on the u block of a node with a turned frame, 1 elsewhere).
+fn turn_element<const D: usize, const N: usize>(
+    dofs: &DofMap,
+    nodes: &[usize],
+    k: &mut kernel::ElementMatrix,
+) {
+    if !dofs.has_frames() {
+        return;
+    }
+    for (a, rows) in nodes.iter().enumerate().filter_map(|(a, &n)| Some((a, dofs.frame(n)?))) {
+        for q in 0..N * (D + 1) {
+            let turned: [f64; 3] =
+                std::array::from_fn(|i| (0..D).map(|j| rows[i][j] * k[a * D + j][q]).sum());
+            (0..D).for_each(|i| k[a * D + i][q] = turned[i]);
+        }
+        for row in k.iter_mut().take(N * (D + 1)) {
+            let turned: [f64; 3] =
+                std::array::from_fn(|i| (0..D).map(|j| rows[i][j] * row[a * D + j]).sum());
+            (0..D).for_each(|i| row[a * D + i] = turned[i]);
+        }
+    }
+}
+
+/// Turns the u entries of an element vector to the frames of its nodes: Tᵀ a.
+fn turn_vector<const D: usize, const N: usize>(
+    dofs: &DofMap,
+    nodes: &[usize],
+    v: &mut [f64; kernel::M_MAX],
+) {
+    if !dofs.has_frames() {
+        return;
+    }
+    for (a, rows) in nodes.iter().enumerate().filter_map(|(a, &n)| Some((a, dofs.frame(n)?))) {
+        let turned: [f64; 3] =
+            std::array::from_fn(|i| (0..D).map(|j| rows[i][j] * v[a * D + j]).sum());
+        (0..D).for_each(|i| v[a * D + i] = turned[i]);
+    }
 }
 
 /// The local pairs (p, q) of an element with `m` DOFs `global` whose row is free, with their

@@ -19,7 +19,7 @@ use crate::material::plane::Plane;
 use crate::mesh::rectangle::{Diagonal, Rectangle, Segment, SegmentParts};
 use crate::mesh::{Mesh, gmsh};
 use crate::problem::{
-    BodyLoads, Boundary, Problem, ScalarField, Support, VectorField, constant_scalar,
+    BodyLoads, Boundary, Direction, Problem, ScalarField, Support, VectorField, constant_scalar,
     constant_vector,
 };
 use std::path::Path;
@@ -493,28 +493,32 @@ impl Case {
     }
 }
 
-/// The fixed components of a support table, `fix` (names of axes) with their `displacement`
-/// (default 0), in a d-dimensional mesh; `at` locates the table in errors.
+/// The fixed directions of a support table, `fix` (names of axes, or "normal") with their
+/// `displacement` (default 0), in a d-dimensional mesh; `at` locates the table in errors.
 fn support_components<'a>(
     at: &str,
     (fix, displacement): (&[String], Option<&'a [Quantity]>),
     dim: usize,
-) -> Result<Vec<(usize, Option<&'a Quantity>)>> {
+) -> Result<Vec<(Direction, Option<&'a Quantity>)>> {
     if fix.is_empty() {
         return Err(input!("{at}: fix is empty: name the components it fixes, e.g. fix = [\"z\"]"));
     }
     let axes = &["x", "y", "z"][..dim];
     let mut components = Vec::new();
     for name in fix {
-        let Some(c) = axes.iter().position(|a| a == name) else {
-            return Err(input!(
-                "{at}: fix names '{name}', which is no component of the {dim}D mesh's displacement: use {axes:?}"
-            ));
+        let direction = match axes.iter().position(|a| a == name) {
+            Some(c) => Direction::Axis(c),
+            None if name == "normal" => Direction::Normal,
+            None => {
+                return Err(input!(
+                    "{at}: fix names '{name}', which is no component of the {dim}D mesh's displacement: use {axes:?} or \"normal\" (the outward normal of the parts)"
+                ));
+            }
         };
-        if components.contains(&c) {
+        if components.contains(&direction) {
             return Err(input!("{at}: fix names '{name}' twice: name each component once"));
         }
-        components.push(c);
+        components.push(direction);
     }
     match displacement {
         None => Ok(components.into_iter().map(|c| (c, None)).collect()),
@@ -531,10 +535,10 @@ fn support_components<'a>(
 /// checked at `points`; `at` locates the table in errors.
 fn displacement_fields(
     at: &str,
-    fixed: Vec<(usize, Option<&Quantity>)>,
+    fixed: Vec<(Direction, Option<&Quantity>)>,
     dim: usize,
     points: &[&[f64]],
-) -> Result<Vec<(usize, ScalarField)>> {
+) -> Result<Vec<(Direction, ScalarField)>> {
     let zero = Quantity::Number(0.0);
     fixed
         .into_iter()

@@ -342,7 +342,8 @@ pub struct SupportTable {
     pub name: Option<String>,
     /// Boundary parts it holds.
     pub parts: Vec<String>,
-    /// The fixed components: "x", "y", "z".
+    /// The fixed components: "x", "y", "z", or "normal" (the outward normal of the parts at
+    /// each node: a roller on a face of any orientation).
     pub fix: Vec<String>,
     /// The prescribed displacement of each entry of `fix` \[length\], each a number or an
     /// expression of x, y, z; default 0.

@@ -11,6 +11,7 @@
 //! every part facet a facet of exactly one cell.
 
 pub mod gmsh;
+pub mod normals;
 pub mod rectangle;
 pub mod rigid;
 

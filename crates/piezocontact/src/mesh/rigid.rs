@@ -10,21 +10,25 @@ use crate::linalg::null_space;
 /// free: the fixed components do not hold it.
 const FREE: f64 = 1e-10;
 
-/// The rigid motions left free on each piece of the mesh by the fixed components `fixed`
-/// ((node, component) pairs), in words ("translate along y", "rotate about z", or a
+/// The rigid motions left free on each piece of the mesh by the fixed directions `fixed`
+/// ((node, unit direction) pairs, 3 components), in words ("translate along y", "rotate about z", or a
 /// combined motion with its axis): one entry (piece, motions) per piece that is not held.
 pub fn free_rigid_motions(
     mesh: &Mesh,
     pieces: &Pieces,
-    fixed: &[(usize, usize)],
+    fixed: &[(usize, [f64; 3])],
 ) -> Result<Vec<(usize, Vec<String>)>> {
     let dim = mesh.dim();
     let m = if dim == 2 { 3 } else { 6 };
     let n_pieces = pieces.cells.len();
     let mut gram = vec![vec![0.0; m * m]; n_pieces];
-    for &(node, component) in fixed {
+    for &(node, direction) in fixed {
         let piece = pieces.of_node[node];
-        let row = mode_components(mesh, pieces, node, component);
+        let mut row = vec![0.0; m];
+        for (component, n) in direction.iter().enumerate().take(dim).filter(|(_, n)| **n != 0.0) {
+            let modes = mode_components(mesh, pieces, node, component);
+            row.iter_mut().zip(modes).for_each(|(r, v)| *r += n * v);
+        }
         for i in 0..m {
             for j in 0..m {
                 gram[piece][i + m * j] += row[i] * row[j];
@@ -167,9 +171,11 @@ mod tests {
             (0..mesh.n_nodes()).find(|&a| mesh.node(a) == [x, y]).expect("a node there")
         };
         let bottom: Vec<usize> = [0.0, 0.5, 1.0].iter().map(|&x| node_at(x, 0.0)).collect();
-        let clamp: Vec<(usize, usize)> = bottom.iter().flat_map(|&a| [(a, 0), (a, 1)]).collect();
+        let e = crate::frames::axis;
+        let clamp: Vec<(usize, [f64; 3])> =
+            bottom.iter().flat_map(|&a| [(a, e(0)), (a, e(1))]).collect();
         assert!(free_rigid_motions(&mesh, &pieces, &clamp).unwrap().is_empty());
-        let roller: Vec<(usize, usize)> = bottom.iter().map(|&a| (a, 1)).collect();
+        let roller: Vec<(usize, [f64; 3])> = bottom.iter().map(|&a| (a, e(1))).collect();
         let free = free_rigid_motions(&mesh, &pieces, &roller).unwrap();
         assert_eq!(free, [(0, vec!["translate along x".to_string()])]);
         let nothing = free_rigid_motions(&mesh, &pieces, &[]).unwrap();
@@ -180,8 +186,16 @@ mod tests {
             "translate along x, translate along y and rotate about z"
         );
         // One node held in both components: the rotation about it is free.
-        let pin = [(node_at(1.0, 1.0), 0), (node_at(1.0, 1.0), 1)];
+        let pin = [(node_at(1.0, 1.0), e(0)), (node_at(1.0, 1.0), e(1))];
         let free = free_rigid_motions(&mesh, &pieces, &pin).unwrap();
         assert_eq!(free, [(0, vec!["rotate about z through (1.0000, 1.0000)".to_string()])]);
+        // A roller along the diagonal on the bottom holds the rotation (u·n varies with x)
+        // and one translation: the one along the diagonal's normal stays free.
+        let h = 0.5f64.sqrt();
+        let turned: Vec<(usize, [f64; 3])> = bottom.iter().map(|&a| (a, [h, h, 0.0])).collect();
+        let free = free_rigid_motions(&mesh, &pieces, &turned).unwrap();
+        assert_eq!(free.len(), 1);
+        assert_eq!(free[0].1.len(), 1, "{free:?}");
+        assert!(!free[0].1[0].contains("rotate"), "{free:?}");
     }
 }

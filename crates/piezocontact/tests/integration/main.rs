@@ -26,6 +26,8 @@ mod materials;
 mod orderings;
 /// Patch tests: linear fields reproduced to round-off, 2D and 3D.
 mod patch;
+/// Rollers on faces of any orientation: turned frames, uniform states, bad tables.
+mod rollers;
 /// Supports along the axes: uniform states on rollers, reactions, bad tables.
 mod supports;
 /// The assembled system: symmetry, definiteness of the blocks, factorisation reuse.
