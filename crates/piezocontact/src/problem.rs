@@ -159,7 +159,6 @@ impl Problem {
         }
         self.check_pieces()?;
         self.check_rigid_motions()?;
-        self.check_contact_off_supports()?;
         let traction: Vec<usize> = b.traction.iter().map(|(p, _)| *p).collect();
         let charge: Vec<usize> = b.charge.iter().map(|(p, _)| *p).collect();
         let roles: [(&'static str, &[usize]); 6] = [
@@ -361,22 +360,6 @@ impl Problem {
             "{body} can {}: its clamps and supports (boundary.clamped, [[boundary.support]]) do not hold it, and the system is singular; fix more components (a roller on another face, or a clamp)",
             motions_sentence(motions)
         )))
-    }
-
-    /// Refuses a support that holds a node of Γ3, naming the node.
-    fn check_contact_off_supports(&self) -> Result<()> {
-        let contact = self.part_nodes(&self.boundary.contact);
-        for support in &self.boundary.supports {
-            let held = self.part_nodes(&support.parts);
-            if let Some(node) = contact.iter().find(|n| held.binary_search(n).is_ok()) {
-                return Err(Error::Input(format!(
-                    "the support '{}' holds node {node} at {:?}, which lies on Γ3 (boundary.contact): contact on a supported node is not available yet; keep the support's parts off the contact face's nodes (or clamp them: clamped Γ3 nodes are left out of contact)",
-                    support.name,
-                    self.mesh.node(*node)
-                )));
-            }
-        }
-        Ok(())
     }
 
     /// Nodes of the facets of the given parts, sorted and without repetition.

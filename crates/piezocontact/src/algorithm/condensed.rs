@@ -37,6 +37,19 @@ pub struct Condensed {
     frictionless: bool,
 }
 
+/// The u components of `node` that no support fixes: how many, and which (the first so
+/// many entries). A node on a support keeps its normal and its free tangent: the frame of
+/// [`ContactSurface::frame`] puts them first.
+fn free_axes(dofs: &DofMap, node: usize, dim: usize) -> (usize, [usize; 3]) {
+    let mut axes = [0; 3];
+    let mut n = 0;
+    for k in (0..dim).filter(|&k| dofs.free_index(dofs.u(node, k)) != CONSTRAINED) {
+        axes[n] = k;
+        n += 1;
+    }
+    (n, axes)
+}
+
 /// How the exact solver guesses the Γ3 nodes to condense first, and at most how many.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Guess {
@@ -147,7 +160,7 @@ impl Condensed {
             }
             let axes = match axis(i).filter(|_| normal_only) {
                 Some(k) => (1, [k, 0, 0]),
-                None => (dim, [0, 1, 2]),
+                None => free_axes(dofs, node, dim),
             };
             let mut u = [usize::MAX; 3];
             for (slot, &k) in u.iter_mut().zip(&axes.1[..axes.0]) {

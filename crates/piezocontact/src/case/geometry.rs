@@ -217,9 +217,10 @@ impl Case {
         model: &ContactModel,
         loading: Option<&Loading>,
     ) -> Result<()> {
-        let Some((key, hint)) = reach_hint(&model.foundation) else { return Ok(()) };
+        // Γ3 built once here also refuses a support that holds its normal component.
         let dofs = DofMap::new(problem)?;
         let gamma3 = ContactSurface::new(problem, &dofs)?;
+        let Some((key, hint)) = reach_hint(&model.foundation) else { return Ok(()) };
         if gamma3.is_empty() {
             return Ok(());
         }

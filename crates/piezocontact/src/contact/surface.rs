@@ -26,6 +26,11 @@ pub struct ContactSurface {
     /// g_a,i: the gap at node i \[length\], where compliance and conduction start; the rigid stop
     /// is at g_a,i + g_p. +∞ where the node cannot touch the foundation.
     pub gap: Vec<f64>,
+    /// Per node, how many tangential directions are free (d − 1, less those a support fixes:
+    /// a node on a symmetry plane across Γ3 slides along the plane only).
+    free_tangents: Vec<usize>,
+    /// Per node in 3D with one tangential direction fixed: that direction (else 0).
+    held: Vec<[f64; 3]>,
 }
 
 impl ContactSurface {
@@ -78,9 +83,12 @@ impl ContactSurface {
             weight: Vec::new(),
             normal: Vec::new(),
             gap: Vec::new(),
+            free_tangents: Vec::new(),
+            held: Vec::new(),
         };
         for node in order.into_iter().filter(|&n| free(n)) {
-            let (w, n) = acc[&node];
+            let (w, mut n) = acc[&node];
+            let fixed = supported_axes(problem, dofs, node, &mut n)?;
             let norm = n.iter().map(|v| v * v).sum::<f64>().sqrt();
             if norm <= 0.0 {
                 return Err(Error::InvalidParameter {
@@ -94,6 +102,12 @@ impl ContactSurface {
             surface.weight.push(w);
             surface.normal.push(n.map(|v| v / norm));
             surface.gap.push(0.0);
+            surface.free_tangents.push(dim - 1 - fixed.len());
+            let held = match (dim, fixed.as_slice()) {
+                (3, &[k]) => crate::frames::axis(k),
+                _ => [0.0; 3],
+            };
+            surface.held.push(held);
         }
         Ok(surface)
     }
@@ -137,8 +151,21 @@ impl ContactSurface {
     /// The local frame of node i: rows ν, τ1, τ2, orthonormal. In 2D τ1 = ν turned by +90°
     /// and τ2 = 0. In 3D τ1 is the coordinate axis least aligned with ν, made orthogonal to ν
     /// and normalised, and τ2 = ν × τ1; the tangential columns of contact.csv are along them.
+    /// At a node on a support the free tangent comes first: τ1 = d × ν and τ2 = d for the
+    /// fixed direction d.
     pub fn frame(&self, i: usize) -> [[f64; 3]; 3] {
-        frame(self.normal[i], self.dim)
+        let (nu, d) = (self.normal[i], self.held[i]);
+        if d == [0.0; 3] {
+            return frame(nu, self.dim);
+        }
+        let t1 =
+            [d[1] * nu[2] - d[2] * nu[1], d[2] * nu[0] - d[0] * nu[2], d[0] * nu[1] - d[1] * nu[0]];
+        [nu, t1, d]
+    }
+
+    /// How many tangential directions are free at node i: d − 1, less those a support fixes.
+    pub fn free_tangents(&self, i: usize) -> usize {
+        self.free_tangents[i]
     }
 
     /// u at Γ3 node i from a global vector.
@@ -148,11 +175,21 @@ impl ContactSurface {
         u
     }
 
-    /// (u_ν, u_τ) at Γ3 node i.
+    /// (u_ν, u_τ) at Γ3 node i, u_τ along the free tangential directions only (the part
+    /// along a direction a support fixes is the support's, and bears no friction).
     pub fn split(&self, dofs: &DofMap, x: &[f64], i: usize) -> (f64, [f64; 3]) {
         let (u, n) = (self.u(dofs, x, i), self.normal[i]);
         let u_nu: f64 = (0..3).map(|k| u[k] * n[k]).sum();
-        (u_nu, [0, 1, 2].map(|k| u[k] - u_nu * n[k]))
+        let u_tau = [0, 1, 2].map(|k| u[k] - u_nu * n[k]);
+        match (self.free_tangents[i], self.dim) {
+            (0, _) => (u_nu, [0.0; 3]),
+            (1, 3) => {
+                let t = self.frame(i)[1];
+                let along: f64 = (0..3).map(|k| u_tau[k] * t[k]).sum();
+                (u_nu, t.map(|v| along * v))
+            }
+            _ => (u_nu, u_tau),
+        }
     }
 
     /// ϕ at Γ3 node i.
@@ -164,6 +201,49 @@ impl ContactSurface {
     pub fn position<'a>(&self, problem: &'a Problem, i: usize) -> &'a [f64] {
         problem.mesh.node(self.nodes[i])
     }
+}
+
+/// The mesh axes a support fixes at Γ3 node `node`, after checking that they are tangential
+/// to Γ3 there: `normal` (the sum of the facets' weighted normals) loses its part along them
+/// (at most sin 1° of it; a node on a symmetry plane across a curved Γ3 then has the normal
+/// of the whole body). An error where a support fixes the contact normal's component (contact
+/// could never act) or holds the node in a turned frame.
+fn supported_axes(
+    problem: &Problem,
+    dofs: &DofMap,
+    node: usize,
+    normal: &mut [f64; 3],
+) -> Result<Vec<usize>> {
+    let dim = problem.mesh.dim();
+    let fixed: Vec<usize> =
+        (0..dim).filter(|&k| dofs.free_index(dofs.u(node, k)) == CONSTRAINED).collect();
+    let table = |k: usize| {
+        let names = problem.support_names();
+        names.get(dofs.support_table(dofs.u(node, k))).cloned().unwrap_or_default()
+    };
+    if let (Some(&k), Some(_)) = (fixed.first(), dofs.frame(node)) {
+        return Err(Error::Input(format!(
+            "the support '{}' holds node {node} at {:?} of Γ3 (boundary.contact) in a turned frame (fix = [\"normal\"]): contact at such a node is not available yet; hold Γ3's nodes along the axes, or keep the support's parts off the contact face",
+            table(k),
+            problem.mesh.node(node)
+        )));
+    }
+    let length = normal.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let along = fixed.iter().map(|&k| normal[k].powi(2)).sum::<f64>().sqrt();
+    if along > length * crate::frames::SAME_DIRECTION_DEGREES.to_radians().sin() {
+        let k = fixed.iter().copied().max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs()));
+        let k = k.unwrap_or(0);
+        let degrees = (along / length).clamp(-1.0, 1.0).asin().to_degrees();
+        return Err(Error::Input(format!(
+            "the support '{}' fixes u_{} at node {node} at {:?} of Γ3 (boundary.contact), where Γ3's normal leans {:.3}° into the fixed directions (at most 1°): the support holds the contact normal's component, and contact could not act freely there; hold Γ3's nodes along tangential directions only (a symmetry plane across the contact face), or keep the support off Γ3",
+            table(k),
+            ["x", "y", "z"][k],
+            problem.mesh.node(node),
+            degrees
+        )));
+    }
+    fixed.iter().for_each(|&k| normal[k] = 0.0);
+    Ok(fixed)
 }
 
 /// The frame of unit normal ν: rows ν, τ1, τ2 (see [`ContactSurface::frame`]).

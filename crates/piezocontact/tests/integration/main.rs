@@ -26,6 +26,8 @@ mod materials;
 mod orderings;
 /// Patch tests: linear fields reproduced to round-off, 2D and 3D.
 mod patch;
+/// The quarter model on symmetry planes against the whole block, node for node.
+mod quarter;
 /// Rollers on faces of any orientation: turned frames, uniform states, bad tables.
 mod rollers;
 /// Supports along the axes: uniform states on rollers, reactions, bad tables.

@@ -212,14 +212,17 @@ fn bad_supports_are_errors_naming_the_key() {
     let e = build_text(&text.replace(y_roller, "")).err().unwrap().to_string();
     let free = "the body can translate along x, translate along y and rotate about z:";
     assert!(e.contains(free), "{e}");
+    // A support that fixes Γ3's normal component: contact could never act there.
+    let press = "[contact]\ngap = 0.1\n\n[[boundary.support]]\nname = \"press\"\nparts = [\"top\"]\nfix = [\"z\"]\n";
     let e = build_text(
-        &block([0.0; 3], "[contact]\ngap = 0.1\n")
+        &block([0.0; 3], press)
             .replace("grounded = [\"bottom\"]", "grounded = [\"bottom\"]\ncontact = [\"top\"]"),
     )
     .err()
     .unwrap()
     .to_string();
-    assert!(e.contains("holds node") && e.contains("lies on Γ3"), "{e}");
+    let expected = "the support 'press' fixes u_z at node";
+    assert!(e.contains(expected) && e.contains("contact could not act freely"), "{e}");
 }
 
 /// A path without contact scales the prescribed displacements with the loads: the block
