@@ -3,7 +3,9 @@
 // planes x = 0 (sym_x) and y = 0 (sym_y) are the block's symmetry planes; sides are x = 1 and
 // y = 1. hc is the element size at the origin. mirror-quarter.py mirrors a quarter mesh about
 // both planes into the full block (indent-full-hH.msh), node for node.
-// Regenerate with: gmsh -3 -setnumber hc H indent-quarter.geo -o indent-quarter-hH.msh
+// Regenerate with: gmsh -3 -setnumber hc H indent-quarter.geo -o indent-quarter-hH.msh (H = 0.05, 0.03;
+// the bench pair with -setnumber hc 0.015 -setnumber hf 0.15), then
+// python3 mirror-quarter.py indent-quarter-hH.msh indent-full-hH.msh
 SetFactory("OpenCASCADE");
 DefineConstant[ hc = 0.03, hf = 0.3, rc = 0.3 ];
 Box(1) = {0, 0, -1, 1, 1, 1};

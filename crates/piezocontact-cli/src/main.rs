@@ -167,6 +167,13 @@ struct BenchArgs {
     /// interleaved runs of each.
     #[arg(long, conflicts_with_all = ["contact", "path", "lu", "sizes", "case"])]
     materials: bool,
+    /// Time the quarter model (cases/indentation-quarter.toml) on --mesh (default
+    /// meshes/indent-quarter-h0.015.msh) against the whole block on its mirror (the same name
+    /// with "full"), and on the quarter the numeric factorisation held by a clamp at the bottom
+    /// against the same held by rollers: factor entries and time per entry, the median of 5
+    /// interleaved runs of each.
+    #[arg(long, conflicts_with_all = ["contact", "path", "lu", "sizes", "case", "materials"])]
+    quarter: bool,
     /// One measurement of --contact (internal).
     #[arg(long, hide = true)]
     one: Option<String>,
@@ -272,14 +279,29 @@ fn run(command: Command) -> Result<Outcome> {
 
 /// `bench`: the measurement its options choose.
 fn bench_command(args: BenchArgs) -> Result<Outcome> {
-    let BenchArgs { sizes, mesh, lu, contact, case, path, materials, one, ordering, backend } =
-        args;
+    let BenchArgs {
+        sizes,
+        mesh,
+        lu,
+        contact,
+        case,
+        path,
+        materials,
+        quarter,
+        one,
+        ordering,
+        backend,
+    } = args;
     if let Some(spec) = one {
         return bench::one::measure_one(&spec).map(|_| Outcome::Done);
     }
     if materials {
         let mesh = mesh.unwrap_or_else(|| PathBuf::from("meshes/block-100k.msh"));
         return bench::materials::run(&mesh).map(|_| Outcome::Done);
+    }
+    if quarter {
+        let mesh = mesh.unwrap_or_else(|| PathBuf::from("meshes/indent-quarter-h0.015.msh"));
+        return bench::quarter::run(&mesh).map(|_| Outcome::Done);
     }
     if backend == "petsc" {
         return bench_backend(mesh.as_deref()).map(|_| Outcome::Done);

@@ -7,6 +7,7 @@
 //!   process of its own;
 //! - [`path`]: a loading path solved as a path against its steps solved cold;
 //! - [`materials`]: the assembly with one material and with four by region;
+//! - [`quarter`]: the quarter model against the whole block, and rollers against a clamp;
 //! - `petsc` (feature `petsc`): the PETSc + MUMPS backend under mpirun beside faer;
 //! - [`one`]: `bench --one SPEC`, one measurement of the above in a child process.
 //!
@@ -22,6 +23,7 @@ pub mod one;
 pub mod path;
 #[cfg(feature = "petsc")]
 pub mod petsc;
+pub mod quarter;
 
 use anyhow::{Result, anyhow, bail};
 use piezocontact::assembly::secant_moduli;

@@ -1,0 +1,129 @@
+//! `piezocontact bench --quarter`: the quarter model of cases/indentation-quarter.toml on
+//! a quarter mesh against the whole block on its mirror (meshes/mirror-quarter.py), the
+//! exact solver on PV2 (µ = 0.3) in wall time; and on the quarter, the factorisation of the
+//! system held by a clamp at the bottom against the same held by rollers (the bottom along z
+//! only): the factor's entries and the numeric factorisation's time per entry. The same
+//! binary, the sides interleaved, the median of 5 of each.
+
+use super::factorised_once;
+use crate::say;
+use anyhow::{Result, anyhow};
+use piezocontact::assembly::secant_moduli;
+use piezocontact::case::{Built, Case};
+use piezocontact::linalg::default_solver;
+use piezocontact::run::Run;
+use std::path::Path;
+use std::time::Instant;
+
+/// The runs of each side.
+const RUNS: usize = 5;
+
+/// The quarter model's case.
+const QUARTER: &str = include_str!("../../../../cases/indentation-quarter.toml");
+
+/// The clamp of the bottom in [`QUARTER`], which the rollers replace.
+const CLAMP: &str = "clamped = [\"bottom\"]";
+
+/// Measures and prints both comparisons on the quarter mesh `quarter` (whose mirror is the
+/// same name with "quarter" turned to "full").
+pub fn run(quarter: &Path) -> Result<()> {
+    let name = quarter.display().to_string();
+    let whole = Path::new(&name.replace("quarter", "full")).to_path_buf();
+    if name == whole.display().to_string() || !whole.exists() {
+        return Err(anyhow!(
+            "--mesh {name}: no mirrored mesh {} beside it: make it with python3 meshes/mirror-quarter.py {name} {}",
+            whole.display(),
+            whole.display()
+        ));
+    }
+    let quarter_text = QUARTER.to_string();
+    let start = QUARTER.find("[[boundary.support]]").unwrap_or(0);
+    let end = QUARTER.find("[contact]").unwrap_or(start);
+    let whole_text = format!("{}{}", &QUARTER[..start], &QUARTER[end..]);
+    let rollers_text = QUARTER.replacen(CLAMP, "", 1).replacen(
+        "[contact]",
+        "[[boundary.support]]\nparts = [\"bottom\"]\nfix = [\"z\"]\n\n[contact]",
+        1,
+    );
+    let built = |text: &str, mesh: &Path| -> Result<Built> {
+        let file = std::fs::canonicalize(mesh).map_err(|e| anyhow!("{}: {e}", mesh.display()))?;
+        let overrides = [format!("mesh.file={:?}", file.display().to_string())];
+        Ok(Case::from_text(Path::new("cases/indentation-quarter.toml"), text, &overrides)?
+            .build()?)
+    };
+    let sides = [built(&quarter_text, quarter)?, built(&whole_text, &whole)?];
+    contact_times(&sides, [&name, &whole.display().to_string()])?;
+    let held = [built(&quarter_text, quarter)?, built(&rollers_text, quarter)?];
+    factor_times(&held)
+}
+
+/// The exact solver on the quarter and on the whole block: the median wall time of
+/// [`RUNS`] interleaved runs each.
+fn contact_times(sides: &[Built; 2], names: [&str; 2]) -> Result<()> {
+    let mut seconds = [Vec::new(), Vec::new()];
+    let mut figures = Vec::new();
+    for run in 0..RUNS {
+        for (k, built) in sides.iter().enumerate() {
+            let start = Instant::now();
+            let Run::Contact(solved) = Run::solve(built, default_solver(), &|_| {})? else {
+                return Err(anyhow!("the quarter case is no single contact run"));
+            };
+            seconds[k].push(start.elapsed().as_secs_f64());
+            if run == 0 {
+                let s = &solved.solution;
+                let dofs = s.dofs.n_free();
+                figures.push((dofs, s.condensed_nodes, s.surface.len(), s.kkt.max));
+            }
+        }
+    }
+    let medians = seconds.map(median);
+    say!("the exact solver on PV2 (µ = 0.3), median of {RUNS} interleaved runs:");
+    for ((name, median), (dofs, condensed, gamma3, kkt)) in names.iter().zip(medians).zip(figures) {
+        say!(
+            "  {name:<40} {dofs:>8} free DOFs  condensed {condensed}/{gamma3}  KKT {kkt:.1e}  wall {median:.4} s"
+        );
+    }
+    say!("  whole / quarter wall time {:.2}", medians[1] / medians[0]);
+    Ok(())
+}
+
+/// The quarter's system held by the clamp and by rollers: factor entries, the median
+/// numeric factorisation time of [`RUNS`] interleaved ones, and the time per entry.
+fn factor_times(held: &[Built; 2]) -> Result<()> {
+    let mut systems = Vec::new();
+    for built in held {
+        let (system, _) = factorised_once(&built.problem, default_solver())?;
+        let zero = vec![0.0; system.dofs().n_total()];
+        let moduli = secant_moduli(&built.problem, system.dofs(), &zero)?;
+        systems.push((system, moduli));
+    }
+    let mut seconds = [Vec::new(), Vec::new()];
+    for _ in 0..RUNS {
+        for (k, (system, moduli)) in systems.iter_mut().enumerate() {
+            let before = system.solver_stats().numeric_seconds;
+            system.factorize(&held[k].problem, moduli, &[])?;
+            seconds[k].push(system.solver_stats().numeric_seconds - before);
+        }
+    }
+    let medians = seconds.map(median);
+    say!("the quarter's numeric factorisation, median of {RUNS} interleaved runs:");
+    let mut per_entry = [0.0; 2];
+    for (k, name) in ["clamped bottom", "bottom on rollers (z)"].iter().enumerate() {
+        let stats = systems[k].0.solver_stats();
+        let entries = stats.factor_len as f64;
+        per_entry[k] = medians[k] / entries;
+        say!(
+            "  {name:<22} {:>8} free DOFs  factor {entries:.3e} entries  numeric {:.4} s  {:.3} ns per entry",
+            systems[k].0.dofs().n_free(),
+            medians[k],
+            1e9 * per_entry[k]
+        );
+    }
+    say!("  rollers / clamp time per entry {:.3} (target ≤ 1.1)", per_entry[1] / per_entry[0]);
+    Ok(())
+}
+
+fn median(mut s: Vec<f64>) -> f64 {
+    s.sort_by(f64::total_cmp);
+    s[s.len() / 2]
+}
