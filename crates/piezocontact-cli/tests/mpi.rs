@@ -165,3 +165,8 @@ fn a_mumps_error_ends_the_run_with_mumps_s_diagnosis() {
     assert_eq!(summary(&out)["converged"], false);
     let _ = std::fs::remove_dir_all(&out);
 }
+
+#[test]
+fn the_quarter_model_under_mpirun_is_the_serial_run() {
+    same_as_serial("cases/indentation-quarter.toml", &[], "quarter", &[2]);
+}

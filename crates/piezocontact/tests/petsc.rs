@@ -224,3 +224,38 @@ fn a_film_on_silicon_is_faers() {
         same_contact("film-on-silicon.toml", &[], 1e-9);
     });
 }
+
+/// The quarter model: Γ3 nodes on the symmetry planes' rollers, both methods.
+#[test]
+fn the_quarter_model_is_faers() {
+    on_processes("the_quarter_model_is_faers", || {
+        same_contact("indentation-quarter.toml", &[], 1e-9);
+        same_contact("indentation-quarter.toml", &["solver.method=\"uzawa\""], 1e-9);
+    });
+}
+
+/// A block turned by 30° about z on normal rollers (turned nodal frames in the global
+/// system) under a pressure on its turned end.
+#[test]
+fn rollers_on_turned_faces_are_faers() {
+    on_processes("rollers_on_turned_faces_are_faers", || {
+        let mesh = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../meshes/box-turned.msh");
+        let roller = |part: &str| {
+            format!("[[boundary.support]]\nparts = [\"{part}\"]\nfix = [\"normal\"]\n")
+        };
+        let text = format!(
+            "[mesh]\nfile = {:?}\n[material]\nlaw = \"linear\"\nyoung = 58.7\npoisson = 0.39\ne31 = -5.4\ne33 = 15.8\ne15 = 12.3\neps0 = 8.885e-3\nbeta11_rel = 916.0\nbeta33_rel = 830.0\n[boundary]\ngrounded = [\"bottom\"]\n[[boundary.traction]]\nparts = [\"x1\"]\nf2 = [-0.26, -0.15, 0.0]\n{}{}{}",
+            mesh.display().to_string(),
+            roller("x0"),
+            roller("y0"),
+            roller("bottom")
+        );
+        let problem =
+            Case::from_text("turned.toml".as_ref(), &text, &[]).unwrap().problem().unwrap();
+        let faer = solve_without_contact(&problem, Box::new(LdltSolver::new())).unwrap();
+        let mumps = solve_without_contact(&problem, petsc_solver()).unwrap();
+        let difference = relative_difference(&mumps.x, &faer.x);
+        assert!(difference < 1e-10, "‖x_mumps − x_faer‖/‖x_faer‖ = {difference:e}");
+        assert!(mumps.relative_residual < 1e-10, "residual {:e}", mumps.relative_residual);
+    });
+}
