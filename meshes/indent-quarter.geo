@@ -5,7 +5,8 @@
 // both planes into the full block (indent-full-hH.msh), node for node.
 // Regenerate with: gmsh -3 -setnumber hc H indent-quarter.geo -o indent-quarter-hH.msh (H = 0.05, 0.03;
 // the bench pair with -setnumber hc 0.015 -setnumber hf 0.15), then
-// python3 mirror-quarter.py indent-quarter-hH.msh indent-full-hH.msh
+// python3 mirror-quarter.py indent-quarter-hH.msh indent-full-hH.msh; the quarter turned by 30°
+// about z: python3 mirror-quarter.py --turn 30 indent-quarter-h0.05.msh indent-quarter-turned-h0.05.msh
 SetFactory("OpenCASCADE");
 DefineConstant[ hc = 0.03, hf = 0.3, rc = 0.3 ];
 Box(1) = {0, 0, -1, 1, 1, 1};

@@ -5,8 +5,12 @@ an odd number of reflections have two nodes swapped (so that every cell keeps it
 orientation), and the groups on the planes (sym_x, sym_y) are left out: they are inside the
 full block. Needs Gmsh's Python API (pip install gmsh).
 
-Usage: python3 mirror-quarter.py indent-quarter-h0.08.msh indent-full-h0.08.msh
+Usage: python3 mirror-quarter.py indent-quarter-h0.05.msh indent-full-h0.05.msh
+       python3 mirror-quarter.py --turn 30 indent-quarter-h0.05.msh indent-quarter-turned-h0.05.msh
+With --turn DEG it writes the quarter itself turned by DEG degrees about the z axis instead,
+every group kept (its symmetry planes then lie along no axis: rollers on them fix the normal).
 """
+import math
 import sys
 
 import gmsh
@@ -80,15 +84,30 @@ def write(path, coords, tets, groups):
     gmsh.write(path)
 
 
+def turned(nodes, tets, groups, degrees):
+    """The quarter turned about z, its nodes in their order."""
+    c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
+    tags = sorted(nodes)
+    number = {t: k + 1 for k, t in enumerate(tags)}
+    coords = [(c * nodes[t][0] - s * nodes[t][1], s * nodes[t][0] + c * nodes[t][1], nodes[t][2]) for t in tags]
+    renumber = lambda cells: [[number[a] for a in cell] for cell in cells]
+    return coords, renumber(tets), {n: renumber(g) for n, g in groups.items()}
+
+
 def main():
-    quarter, full = sys.argv[1], sys.argv[2]
+    args = sys.argv[1:]
+    degrees = float(args[1]) if args[0] == "--turn" else None
+    quarter, out = args[-2], args[-1]
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
     nodes, tets, groups = read(quarter)
-    coords, full_tets, full_groups = mirrored(nodes, tets, groups)
-    write(full, coords, full_tets, full_groups)
+    if degrees is None:
+        coords, cells, parts = mirrored(nodes, tets, groups)
+    else:
+        coords, cells, parts = turned(nodes, tets, groups, degrees)
+    write(out, coords, cells, parts)
     gmsh.finalize()
-    print(f"{quarter}: {len(nodes)} nodes -> {full}: {len(coords)} nodes, {len(full_tets)} tetrahedra")
+    print(f"{quarter}: {len(nodes)} nodes -> {out}: {len(coords)} nodes, {len(cells)} tetrahedra")
 
 
 if __name__ == "__main__":

@@ -129,6 +129,26 @@ impl DofMap {
         self.turn(global, true);
     }
 
+    /// Adds `force` (mesh components, d used) at `node`'s u rows to the free vector `free`,
+    /// turned to the node's frame; constrained components take nothing.
+    pub fn add_at_node(&self, node: usize, force: &[f64; 3], free: &mut [f64]) {
+        let turned = self.turned(node, force);
+        for (i, f) in turned.iter().enumerate().take(self.dim) {
+            let k = self.free_index(self.u(node, i));
+            if k != CONSTRAINED {
+                free[k] += f;
+            }
+        }
+    }
+
+    /// A vector at `node` (mesh components) in the node's frame: R v (v itself without one).
+    pub fn turned(&self, node: usize, v: &[f64; 3]) -> [f64; 3] {
+        match self.frame(node) {
+            Some(rows) => std::array::from_fn(|i| (0..3).map(|j| rows[i][j] * v[j]).sum()),
+            None => *v,
+        }
+    }
+
     /// Turns the u entries of a vector of row scales (sizes of the terms of each row) to the
     /// nodes' frames: Σ_j |R_ij| s_j bounds the terms of row i of the turned rows.
     pub fn frame_bound(&self, scale: &mut [f64]) {

@@ -128,8 +128,10 @@ impl Condensed {
         kept: Vec<bool>,
     ) -> Self {
         let dim = surface.dim();
+        // The normal along a mesh axis, at a node in the mesh's frame.
         let axis = |i: usize| {
             let nu = surface.normal[i];
+            dofs.frame(surface.nodes[i]).is_none().then_some(())?;
             let k = (0..dim).find(|&k| nu[k].abs() > 1.0 - 1e-14)?;
             (0..dim).all(|j| j == k || nu[j].abs() < 1e-14).then_some(k)
         };

@@ -26,7 +26,8 @@ use super::inner::{InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopCo
 use super::residual::KktResidual;
 use crate::assembly::NodalBlock;
 use crate::contact::law::{coulomb, stop_complementarity};
-use crate::contact::{ContactState, NodeStatus};
+use crate::contact::{ContactState, ContactSurface, NodeStatus};
+use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::{DenseMatrix, LinearSolver, TransposedLu, max_distance, max_norm};
 use crate::system::CoupledSystem;
@@ -67,8 +68,10 @@ struct Local<'a> {
     schur: DenseMatrix,
     /// Q b: the condensed load in local coordinates.
     load: Vec<f64>,
-    /// Per node: Q_i (rows ν, τ1, τ2).
+    /// Per node: Q_i (rows ν, τ1, τ2) in the components of its unknowns.
     frames: Vec<[[f64; 3]; 3]>,
+    /// Per node on a "normal" support: its turned frame and u's indices.
+    turned: Vec<Option<TurnedNode>>,
     /// Per node: c_i [stress/length].
     c: Vec<f64>,
     /// Per condensed unknown: the scale of its equation in the merit function.
@@ -81,6 +84,30 @@ struct Local<'a> {
     /// θ ∈ (0, 1]: the fraction of k_e the conduction has, 1 but in the stages of a
     /// continuation ([`Local::continuation`]).
     conduction: f64,
+}
+
+/// A Γ3 node in a turned frame: the frame R (rows, mesh components) and the global indices
+/// of u's mesh components there.
+type TurnedNode = ([[f64; 3]; 3], [usize; 3]);
+
+/// Per Γ3 node, its contact frame Q_i in the components of its unknowns (Q Rᵀ in a turned
+/// frame R, on a "normal" support; else Q), and the turned ones.
+fn unknown_frames(
+    surface: &ContactSurface,
+    dofs: &DofMap,
+) -> (Vec<[[f64; 3]; 3]>, Vec<Option<TurnedNode>>) {
+    let d = surface.dim();
+    let turned = surface
+        .nodes
+        .iter()
+        .map(|&node| {
+            Some((*dofs.frame(node)?, std::array::from_fn(|m| dofs.u(node, m.min(d - 1)))))
+        })
+        .collect();
+    let frames = (0..surface.len())
+        .map(|i| surface.frame(i).map(|row| dofs.turned(surface.nodes[i], &row)))
+        .collect();
+    (frames, turned)
 }
 
 /// The active sets at an iterate, as the laws decide them: per node, whether the rigid
@@ -478,7 +505,8 @@ impl Semismooth<'_> {
     ) -> Result<(InnerResult, Option<f64>)> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;
-        let mut local = Local::new(self, schur.get(system, &cond.free)?, x_hat);
+        let complement = schur.get(system, &cond.free)?;
+        let mut local = Local::new(self, complement, x_hat, system.dofs());
         let from = local
             .zero_if_solution()
             .unwrap_or_else(|| local.gather(self.start.unwrap_or(&local.x_hat)));
@@ -515,8 +543,9 @@ impl Semismooth<'_> {
             // Frictionless: σ_τ = 0 by the law; the tangential rows hold it to round-off.
             state.lambda_f.iter_mut().for_each(|l| *l = [0.0; 3]);
         }
-        for (i, frame) in local.frames.iter().enumerate() {
-            // λ_f from local tangential components to global ones.
+        for i in 0..local.frames.len() {
+            // λ_f from local tangential components to mesh components.
+            let frame = self.step.surface.frame(i);
             let tangential = state.lambda_f[i];
             state.lambda_f[i] =
                 [0, 1, 2].map(|k| (1..3).map(|a| frame[a][k] * tangential[a - 1]).sum());
@@ -534,9 +563,14 @@ impl Semismooth<'_> {
 
 impl<'a> Local<'a> {
     /// Turns S and the load into local coordinates and sets the constants.
-    fn new(semismooth: &'a Semismooth<'a>, mut schur: DenseMatrix, x_hat: Vec<f64>) -> Self {
+    fn new(
+        semismooth: &'a Semismooth<'a>,
+        mut schur: DenseMatrix,
+        x_hat: Vec<f64>,
+        dofs: &DofMap,
+    ) -> Self {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
-        let frames: Vec<[[f64; 3]; 3]> = (0..surface.len()).map(|i| surface.frame(i)).collect();
+        let (frames, turned) = unknown_frames(surface, dofs);
         let m = cond.len();
         // S ← Q S Qᵀ, node block by node block: columns, then rows.
         // A node that condenses u_ν alone has one slot, on the axis of its normal.
@@ -571,6 +605,7 @@ impl<'a> Local<'a> {
             schur,
             load: Vec::new(),
             frames,
+            turned,
             c: Vec::new(),
             scale: Vec::new(),
             x_hat,
@@ -762,10 +797,19 @@ impl<'a> Local<'a> {
         self.evaluate(&zero).residual.iter().all(|e| *e == 0.0).then_some(zero)
     }
 
-    /// The condensed entries of a global vector, in local coordinates.
+    /// The condensed entries of a global vector (mesh components), in local coordinates.
     fn gather(&self, x: &[f64]) -> Vec<f64> {
         let cond = self.semismooth.condensed;
         let mut y: Vec<f64> = cond.global.iter().map(|&dof| x[dof]).collect();
+        let d = self.semismooth.step.surface.dim();
+        for (i, turned) in self.turned.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
+            // The unknowns of a node in a turned frame: R u from u's mesh components.
+            let Some((rows, u)) = turned else { continue };
+            let (idx, axes) = cond.slots(i);
+            for (&k, &axis) in idx.iter().zip(axes) {
+                y[k] = (0..d).map(|m| rows[axis][m] * x[u[m]]).sum();
+            }
+        }
         for (i, q) in self.frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
             let (idx, axes) = cond.slots(i);
             let u: Vec<f64> = idx.iter().map(|&k| y[k]).collect();
@@ -1185,7 +1229,8 @@ mod tests {
             semismooth.run(&mut system, &mut SchurSource::new(&condensed.free)).unwrap();
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
-        let local = Local::new(&semismooth, system.schur_complement().unwrap(), x_hat);
+        let complement = system.schur_complement().unwrap();
+        let local = Local::new(&semismooth, complement, x_hat, system.dofs());
         check(&local, &result)
     }
 

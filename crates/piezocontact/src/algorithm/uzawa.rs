@@ -236,13 +236,10 @@ impl Loop<'_> {
         for i in 0..surface.len() {
             let w = surface.weight[i];
             let normal = w * (r * state.p_c[i] - lambda.lambda_c[i]);
-            for c in 0..surface.dim() {
-                let k = dofs.free_index(dofs.u(surface.nodes[i], c));
-                if k != CONSTRAINED {
-                    rhs[k] += normal * surface.normal[i][c]
-                        + w * (r * state.p_f[i][c] - lambda.lambda_f[i][c]);
-                }
-            }
+            let force = std::array::from_fn(|c| {
+                normal * surface.normal[i][c] + w * (r * state.p_f[i][c] - lambda.lambda_f[i][c])
+            });
+            dofs.add_at_node(surface.nodes[i], &force, &mut rhs);
         }
         rhs
     }
@@ -283,12 +280,8 @@ fn lagged_loads(
         let phi = surface.phi(dofs, x, i);
         let (w, node) = (surface.weight[i], surface.nodes[i]);
         let pressure = model.pressure(u_nu, phi, surface.gap[i]);
-        for c in 0..surface.dim() {
-            let k = dofs.free_index(dofs.u(node, c));
-            if k != CONSTRAINED {
-                base[k] -= w * pressure * surface.normal[i][c];
-            }
-        }
+        let force = surface.normal[i].map(|n| -w * pressure * n);
+        dofs.add_at_node(node, &force, &mut base);
         if model.conduction.is_some() {
             let k = dofs.free_index(dofs.phi(node));
             if k != CONSTRAINED {

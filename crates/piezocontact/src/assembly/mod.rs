@@ -207,9 +207,15 @@ impl Assembler {
                 })
             })?;
         }
+        let turned: Vec<NodalBlock> = blocks
+            .iter()
+            .zip(&self.block_nodes)
+            .map(|(block, &node)| turn_block(&self.dofs, node, block))
+            .collect();
+        let turned = &turned;
         let block_values = self.block_nodes.iter().enumerate().flat_map(|(b, &node)| {
             nodal_pairs(&self.dofs, dim, node)
-                .map(move |(i, j, ..)| blocks.get(b).map_or(0.0, |k| k[i][j]))
+                .map(move |(i, j, ..)| turned.get(b).map_or(0.0, |k| k[i][j]))
         });
         for (&slot, value) in self.block_slots.iter().zip(block_values) {
             if slot != SKIPPED as usize {
@@ -500,6 +506,16 @@ fn turn_element<const D: usize, const N: usize>(
             (0..D).for_each(|i| row[a * D + i] = turned[i]);
         }
     }
+}
+
+/// A nodal block (mesh components) in the frame of `node`: R B Rᵀ.
+fn turn_block(dofs: &DofMap, node: usize, block: &NodalBlock) -> NodalBlock {
+    let Some(rows) = dofs.frame(node) else { return *block };
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            (0..3).map(|a| (0..3).map(|b| rows[i][a] * block[a][b] * rows[j][b]).sum::<f64>()).sum()
+        })
+    })
 }
 
 /// Turns the u entries of an element vector to the frames of its nodes: Tᵀ a.

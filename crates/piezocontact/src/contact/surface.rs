@@ -88,7 +88,7 @@ impl ContactSurface {
         };
         for node in order.into_iter().filter(|&n| free(n)) {
             let (w, mut n) = acc[&node];
-            let fixed = supported_axes(problem, dofs, node, &mut n)?;
+            let fixed = supported_directions(problem, dofs, node, &mut n)?;
             let norm = n.iter().map(|v| v * v).sum::<f64>().sqrt();
             if norm <= 0.0 {
                 return Err(Error::InvalidParameter {
@@ -104,7 +104,7 @@ impl ContactSurface {
             surface.gap.push(0.0);
             surface.free_tangents.push(dim - 1 - fixed.len());
             let held = match (dim, fixed.as_slice()) {
-                (3, &[k]) => crate::frames::axis(k),
+                (3, &[d]) => d,
                 _ => [0.0; 3],
             };
             surface.held.push(held);
@@ -203,47 +203,48 @@ impl ContactSurface {
     }
 }
 
-/// The mesh axes a support fixes at Γ3 node `node`, after checking that they are tangential
-/// to Γ3 there: `normal` (the sum of the facets' weighted normals) loses its part along them
-/// (at most sin 1° of it; a node on a symmetry plane across a curved Γ3 then has the normal
-/// of the whole body). An error where a support fixes the contact normal's component (contact
-/// could never act) or holds the node in a turned frame.
-fn supported_axes(
+/// The directions a support fixes at Γ3 node `node` (mesh axes, or the rows of its turned
+/// frame), after checking that they are tangential to Γ3 there: `normal` (the sum of the
+/// facets' weighted normals) loses its part along them (at most sin 1° of it; a node on a
+/// symmetry plane across a curved Γ3 then has the normal of the whole body). An error where a
+/// support fixes the contact normal's component: contact could not act freely.
+fn supported_directions(
     problem: &Problem,
     dofs: &DofMap,
     node: usize,
     normal: &mut [f64; 3],
-) -> Result<Vec<usize>> {
+) -> Result<Vec<[f64; 3]>> {
     let dim = problem.mesh.dim();
-    let fixed: Vec<usize> =
-        (0..dim).filter(|&k| dofs.free_index(dofs.u(node, k)) == CONSTRAINED).collect();
-    let table = |k: usize| {
-        let names = problem.support_names();
-        names.get(dofs.support_table(dofs.u(node, k))).cloned().unwrap_or_default()
-    };
-    if let (Some(&k), Some(_)) = (fixed.first(), dofs.frame(node)) {
-        return Err(Error::Input(format!(
-            "the support '{}' holds node {node} at {:?} of Γ3 (boundary.contact) in a turned frame (fix = [\"normal\"]): contact at such a node is not available yet; hold Γ3's nodes along the axes, or keep the support's parts off the contact face",
-            table(k),
-            problem.mesh.node(node)
-        )));
-    }
-    let length = normal.iter().map(|v| v * v).sum::<f64>().sqrt();
-    let along = fixed.iter().map(|&k| normal[k].powi(2)).sum::<f64>().sqrt();
+    let fixed: Vec<(usize, [f64; 3])> = (0..dim)
+        .filter(|&k| dofs.free_index(dofs.u(node, k)) == CONSTRAINED)
+        .map(|k| (k, dofs.direction(node, k)))
+        .collect();
+    let dot = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|c| a[c] * b[c]).sum::<f64>();
+    let length = dot(normal, normal).sqrt();
+    let along = fixed.iter().map(|(_, d)| dot(normal, d).powi(2)).sum::<f64>().sqrt();
     if along > length * crate::frames::SAME_DIRECTION_DEGREES.to_radians().sin() {
-        let k = fixed.iter().copied().max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs()));
-        let k = k.unwrap_or(0);
+        let (k, d) = fixed
+            .iter()
+            .max_by(|a, b| dot(normal, &a.1).abs().total_cmp(&dot(normal, &b.1).abs()))
+            .copied()
+            .unwrap_or((0, [0.0; 3]));
+        let names = problem.support_names();
+        let table = names.get(dofs.support_table(dofs.u(node, k))).cloned().unwrap_or_default();
+        let direction = match (0..3).find(|&c| d[c] == 1.0) {
+            Some(c) => format!("u_{}", ["x", "y", "z"][c]),
+            None => format!("u along {d:?}"),
+        };
         let degrees = (along / length).clamp(-1.0, 1.0).asin().to_degrees();
         return Err(Error::Input(format!(
-            "the support '{}' fixes u_{} at node {node} at {:?} of Γ3 (boundary.contact), where Γ3's normal leans {:.3}° into the fixed directions (at most 1°): the support holds the contact normal's component, and contact could not act freely there; hold Γ3's nodes along tangential directions only (a symmetry plane across the contact face), or keep the support off Γ3",
-            table(k),
-            ["x", "y", "z"][k],
+            "the support '{table}' fixes {direction} at node {node} at {:?} of Γ3 (boundary.contact), where Γ3's normal leans {degrees:.3}° into the fixed directions (at most 1°): the support holds the contact normal's component, and contact could not act freely there; hold Γ3's nodes along tangential directions only (a symmetry plane across the contact face), or keep the support off Γ3",
             problem.mesh.node(node),
-            degrees
         )));
     }
-    fixed.iter().for_each(|&k| normal[k] = 0.0);
-    Ok(fixed)
+    for (_, d) in &fixed {
+        let part = dot(normal, d);
+        (0..3).for_each(|c| normal[c] -= part * d[c]);
+    }
+    Ok(fixed.into_iter().map(|(_, d)| d).collect())
 }
 
 /// The frame of unit normal ν: rows ν, τ1, τ2 (see [`ContactSurface::frame`]).
