@@ -227,9 +227,12 @@ pub fn indentation_moduli(named: &NamedMaterial, units: &Units) {
 
 /// Says, for a plane model, that its forces and charges are per unit thickness.
 fn plane_note(built: &Built) {
-    if let Some(plane) = built.plane {
-        let model = if plane == Plane::Stress { "plane stress" } else { "plane strain" };
-        say!("  {model}: forces and charges are per unit thickness");
+    match built.plane {
+        Some(Plane::Axisymmetric) => {
+            say!("  axisymmetric: forces and charges are totals over the revolution about y")
+        }
+        Some(plane) => say!("  {}: forces and charges are per unit thickness", plane.name()),
+        None => {}
     }
 }
 

@@ -17,7 +17,7 @@ use crate::problem::Problem;
 pub const CONSTRAINED: usize = usize::MAX;
 
 /// Marks a u DOF that no clamp or support fixes, in [`DofMap::support_table`].
-pub const NO_TABLE: usize = usize::MAX;
+pub use crate::frames::NO_TABLE;
 
 /// Free numbering and prescribed values of all DOFs.
 #[derive(Clone, Debug, Default)]

@@ -8,6 +8,15 @@
 
 use crate::error::{Error, Result};
 
+/// The table of a condition no clamp or support sets (u_r = 0 on the axis of an
+/// axisymmetric body), and of a u DOF that nothing fixes.
+pub const NO_TABLE: usize = usize::MAX;
+
+/// The name of table `table` among `names`, for messages.
+fn table_name(names: &[String], table: usize) -> &str {
+    names.get(table).map_or("the axis (u_r = 0 there)", String::as_str)
+}
+
 /// Two fixed directions at a node within this angle are the same component \[degrees\].
 pub const SAME_DIRECTION_DEGREES: f64 = 1.0;
 
@@ -90,7 +99,7 @@ pub fn node_frame(dim: usize, entries: &[FixedDirection], names: &[String]) -> R
     let alpha = span_values(&merged, &basis).ok_or_else(|| {
         let list: Vec<String> = merged
             .iter()
-            .map(|e| format!("{} along {:?} by '{}'", e.value, e.direction, names[e.table]))
+            .map(|e| format!("{} along {:?} by '{}'", e.value, e.direction, table_name(names, e.table)))
             .collect();
         Error::Input(format!(
             "node {node} has its displacement fixed along directions that lie in one plane or line, to values no displacement meets: {}; give them consistent values, or hold the node by fewer supports",
@@ -142,7 +151,10 @@ fn check_same_value(
     };
     Err(Error::Input(format!(
         "node {} has its displacement along {along} fixed to {} by '{}' and to {value} by '{}': give both the same value there, or hold the node by one of them",
-        first.node, first.value, names[first.table], names[table]
+        first.node,
+        first.value,
+        table_name(names, first.table),
+        table_name(names, table)
     )))
 }
 

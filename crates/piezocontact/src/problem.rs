@@ -2,7 +2,9 @@
 //! roles and loads. [`Problem::new`] checks the roles once.
 
 use crate::error::{Error, Result};
-use crate::frames::{FixedDirection, NodeFrame, SAME_DIRECTION_DEGREES, axis, node_frame};
+use crate::frames::{
+    FixedDirection, NO_TABLE, NodeFrame, SAME_DIRECTION_DEGREES, axis, node_frame,
+};
 use crate::material::{Material, Materials};
 use crate::mesh::Mesh;
 use crate::mesh::normals::node_normals;
@@ -99,7 +101,15 @@ pub struct Problem {
     pub boundary: Boundary,
     /// Body loads.
     pub loads: BodyLoads,
+    /// Whether the 2D mesh is the meridian section of a body of revolution about the y axis
+    /// (x is the radius r ≥ 0): every integral carries 2πr, the hoop strain u_r/r enters the
+    /// law, and u_r = 0 at the nodes on the axis ([`Problem::new_axisymmetric`]).
+    pub axisymmetric: bool,
 }
+
+/// A node within this fraction of the mesh's size of x = 0 lies on the axis of an
+/// axisymmetric body [-].
+const ON_AXIS: f64 = 1e-12;
 
 impl Problem {
     /// Checks that Γ1 and Γa have positive measure (else the system is singular: Korn's and
@@ -126,9 +136,53 @@ impl Problem {
                 requirement: format!("one per cell ({})", mesh.n_cells()),
             });
         }
-        let problem = Self { mesh, materials, boundary, loads };
+        let problem = Self { mesh, materials, boundary, loads, axisymmetric: false };
         problem.check_roles()?;
         Ok(problem)
+    }
+
+    /// As [`Problem::new`], for the meridian section (x = r ≥ 0, y the axis) of a body of
+    /// revolution: a 2D mesh with no node at r < 0 (an error naming the node). The nodes on
+    /// the axis have u_r = 0 (no support needed), so the clamps and supports need hold only
+    /// the translation along y.
+    pub fn new_axisymmetric(
+        mesh: Mesh,
+        materials: impl Into<Materials>,
+        boundary: Boundary,
+        loads: BodyLoads,
+    ) -> Result<Self> {
+        if mesh.dim() != 2 {
+            return Err(Error::Input(format!(
+                "an axisymmetric body is the meridian section of a body of revolution, a 2D mesh; this mesh is {}D",
+                mesh.dim()
+            )));
+        }
+        let tolerance = ON_AXIS * mesh_size(&mesh);
+        if let Some(node) = (0..mesh.n_nodes()).find(|&a| mesh.node(a)[0] < -tolerance) {
+            return Err(Error::Input(format!(
+                "node {node} at {:?} has x = r < 0: an axisymmetric mesh is the meridian section at r = x ≥ 0, its axis x = 0; move the mesh to x ≥ 0",
+                mesh.node(node)
+            )));
+        }
+        let materials = materials.into();
+        let problem = Self { mesh, materials, boundary, loads, axisymmetric: true };
+        problem.check_roles()?;
+        Ok(problem)
+    }
+
+    /// The weight of an integral at point `p` of the mesh: 2πr in an axisymmetric body (the
+    /// circumference swept by the point), 1 otherwise.
+    pub fn revolution(&self, p: &[f64]) -> f64 {
+        if self.axisymmetric { 2.0 * std::f64::consts::PI * p[0] } else { 1.0 }
+    }
+
+    /// The nodes on the axis of an axisymmetric body (none otherwise), ascending.
+    pub fn axis_nodes(&self) -> Vec<usize> {
+        if !self.axisymmetric {
+            return Vec::new();
+        }
+        let tolerance = ON_AXIS * mesh_size(&self.mesh);
+        (0..self.mesh.n_nodes()).filter(|&a| self.mesh.node(a)[0].abs() <= tolerance).collect()
     }
 
     /// Cell c's material.
@@ -301,6 +355,13 @@ impl Problem {
                 table: 0,
             }));
         }
+        // The axis of an axisymmetric body: u_r = 0, a condition of no table.
+        entries.extend(self.axis_nodes().into_iter().map(|node| FixedDirection {
+            node,
+            direction: axis(0),
+            value: 0.0,
+            table: NO_TABLE,
+        }));
         for (k, support) in b.supports.iter().enumerate() {
             let table = k + self.clamp_tables();
             let normals = match support.fixed.iter().any(|(d, _)| *d == Direction::Normal) {
@@ -348,7 +409,21 @@ impl Problem {
             .flat_map(|f| f.fixed.iter().map(|&(i, ..)| (f.node, f.direction(i))))
             .collect();
         let pieces = self.mesh.pieces();
-        let free = free_rigid_motions(&self.mesh, &pieces, &fixed)?;
+        let free = match self.axisymmetric {
+            // A body of revolution moves rigidly along its axis only.
+            true => {
+                let mut held = vec![false; pieces.cells.len()];
+                fixed.iter().filter(|(_, d)| d[1] != 0.0).for_each(|(a, _)| {
+                    held[pieces.of_node[*a]] = true;
+                });
+                let along = vec!["translate along y (the axis)".to_string()];
+                (0..held.len())
+                    .filter(|&p| !held[p] && pieces.cells[p] > 0)
+                    .map(|p| (p, along.clone()))
+                    .collect()
+            }
+            false => free_rigid_motions(&self.mesh, &pieces, &fixed)?,
+        };
         let Some((piece, motions)) = free.first() else { return Ok(()) };
         let body = match pieces.cells.iter().filter(|c| **c > 0).count() {
             1 => "the body".to_string(),
@@ -366,4 +441,11 @@ impl Problem {
     pub fn part_nodes(&self, parts: &[usize]) -> Vec<usize> {
         self.mesh.part_nodes(parts)
     }
+}
+
+/// The diagonal of the mesh's bounding box (1 for a point).
+fn mesh_size(mesh: &Mesh) -> f64 {
+    let (lo, hi) = mesh.bounding_box();
+    let size = lo.iter().zip(&hi).map(|(a, b)| (b - a).powi(2)).sum::<f64>().sqrt();
+    if size > 0.0 { size } else { 1.0 }
 }

@@ -101,7 +101,9 @@ pub fn assess(
         imbalance: 0.0,
         charges: Vec::new(),
     };
-    for gdof in 0..dim * problem.mesh.n_nodes() {
+    // The radial forces of a body of revolution sum to no resultant: only y counts.
+    let first = usize::from(problem.axisymmetric);
+    for gdof in (0..dim * problem.mesh.n_nodes()).filter(|g| g % dim >= first) {
         balance.applied[gdof % dim] += f_ext[gdof];
         balance.contact[gdof % dim] += contact_force[gdof];
     }
@@ -208,11 +210,18 @@ pub fn reactions(
             let direction = dofs.direction(gdof / dim, gdof % dim);
             for (c, n_c) in direction.iter().enumerate().take(dim).filter(|(_, n)| **n != 0.0) {
                 total[c] += force[gdof] * n_c;
-                supports[dofs.support_table(gdof)][c] += force[gdof] * n_c;
+                if let Some(table) = supports.get_mut(dofs.support_table(gdof)) {
+                    table[c] += force[gdof] * n_c;
+                }
             }
         } else {
             phi_reaction[gdof - dim * n] = f_int[gdof] - f_ext[gdof] - contact_force[gdof];
         }
+    }
+    if problem.axisymmetric {
+        // The radial forces of a body of revolution sum to no resultant.
+        total[0] = 0.0;
+        supports.iter_mut().for_each(|s| s[0] = 0.0);
     }
     Reactions { total, supports, charges: electrode_charges(problem, &phi_reaction) }
 }

@@ -2,7 +2,9 @@
 //! Hencky's law, the internal force with the true law, σ and D for output, the L2 norm of the
 //! stopping rules and the norm of the space X of \[P\] (3.1).
 
-use super::kernel::{element_matrix, local_dofs, simplex};
+use super::axisymmetric;
+use super::axisymmetric::cell_matrix;
+use super::kernel::{local_dofs, simplex};
 use crate::dofs::DofMap;
 use crate::error::Result;
 use crate::problem::Problem;
@@ -63,7 +65,7 @@ fn internal_force_on<const D: usize, const N: usize>(
         let cells = first..(first + FORCE_BLOCK).min(n_cells);
         let products = &mut products[..2 * m * cells.len()];
         products.par_chunks_mut(2 * m).zip(cells.clone()).try_for_each(|(out, c)| {
-            let k = element_matrix(problem.material(c), &simplex::<D, N>(problem, c)?, moduli[c]);
+            let k = cell_matrix(problem, c, &simplex::<D, N>(problem, c)?, moduli[c])?;
             let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
             for p in 0..m {
                 for q in 0..m {
@@ -138,12 +140,38 @@ pub fn x_norm_squared(problem: &Problem, dofs: &DofMap, x: &[f64]) -> Result<f64
     Ok(sum)
 }
 
+/// In a body of revolution: the 3 × 3 strain (θθ the hoop strain u_r / r) and ∇ϕ at the
+/// centroid of cell `c`, and 2πr there.
+fn centroid_fields(
+    problem: &Problem,
+    dofs: &DofMap,
+    x: &[f64],
+    c: usize,
+) -> Result<([[f64; 3]; 3], [f64; 3], f64)> {
+    let coords = problem.mesh.cell_coords::<2, 3>(c);
+    let s = simplex::<2, 3>(problem, c)?;
+    let cell = problem.mesh.cell(c);
+    let u: [[f64; 2]; 3] = std::array::from_fn(|a| [x[dofs.u(cell[a], 0)], x[dofs.u(cell[a], 1)]]);
+    let phi: [f64; 3] = std::array::from_fn(|a| x[dofs.phi(cell[a])]);
+    let third = 1.0 / 3.0;
+    let (eps, grad_phi) =
+        axisymmetric::strain_at(&coords, &s, (&u, &phi), &[third, third, third, 0.0]);
+    let r = (coords[0][0] + coords[1][0] + coords[2][0]) / 3.0;
+    Ok((eps, grad_phi, problem.revolution(&[r, 0.0])))
+}
+
 fn x_norm_on<const D: usize, const N: usize>(
     problem: &Problem,
     dofs: &DofMap,
     x: &[f64],
     c: usize,
 ) -> Result<f64> {
+    if problem.axisymmetric {
+        let (eps, grad_phi, around) = centroid_fields(problem, dofs, x, c)?;
+        let vol = simplex::<2, 3>(problem, c)?.measure() * around;
+        let e2: f64 = eps.iter().flatten().map(|v| v * v).sum();
+        return Ok(vol * (e2 + grad_phi.iter().map(|v| v * v).sum::<f64>()));
+    }
     let (eps, grad_phi) = cell_gradients::<D, N>(problem, dofs, x, c)?;
     let vol = simplex::<D, N>(problem, c)?.measure();
     let e2: f64 = eps.iter().flatten().map(|v| v * v).sum();
@@ -279,6 +307,12 @@ fn fields_on<const D: usize, const N: usize>(
     c: usize,
 ) -> Result<([f64; 9], [f64; 3])> {
     let material = problem.material(c);
+    if problem.axisymmetric {
+        let (eps, grad_phi, _) = centroid_fields(problem, dofs, x, c)?;
+        let sigma = material.true_stress(&eps, &grad_phi);
+        let d = material.displacement_field(&eps, &grad_phi);
+        return Ok((std::array::from_fn(|k| sigma[k / 3][k % 3]), d));
+    }
     let (eps, grad_phi) = cell_gradients::<D, N>(problem, dofs, x, c)?;
     let sigma = material.true_stress(&eps, &grad_phi);
     let d = material.displacement_field(&eps, &grad_phi);
@@ -303,6 +337,10 @@ fn deviator_at<const D: usize, const N: usize>(
     x: &[f64],
     c: usize,
 ) -> Result<f64> {
+    if problem.axisymmetric {
+        let eps = centroid_fields(problem, dofs, x, c)?.0;
+        return Ok(problem.material(c).deviator_norm_squared(&eps));
+    }
     let eps = cell_gradients::<D, N>(problem, dofs, x, c)?.0;
     Ok(problem.material(c).deviator_norm_squared(&eps))
 }

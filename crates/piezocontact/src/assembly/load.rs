@@ -4,7 +4,8 @@
 //! (f̌, y) = ∫Ω f0·v + ∫Γ2 f2·v − ∫Ω q0 ξ + ∫Γb q2 ξ
 //! ```
 //!
-//! Loads are fields of x, integrated with a degree-2 rule on cells and facets.
+//! Loads are fields of x, integrated with a degree-2 rule on cells and facets (with the
+//! weight 2πr in a body of revolution: the integrals are over the whole revolution).
 
 use crate::dofs::DofMap;
 use crate::element::{Simplex, point_at, quadrature};
@@ -32,8 +33,9 @@ fn load_vector_on<const D: usize, const N: usize>(
                 let p = point_at(&x, lambda);
                 let body_force = f0.as_ref().map(|f| f(&p));
                 let charge = q0.as_ref().map_or(0.0, |q| q(&p));
+                let around = problem.revolution(&p);
                 for (a, &node) in mesh.cell(c).iter().enumerate() {
-                    let weight = vol * w * lambda[a];
+                    let weight = vol * w * lambda[a] * around;
                     if let Some(v) = &body_force {
                         (0..D).for_each(|i| f[dofs.u(node, i)] += weight * v[i]);
                     }
@@ -58,7 +60,7 @@ fn load_vector_on<const D: usize, const N: usize>(
 }
 
 /// Calls `f(node, weight, point)` for each quadrature point and node of the part's facets,
-/// with weight = |e| w_q N_a(x_q).
+/// with weight = |e| w_q N_a(x_q) (times 2πr_q in a body of revolution).
 fn integrate_facets<const D: usize>(
     problem: &Problem,
     part: usize,
@@ -70,8 +72,9 @@ fn integrate_facets<const D: usize>(
         let x = mesh.points::<D>(facet);
         for (lambda, w) in quadrature(D - 1) {
             let p = point_at(&x, lambda);
+            let around = problem.revolution(&p);
             for (a, &node) in facet.iter().enumerate() {
-                f(node, measure * w * lambda[a], &p);
+                f(node, measure * w * lambda[a] * around, &p);
             }
         }
     }

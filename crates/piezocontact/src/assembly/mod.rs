@@ -18,6 +18,7 @@
 //! cells are split once into groups of cells that share no node, the groups are summed one
 //! after the other, and within a group no two cells write the same entry.
 
+pub mod axisymmetric;
 pub mod fields;
 pub mod kernel;
 pub mod load;
@@ -33,7 +34,8 @@ use crate::error::{Error, Result};
 use crate::linalg::{SymmetricMatrix, SymmetricPattern};
 use crate::mesh::Mesh;
 use crate::problem::Problem;
-use kernel::{element_matrix, local_dofs, simplex, tangent_vector};
+use axisymmetric::cell_matrix;
+use kernel::{local_dofs, simplex, tangent_vector};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -457,7 +459,7 @@ fn add_cell<const D: usize, const N: usize>(
     sums: &[AtomicU64],
 ) -> Result<()> {
     let s = simplex::<D, N>(problem, cell.c)?;
-    let mut k = element_matrix(problem.material(cell.c), &s, cell.modulus);
+    let mut k = cell_matrix(problem, cell.c, &s, cell.modulus)?;
     let nodes = problem.mesh.cell(cell.c);
     turn_element::<D, N>(dofs, nodes, &mut k);
     let global = local_dofs::<D, N>(dofs, nodes);

@@ -83,6 +83,12 @@ impl Case {
         self.contact_settings()?;
         let problem = self.problem_checked()?;
         let model = self.contact_model(&problem)?;
+        if problem.axisymmetric && model.is_some() {
+            return Err(input!(
+                "{}: contact in an axisymmetric body (mesh.plane = \"axisymmetric\") is not available yet: solve the indentation in 3D (a quarter model on its symmetry planes, cases/indentation-quarter.toml), or remove [contact] for a run without contact",
+                self.locate("contact")
+            ));
+        }
         let loading = self.loading(problem.mesh.dim())?;
         if let Some(model) = &model {
             self.check_reach(&problem, model, loading.as_ref())?;
@@ -489,7 +495,13 @@ impl Case {
                 q => q.map(constant_scalar),
             },
         };
-        Problem::new(mesh, materials, boundary, loads).map_err(|e| self.context(e))
+        let problem = match self.plane_model(mesh.dim())? {
+            Some(Plane::Axisymmetric) => {
+                Problem::new_axisymmetric(mesh, materials, boundary, loads)
+            }
+            _ => Problem::new(mesh, materials, boundary, loads),
+        };
+        problem.map_err(|e| self.context(e))
     }
 }
 

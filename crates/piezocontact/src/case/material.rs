@@ -75,6 +75,7 @@ impl Case {
             )),
             (PlaneKey::Strain, _) => Ok(Some(Plane::Strain)),
             (PlaneKey::Stress, _) => Ok(Some(Plane::Stress)),
+            (PlaneKey::Axisymmetric, _) => Ok(Some(Plane::Axisymmetric)),
         }
     }
 }

@@ -154,6 +154,7 @@ pub enum PlaneKey {
     Continuum,
     Strain,
     Stress,
+    Axisymmetric,
 }
 
 /// Diagonal direction in the case file.

@@ -305,10 +305,13 @@ impl Material {
     /// about it, to 1e-9 of their largest entries): a ceramic poled along ±z, AlN, ZnO; always
     /// in 2D, whose continuum has no turn.
     pub fn is_transversely_isotropic(&self) -> bool {
-        if self.dim == 2 {
-            return true;
-        }
-        let turn = orientation::axes_from_euler([37.0, 0.0, 0.0]);
+        self.dim == 2 || self.invariant_under(&orientation::axes_from_euler([37.0, 0.0, 0.0]))
+    }
+
+    /// Whether the 3D tensors are unchanged (to 1e−9 of their largest entry) when turned to
+    /// the axes `turn` (columns).
+    pub fn invariant_under(&self, turn: &Matrix3) -> bool {
+        let turn = *turn;
         let near = |a: &[f64], b: &[f64]| {
             let scale = a.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-9 * scale)

@@ -16,6 +16,20 @@ pub enum Plane {
     Strain,
     /// Plane stress.
     Stress,
+    /// The meridian section of a body of revolution about y (x = r).
+    Axisymmetric,
+}
+
+impl Plane {
+    /// Its name in outputs.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Plane::Continuum => "continuum",
+            Plane::Strain => "plane strain",
+            Plane::Stress => "plane stress",
+            Plane::Axisymmetric => "axisymmetric",
+        }
+    }
 }
 
 /// The 2D material of `plane` (strain or stress) from the 3D material `solid` (mesh axes) and
@@ -27,6 +41,9 @@ pub fn plane_material(
     elastic: &ElasticConstants,
     plane: Plane,
 ) -> Result<Material> {
+    if plane == Plane::Axisymmetric {
+        return axisymmetric_material(solid);
+    }
     if let ElasticConstants::Isotropic(el) = elastic
         && el.law != super::ElasticLaw::Linear
     {
@@ -47,7 +64,7 @@ pub fn plane_material(
     };
     let e = voigt::coupling_voigt(&solid.e);
     let (c, e, beta) = match plane {
-        Plane::Strain | Plane::Continuum => in_plane(&c, &e, &solid.beta),
+        Plane::Strain | Plane::Continuum | Plane::Axisymmetric => in_plane(&c, &e, &solid.beta),
         Plane::Stress => condensed(&c, &e, &solid.beta)?,
     };
     Ok(Material {
@@ -59,6 +76,31 @@ pub fn plane_material(
         axes: solid.axes,
         deviator_dim: 2,
     })
+}
+
+/// The material of a body of revolution about y: the 3D tensors in the mesh's axes, x = r,
+/// y the axis and z the hoop direction θ (the kernel reads all three), Hencky's law with the
+/// 3D deviator. The law must be symmetric about the axis: poled along ±y, and unchanged by
+/// a turn about y (to 1e−9 relative).
+fn axisymmetric_material(solid: &Material) -> Result<Material> {
+    let p = solid.poling();
+    if (p[1].abs() - 1.0).abs() > 1e-9 {
+        return Err(invalid_text(
+            "material.poling",
+            &format!("{p:?}"),
+            "along the axis in an axisymmetric body: poling = [0.0, 1.0] or [0.0, -1.0] (y is the axis)",
+        ));
+    }
+    let (c, s) = (37f64.to_radians().cos(), 37f64.to_radians().sin());
+    let about_y = [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]];
+    if !solid.invariant_under(&about_y) {
+        return Err(invalid_text(
+            "material",
+            "a law that a turn about the axis changes",
+            "a law transversely isotropic about the axis y in an axisymmetric body (a ceramic poled along y, or an isotropic material)",
+        ));
+    }
+    Ok(Material { dim: 2, deviator_dim: 3, ..solid.clone() })
 }
 
 /// The in-plane Voigt index of (i, j) < 2: xx 0, yy 1, xy 2.

@@ -27,12 +27,16 @@ pub fn common_summary(built: &Built, dofs: &DofMap) -> Value {
         "materials": materials_json(built),
     });
     // A plane model says that its forces and charges are per unit thickness.
-    if let Some(plane) = built.plane {
-        let model = if plane == Plane::Stress { "plane stress" } else { "plane strain" };
-        merge(
+    match built.plane {
+        Some(Plane::Axisymmetric) => merge(
             &mut summary,
-            json!({ "model": model, "per_unit_thickness": "forces [stress·length] and charges [charge/length] are per unit thickness" }),
-        );
+            json!({ "model": "axisymmetric", "whole_revolution": "forces and charges are totals over the revolution about y; radial resultants vanish" }),
+        ),
+        Some(plane) => merge(
+            &mut summary,
+            json!({ "model": plane.name(), "per_unit_thickness": "forces [stress·length] and charges [charge/length] are per unit thickness" }),
+        ),
+        None => {}
     }
     summary
 }

@@ -1,5 +1,7 @@
 //! Integration tests of the piezocontact library, one binary (fast linking on 2 cores).
 
+/// Axisymmetric bodies: uniform states of a cylinder, totals over the revolution, bad input.
+mod axisymmetric;
 /// The linear-solver seam: a dense LU backend from outside the library.
 mod backend;
 /// Shared builders: the PZT-5A material, meshes, exact fields.

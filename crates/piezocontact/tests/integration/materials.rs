@@ -13,7 +13,7 @@ use piezocontact::material::voigt::{self, Coupling, Voigt};
 use piezocontact::run::{Run, StaticRun};
 
 /// c^E of PZT-5A \[GPa\].
-const C: Voigt = [
+pub(super) const C: Voigt = [
     [120.3, 75.2, 75.1, 0.0, 0.0, 0.0],
     [75.2, 120.3, 75.1, 0.0, 0.0, 0.0],
     [75.1, 75.1, 110.9, 0.0, 0.0, 0.0],
@@ -22,7 +22,7 @@ const C: Voigt = [
     [0.0, 0.0, 0.0, 0.0, 0.0, 22.55],
 ];
 /// e of PZT-5A [C/m²].
-const E: Coupling = [
+pub(super) const E: Coupling = [
     [0.0, 0.0, 0.0, 0.0, 12.3, 0.0],
     [0.0, 0.0, 0.0, 12.3, 0.0, 0.0],
     [-5.4, -5.4, 15.8, 0.0, 0.0, 0.0],
@@ -52,7 +52,7 @@ fn rows<const R: usize, const K: usize>(m: &[[f64; K]; R]) -> String {
 }
 
 /// The stress-charge form of PZT-5A as a `[material]` body.
-fn stress_charge() -> String {
+pub(super) fn stress_charge() -> String {
     format!("c = {}\ne = {}\neps0 = {EPS0}\neps_rel = [916.0, 916.0, 830.0]\n", rows(&C), rows(&E))
 }
 
