@@ -53,7 +53,7 @@ fn contact_run(run: &ContactRun, built: &Built, out: &Path) {
     }
     say!("  max |sigma_nu|     = {sigma_nu:.6e} {}", units.stress);
     say!("  max |sigma_tau|    = {sigma_tau:.6e} {}", units.stress);
-    let measure = match mesh.dim() {
+    let measure = match integrals_dim(built) {
         2 => units.length.clone(),
         _ => format!("{}^2", units.length),
     };
@@ -88,8 +88,7 @@ fn contact_run(run: &ContactRun, built: &Built, out: &Path) {
 /// Prints a loading path: a line per step, then the last step as a run.
 fn path_run(path: &PathRun, built: &Built, out: &Path) {
     let units = &built.units;
-    let dim = built.problem.mesh.dim();
-    let force = if dim == 3 {
+    let force = if integrals_dim(built) == 3 {
         format!("{}·{}²", units.stress, units.length)
     } else {
         format!("{}·{}", units.stress, units.length)
@@ -138,8 +137,9 @@ fn path_run(path: &PathRun, built: &Built, out: &Path) {
 /// Prints a loading path without contact: a line per step, then the last step as a run.
 fn static_path_run(path: &StaticPathRun, built: &Built, out: &Path) {
     let (units, dim) = (&built.units, built.problem.mesh.dim());
-    let force = if dim == 3 { format!("{}²", units.length) } else { units.length.clone() };
-    let per = if dim == 2 { format!("/{}", units.length) } else { String::new() };
+    let volume = integrals_dim(built) == 3;
+    let force = if volume { format!("{}²", units.length) } else { units.length.clone() };
+    let per = if volume { String::new() } else { format!("/{}", units.length) };
     let parts = PathRun::electrodes(built);
     say!(
         "{}: loading path of {} steps without contact",
@@ -223,6 +223,13 @@ pub fn indentation_moduli(named: &NamedMaterial, units: &Units) {
         }
         Err(e) => say!("  C*: not computed ({e})"),
     }
+}
+
+/// The dimension of the body the integrals run over: 3 for a 3D mesh and for a body of
+/// revolution (forces [stress·length²], measures of Γ3 areas), 2 for a plane model (per unit
+/// thickness).
+fn integrals_dim(built: &Built) -> usize {
+    if built.problem.axisymmetric { 3 } else { built.problem.mesh.dim() }
 }
 
 /// Says, for a plane model, that its forces and charges are per unit thickness.
@@ -329,7 +336,7 @@ fn supports(built: &Built) {
 /// Prints the reaction of each clamp and support, with its unit.
 fn reactions(built: &Built, supports: &[Vec<f64>]) {
     let units = &built.units;
-    let area = if built.problem.mesh.dim() == 3 { "²" } else { "" };
+    let area = if integrals_dim(built) == 3 { "²" } else { "" };
     for (name, force) in built.problem.support_names().iter().zip(supports) {
         let components: Vec<String> = force.iter().map(|f| format!("{f:.6e}")).collect();
         say!(

@@ -201,7 +201,9 @@ fn linearise(
     secant: bool,
     beyond: Beyond,
 ) -> Result<Linearisation> {
-    if secant {
+    // A body of revolution takes the secant: the tangent's rank-one part is the plane
+    // element's.
+    if secant || problem.axisymmetric {
         Ok(Linearisation::secant(secant_moduli(problem, dofs, x)?))
     } else {
         Linearisation::tangent(problem, dofs, x, beyond)

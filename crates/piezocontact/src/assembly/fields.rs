@@ -103,7 +103,10 @@ impl MassNorm {
         let n = problem.mesh.dim() + 1;
         let factor = 1.0 / ((n * (n + 1)) as f64);
         let scaled_measures = (0..problem.mesh.n_cells())
-            .map(|c| Ok(factor * with_simplex!(problem.mesh.dim(), cell_measure(problem, c))?))
+            .map(|c| {
+                let measure = with_simplex!(problem.mesh.dim(), cell_measure(problem, c))?;
+                Ok(factor * measure * revolution_at_centroid(problem, c))
+            })
             .collect::<Result<_>>()?;
         Ok(Self { scaled_measures })
     }
@@ -325,6 +328,14 @@ fn fields_on<const D: usize, const N: usize>(
         }
     }
     Ok((s9, d3))
+}
+
+/// 2πr at the centroid of cell `c` in a body of revolution (1 otherwise): the weight by which
+/// the L2 norm of the stopping rules takes the revolution.
+fn revolution_at_centroid(problem: &Problem, c: usize) -> f64 {
+    let cell = problem.mesh.cell(c);
+    let r = cell.iter().map(|&a| problem.mesh.node(a)[0]).sum::<f64>() / cell.len() as f64;
+    problem.revolution(&[r, 0.0])
 }
 
 fn cell_measure<const D: usize, const N: usize>(problem: &Problem, c: usize) -> Result<f64> {

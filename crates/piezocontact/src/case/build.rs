@@ -83,10 +83,12 @@ impl Case {
         self.contact_settings()?;
         let problem = self.problem_checked()?;
         let model = self.contact_model(&problem)?;
-        if problem.axisymmetric && model.is_some() {
+        if let (true, Some(model)) = (problem.axisymmetric, &model)
+            && let Some(why) = model.foundation.off_the_axis()
+        {
             return Err(input!(
-                "{}: contact in an axisymmetric body (mesh.plane = \"axisymmetric\") is not available yet: solve the indentation in 3D (a quarter model on its symmetry planes, cases/indentation-quarter.toml), or remove [contact] for a run without contact",
-                self.locate("contact")
+                "{}: the foundation of an axisymmetric body (mesh.plane = \"axisymmetric\") must be a body of revolution about its axis y: {why}",
+                self.locate("foundation")
             ));
         }
         let loading = self.loading(problem.mesh.dim())?;

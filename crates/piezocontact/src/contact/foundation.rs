@@ -76,6 +76,29 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 impl Foundation {
+    /// What keeps the foundation from being a body of revolution about the y axis (`None`:
+    /// it is one): a plane normal to y, a sphere centred on the axis, a cone or a punch on
+    /// the axis along it, or the constant gap.
+    pub fn off_the_axis(&self) -> Option<&'static str> {
+        let on_axis =
+            |p: &[f64; 3]| p[0].abs() <= 1e-12 * p.iter().fold(1.0_f64, |m, v| m.max(v.abs()));
+        let along_y = |n: &[f64; 3]| n[0].abs() <= 1e-12 && n[2] == 0.0;
+        match self {
+            Foundation::ConstantGap => None,
+            Foundation::Plane { normal, .. } => {
+                (!along_y(normal)).then_some("a plane must be normal to the axis y: normal = [0.0, 1.0]")
+            }
+            Foundation::Sphere { center, .. } => {
+                (!on_axis(center)).then_some("a sphere must be centred on the axis: center = [0.0, y]")
+            }
+            Foundation::Cone { apex, axis, .. } => (!on_axis(apex) || !along_y(axis))
+                .then_some("a cone must have its apex on the axis and its axis along y: apex = [0.0, y], axis = [0.0, 1.0]"),
+            Foundation::Punch { center, axis, .. } => (!on_axis(center) || !along_y(axis))
+                .then_some("a punch must be centred on the axis along y: center = [0.0, y], axis = [0.0, 1.0]"),
+            Foundation::Surface { .. } => Some("a rigid surface from a file is a 3D foundation"),
+        }
+    }
+
     /// The distance from x along the unit vector ν to the surface \[length\]: +∞ when the ray
     /// misses it, negative when x is inside the foundation (0 for the constant gap).
     pub fn distance_along(&self, x: [f64; 3], nu: [f64; 3]) -> f64 {

@@ -31,6 +31,8 @@ pub struct ContactSurface {
     free_tangents: Vec<usize>,
     /// Per node in 3D with one tangential direction fixed: that direction (else 0).
     held: Vec<[f64; 3]>,
+    /// Whether Γ3 is the meridian line of a surface of revolution (its weights are areas).
+    revolution: bool,
 }
 
 impl ContactSurface {
@@ -44,9 +46,9 @@ impl ContactSurface {
         for &p in &problem.boundary.contact {
             for facet in mesh.part_facets(p) {
                 let (measure, n) = mesh.facet_frame(facet);
-                for &node in facet {
+                for (a, &node) in facet.iter().enumerate() {
                     let e = acc.entry(node).or_insert((0.0, [0.0; 3]));
-                    e.0 += measure / dim as f64;
+                    e.0 += nodal_weight(problem, facet, a, measure);
                     (0..3).for_each(|i| e.1[i] += measure * n[i]);
                     neighbours
                         .entry(node)
@@ -85,6 +87,7 @@ impl ContactSurface {
             gap: Vec::new(),
             free_tangents: Vec::new(),
             held: Vec::new(),
+            revolution: problem.axisymmetric,
         };
         for node in order.into_iter().filter(|&n| free(n)) {
             let (w, mut n) = acc[&node];
@@ -163,6 +166,12 @@ impl ContactSurface {
         [nu, t1, d]
     }
 
+    /// Whether Γ3 is the meridian line of a surface of revolution: its weights and measures are
+    /// areas of the whole revolution.
+    pub fn revolution(&self) -> bool {
+        self.revolution
+    }
+
     /// How many tangential directions are free at node i: d − 1, less those a support fixes.
     pub fn free_tangents(&self, i: usize) -> usize {
         self.free_tangents[i]
@@ -201,6 +210,17 @@ impl ContactSurface {
     pub fn position<'a>(&self, problem: &'a Problem, i: usize) -> &'a [f64] {
         problem.mesh.node(self.nodes[i])
     }
+}
+
+/// The share of node `a` of facet `facet` (measure `measure`) in its weight: |e|/d, or in a
+/// body of revolution ∫_e 2πr φ_a ds = 2π |e| (2 r_a + r_b)/6 (a positive weight even for a
+/// node on the axis).
+fn nodal_weight(problem: &Problem, facet: &[usize], a: usize, measure: f64) -> f64 {
+    if !problem.axisymmetric {
+        return measure / facet.len() as f64;
+    }
+    let r = |k: usize| problem.mesh.node(facet[k])[0];
+    2.0 * std::f64::consts::PI * measure * (2.0 * r(a) + r(1 - a)) / 6.0
 }
 
 /// The directions a support fixes at Γ3 node `node` (mesh axes, or the rows of its turned

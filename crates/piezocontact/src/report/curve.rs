@@ -63,7 +63,11 @@ impl CurveRow {
             depth: load.depth,
             force: solution.balance.contact.iter().map(|f| -f).collect(),
             contact_measure: contact,
-            contact_radius: if dim == 3 { (contact / PI).sqrt() } else { 0.5 * contact },
+            contact_radius: if dim == 3 || solution.surface.revolution() {
+                (contact / PI).sqrt()
+            } else {
+                0.5 * contact
+            },
             max_pressure: rows.iter().map(|r| -r.sigma_nu).fold(0.0, f64::max),
             phi_center: center.map_or(0.0, |i| rows[i].phi),
             phi_mean,
