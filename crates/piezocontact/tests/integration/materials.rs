@@ -51,6 +51,16 @@ fn rows<const R: usize, const K: usize>(m: &[[f64; K]; R]) -> String {
     format!("[{}]", rows.join(", "))
 }
 
+/// The `e = ...` line of [`stress_charge`].
+pub(super) fn rows_of_e() -> String {
+    format!("e = {}", rows(&E))
+}
+
+/// That line with every coefficient 0 (the same material without coupling).
+pub(super) fn rows_of_zero_e() -> String {
+    format!("e = {}", rows(&[[0.0; 6]; 3]))
+}
+
 /// The stress-charge form of PZT-5A as a `[material]` body.
 pub(super) fn stress_charge() -> String {
     format!("c = {}\ne = {}\neps0 = {EPS0}\neps_rel = [916.0, 916.0, 830.0]\n", rows(&C), rows(&E))
