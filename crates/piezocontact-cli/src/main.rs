@@ -174,6 +174,11 @@ struct BenchArgs {
     /// interleaved runs of each.
     #[arg(long, conflicts_with_all = ["contact", "path", "lu", "sizes", "case", "materials"])]
     quarter: bool,
+    /// Time the ball indentation of PZT-5A in 3D (meshes/indent-halfspace-fine.msh) and as a
+    /// body of revolution (meshes/indent-axisym-h0.01.msh): forces against Hertz with C*, and
+    /// the wall times, the median of 3 interleaved runs of each.
+    #[arg(long, conflicts_with_all = ["contact", "path", "lu", "sizes", "case", "materials", "quarter", "mesh"])]
+    axisym: bool,
     /// One measurement of --contact (internal).
     #[arg(long, hide = true)]
     one: Option<String>,
@@ -288,6 +293,7 @@ fn bench_command(args: BenchArgs) -> Result<Outcome> {
         path,
         materials,
         quarter,
+        axisym,
         one,
         ordering,
         backend,
@@ -298,6 +304,9 @@ fn bench_command(args: BenchArgs) -> Result<Outcome> {
     if materials {
         let mesh = mesh.unwrap_or_else(|| PathBuf::from("meshes/block-100k.msh"));
         return bench::materials::run(&mesh).map(|_| Outcome::Done);
+    }
+    if axisym {
+        return bench::axisym::run().map(|_| Outcome::Done);
     }
     if quarter {
         let mesh = mesh.unwrap_or_else(|| PathBuf::from("meshes/indent-quarter-h0.015.msh"));

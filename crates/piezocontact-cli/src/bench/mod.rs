@@ -7,6 +7,7 @@
 //!   process of its own;
 //! - [`path`]: a loading path solved as a path against its steps solved cold;
 //! - [`materials`]: the assembly with one material and with four by region;
+//! - [`axisym`]: the ball indentation in 3D and as a body of revolution;
 //! - [`quarter`]: the quarter model against the whole block, and rollers against a clamp;
 //! - `petsc` (feature `petsc`): the PETSc + MUMPS backend under mpirun beside faer;
 //! - [`one`]: `bench --one SPEC`, one measurement of the above in a child process.
@@ -16,6 +17,7 @@
 //! one factorisation and solve, the peak memory, and the protocol of `bench --one` — a child
 //! process that prints its figures as key=value pairs. It imports none of them.
 
+pub mod axisym;
 pub mod contact;
 pub mod factorisation;
 pub mod materials;
