@@ -211,6 +211,36 @@ def test_supports_and_expressions_read_as_in_the_case_file(tmp_path):
         piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
 
 
+def test_plane_models_and_normal_rollers_read_as_in_the_case_file(tmp_path):
+    p = 0.5
+    case = {
+        "mesh": {"x": [0.0, 1.0], "y": [0.0, 2.0], "nx": 3, "ny": 5, "plane": "axisymmetric",
+                 "segments": {"left": ["{0}x[0,1]"], "bottom": ["[0,1]x{0}"], "top": ["[0,1]x{2}"]}},
+        "material": {"law": "linear", "young": 60.0, "poisson": 0.3, "e31": 0.0, "e33": 0.0, "e15": 0.0,
+                     "eps0": 1.0, "beta11_rel": 1.0, "beta33_rel": 1.0},
+        "boundary": {"grounded": ["bottom"],
+                     "support": [{"name": "floor", "parts": ["bottom"], "fix": ["normal"]},
+                                 {"name": "left", "parts": ["left"], "fix": ["x"]}],
+                     "traction": [{"parts": ["top"], "f2": [0.0, -p]}]},
+    }
+    solved = piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
+    # A cylinder of radius 1 pressed on its top: the floor holds p times the disc's area, and
+    # the uniaxial state is u = (ν p r / E, −p y / E); the roller on the axis (the left
+    # side, half of it) fixes what the axis fixes already.
+    assert solved.summary["model"] == "axisymmetric"
+    floor = solved.summary["reactions"]["floor"]
+    assert abs(floor[1] - p * np.pi) < 1e-9 and floor[0] == 0.0
+    expected = np.column_stack([0.3 * p / 60.0 * solved.points[:, 0], -p / 60.0 * solved.points[:, 1]])
+    assert np.abs(solved.u - expected).max() < 1e-12
+    case["mesh"]["plane"] = "strain"
+    assert piezocontact.Case.from_dict(case, base_dir=tmp_path).solve().summary["model"] == "plane strain"
+    case["mesh"]["plane"] = "axisymmetric"
+    case["mesh"]["x"] = [-1.0, 1.0]
+    case["mesh"]["segments"] = {"left": ["{-1}x[0,1]"], "bottom": ["[-1,1]x{0}"], "top": ["[-1,1]x{2}"]}
+    with pytest.raises(ValueError, match="r < 0"):
+        piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
+
+
 def test_materials_by_region_and_presets_read_as_in_the_case_file(tmp_path):
     material = {"law": "linear", "young": 100.0, "poisson": 0.3, "e32": -5.4, "e33": 15.8, "e24": 12.3,
                 "eps0": 8.885e-3, "beta22_rel": 916.0, "beta33_rel": 830.0}

@@ -170,3 +170,8 @@ fn a_mumps_error_ends_the_run_with_mumps_s_diagnosis() {
 fn the_quarter_model_under_mpirun_is_the_serial_run() {
     same_as_serial("cases/indentation-quarter.toml", &[], "quarter", &[2]);
 }
+
+#[test]
+fn the_axisymmetric_path_under_mpirun_is_the_serial_run() {
+    same_as_serial("cases/indentation-axisym.toml", &[], "axisym", &[2]);
+}
