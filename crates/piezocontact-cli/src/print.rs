@@ -68,6 +68,7 @@ fn contact_run(run: &ContactRun, built: &Built, out: &Path) {
     );
     say!("  force balance      = relative imbalance {:.1e}", run.solution.balance.imbalance);
     reactions(built, &run.solution.balance.supports);
+    electrodes(built, &run.summary(built));
     // The exact solver's condensed problem, where there is one.
     let dense = if t.dense > 0.0 { format!(", dense problem {:.3} s", t.dense) } else { "".into() };
     say!(
@@ -262,6 +263,7 @@ fn static_run(run: &StaticRun, built: &Built, out: &Path) {
     }
     say!("  relative residual  = {:.3e}", run.solution.relative_residual);
     reactions(built, &run.reactions.supports);
+    electrodes(built, &run.summary(built));
     if run.solution.factorisations > 1 {
         say!("  Hencky's law       = {} secant steps", run.solution.factorisations - 1);
     }
@@ -329,6 +331,26 @@ fn supports(built: &Built) {
             parts.join(", "),
             fixed.join(", "),
             problem.part_nodes(&support.parts).len()
+        );
+    }
+}
+
+/// Prints each electrode's potential and charge (summary.json's `electrodes`), when the case
+/// has electrodes beside its grounded parts.
+fn electrodes(built: &Built, summary: &serde_json::Value) {
+    if built.problem.boundary.electrodes.is_empty() {
+        return;
+    }
+    let units = &built.units;
+    let per = if integrals_dim(built) == 3 { String::new() } else { format!("/{}", units.length) };
+    for e in summary["electrodes"].as_array().into_iter().flatten() {
+        say!(
+            "  electrode {:<8} = potential {:.6e} {}, charge {:.6e} {}{per}",
+            e["name"].as_str().unwrap_or(""),
+            e["potential"].as_f64().unwrap_or(f64::NAN),
+            units.potential,
+            e["charge"].as_f64().unwrap_or(f64::NAN),
+            units.charge
         );
     }
 }

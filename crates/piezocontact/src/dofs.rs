@@ -64,10 +64,13 @@ impl DofMap {
             frame_of = vec![NO_TABLE; n_nodes];
             frames.iter().enumerate().for_each(|(k, (node, _))| frame_of[*node] = k);
         }
-        for node in problem.part_nodes(&problem.boundary.grounded) {
+        let mut electrodes = vec![0.0; n_nodes];
+        for (node, value) in problem.electrode_potentials()? {
             constrained[n_nodes * dim + node] = true;
-            prescribed[n_nodes * dim + node] =
-                problem.boundary.grounded_value.as_ref().map_or(0.0, |f| f(mesh.node(node)));
+            prescribed[n_nodes * dim + node] = value;
+            if !problem.boundary.electrodes.is_empty() {
+                electrodes[node] = value;
+            }
         }
         let mut free = vec![CONSTRAINED; total];
         let mut next = 0;
@@ -81,8 +84,14 @@ impl DofMap {
                 n_free_u = next;
             }
         }
-        let nonzero = prescribed[..n_nodes * dim].iter().any(|v| *v != 0.0);
-        let displacements = if nonzero { prescribed[..n_nodes * dim].to_vec() } else { Vec::new() };
+        // What a loading path scales: the prescribed displacements and the electrodes' voltages
+        // (the grounded parts' prescribed field of a verification problem stays).
+        let mut scaled = prescribed[..n_nodes * dim].to_vec();
+        if electrodes.iter().any(|v| *v != 0.0) {
+            scaled.extend(electrodes);
+        }
+        let nonzero = scaled.iter().any(|v| *v != 0.0);
+        let displacements = if nonzero { scaled } else { Vec::new() };
         let n_free = next;
         Ok(Self {
             dim,
@@ -235,8 +244,8 @@ impl DofMap {
         !self.displacements.is_empty()
     }
 
-    /// Sets the prescribed displacements to `load_factor` [-] times the case's (a step of a
-    /// loading path); the prescribed potentials stay.
+    /// Sets the prescribed displacements and the electrodes' voltages to `load_factor` [-]
+    /// times the case's (a step of a loading path); the grounded parts stay at their potential.
     pub fn scale_displacements(&mut self, load_factor: f64) {
         for (g, unit) in self.displacements.iter().enumerate() {
             self.prescribed[g] = load_factor * unit;

@@ -79,6 +79,19 @@ pub struct Boundary {
     pub supports: Vec<Support>,
     /// Prescribed potential on Γa \[potential\]; `None` is the model's ϕ = 0.
     pub grounded_value: Option<ScalarField>,
+    /// Electrodes at a prescribed potential (part of Γa, beyond the grounded parts).
+    pub electrodes: Vec<Electrode>,
+}
+
+/// An electrode: boundary parts at one potential.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Electrode {
+    /// Its name in outputs.
+    pub name: String,
+    /// The boundary parts it covers.
+    pub parts: Vec<usize>,
+    /// Its potential at load factor 1 \[potential\].
+    pub voltage: f64,
 }
 
 /// Body loads of (2.1).
@@ -203,14 +216,16 @@ impl Problem {
                       boundary part as clamped, or hold parts with [[boundary.support]] tables",
             });
         }
-        if measure(&b.grounded) <= 0.0 {
+        let potential = self.potential_parts();
+        if measure(&potential) <= 0.0 {
             return Err(Error::EmptyRole {
                 role: "Γa (grounded)",
                 why: "the potential must be fixed on a part of positive measure, or it is only \
                       known up to a constant and the system is singular; name at least one \
-                      non-empty boundary part as grounded",
+                      non-empty boundary part as grounded, or an electrode with a voltage",
             });
         }
+        self.check_electrodes()?;
         self.check_pieces()?;
         self.check_rigid_motions()?;
         let traction: Vec<usize> = b.traction.iter().map(|(p, _)| *p).collect();
@@ -219,7 +234,7 @@ impl Problem {
             ("Γ1 (clamped)", &b.clamped),
             ("Γ2 (traction)", &traction),
             ("Γ3 (contact)", &b.contact),
-            ("Γa (grounded)", &b.grounded),
+            ("Γa (grounded or an electrode)", &potential),
             ("Γb (charge)", &charge),
             ("Γ3 (contact)", &b.contact),
         ];
@@ -247,11 +262,10 @@ impl Problem {
     /// not can move freely (or float electrically), and the system is singular.
     fn check_pieces(&self) -> Result<()> {
         let pieces = self.mesh.pieces();
-        let b = &self.boundary;
         let held = self.held_parts();
         for (role, key, parts) in [
             ("Γ1 (clamped)", "boundary.clamped or a [[boundary.support]]", &held),
-            ("Γa (grounded)", "boundary.grounded", &b.grounded),
+            ("Γa (grounded)", "boundary.grounded or an electrode", &self.potential_parts()),
         ] {
             let mut held = vec![false; pieces.cells.len()];
             for node in self.part_nodes(parts) {
@@ -291,6 +305,57 @@ impl Problem {
             }
             None => Ok(()),
         }
+    }
+
+    /// The parts of Γa, where ϕ is prescribed: the grounded ones, then the electrodes'.
+    pub fn potential_parts(&self) -> Vec<usize> {
+        let b = &self.boundary;
+        b.grounded.iter().chain(b.electrodes.iter().flat_map(|e| &e.parts)).copied().collect()
+    }
+
+    /// The potential each node of Γa is held at, at load factor 1 (the grounded parts' 0, or
+    /// their prescribed field, then each electrode's voltage), ascending by node; an error
+    /// where two of them share a facet, or a node with two different potentials.
+    pub fn electrode_potentials(&self) -> Result<Vec<(usize, f64)>> {
+        let b = &self.boundary;
+        let mesh = &self.mesh;
+        let grounded = |node: usize| b.grounded_value.as_ref().map_or(0.0, |f| f(mesh.node(node)));
+        let mut held: Vec<(usize, f64, String)> = self
+            .part_nodes(&b.grounded)
+            .into_iter()
+            .map(|node| (node, grounded(node), "the grounded parts".to_string()))
+            .collect();
+        for e in &b.electrodes {
+            let at = format!("the electrode '{}'", e.name);
+            held.extend(
+                self.part_nodes(&e.parts).into_iter().map(|node| (node, e.voltage, at.clone())),
+            );
+        }
+        held.sort_by_key(|h| h.0);
+        let mut potentials: Vec<(usize, f64)> = Vec::with_capacity(held.len());
+        for pair in held.chunk_by(|a, b| a.0 == b.0) {
+            let (node, value, first) = &pair[0];
+            if let Some((_, other, second)) = pair.iter().find(|h| h.1 != *value) {
+                return Err(Error::Input(format!(
+                    "node {node} at {:?} is on {first} at {value} and on {second} at {other}: electrodes at different potentials must not touch (they would be shorted); split the parts so that they share no node",
+                    mesh.node(*node)
+                )));
+            }
+            potentials.push((*node, *value));
+        }
+        Ok(potentials)
+    }
+
+    /// Refuses electrodes that share a facet with each other or with a grounded part, and
+    /// nodes held at two potentials.
+    fn check_electrodes(&self) -> Result<()> {
+        if let Some((first, second, nodes)) = self.mesh.facet_shared_within(&self.potential_parts())
+        {
+            return Err(Error::Input(format!(
+                "boundary parts '{first}' and '{second}' of Γa (grounded parts and electrodes) share the facet with nodes {nodes:?}: a facet belongs to one electrode; name each part once"
+            )));
+        }
+        self.electrode_potentials().map(|_| ())
     }
 
     /// The parts that fix displacement components: the clamped ones, then the supports'.

@@ -255,9 +255,10 @@ pub fn reactions_without_contact(
     Ok(reactions(problem, dofs, (&f_int, &f_ext), &none))
 }
 
-/// The charge on each part of Γa from the reactions of the ϕ rows at its nodes: the ϕ
-/// equations are Gauss's law with its sign turned (model §5), so the charge the electrode
-/// holds is minus the reaction.
+/// The charge on each part of Γa (the grounded parts, then the electrodes) from the reactions
+/// of the ϕ rows at its nodes: the ϕ equations are Gauss's law with its sign turned (model
+/// §5), so the charge the electrode holds is minus the reaction (positive on the electrode at
+/// the higher potential of a charged capacitor); a node shared counts in the first.
 fn electrode_charges(problem: &Problem, phi_reaction: &[f64]) -> Vec<f64> {
     let mut counted = vec![false; problem.mesh.n_nodes()];
     let mut charges = Vec::new();
@@ -268,6 +269,15 @@ fn electrode_charges(problem: &Problem, phi_reaction: &[f64]) -> Vec<f64> {
                 charge -= phi_reaction[node];
             }
         }
+        charges.push(charge);
+    }
+    for electrode in &problem.boundary.electrodes {
+        let nodes = problem.part_nodes(&electrode.parts);
+        let charge: f64 = nodes
+            .into_iter()
+            .filter(|&node| !std::mem::replace(&mut counted[node], true))
+            .map(|node| -phi_reaction[node])
+            .sum();
         charges.push(charge);
     }
     charges

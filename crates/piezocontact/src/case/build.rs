@@ -19,8 +19,8 @@ use crate::material::plane::Plane;
 use crate::mesh::rectangle::{Diagonal, Rectangle, Segment, SegmentParts};
 use crate::mesh::{Mesh, gmsh};
 use crate::problem::{
-    BodyLoads, Boundary, Direction, Problem, ScalarField, Support, VectorField, constant_scalar,
-    constant_vector,
+    BodyLoads, Boundary, Direction, Electrode, Problem, ScalarField, Support, VectorField,
+    constant_scalar, constant_vector,
 };
 use std::path::Path;
 use std::sync::Arc;
@@ -432,6 +432,49 @@ impl Case {
         Ok(supports)
     }
 
+    /// The `[[boundary.electrode]]` tables, checked, on `mesh` whose grounded parts are
+    /// `grounded` (whose `charge_<part>` columns the electrodes' names must not repeat).
+    fn electrodes(&self, mesh: &Mesh, grounded: &[usize]) -> Result<Vec<Electrode>> {
+        let key = "boundary.electrode";
+        let mut taken: Vec<String> = ["center", "mean"].map(String::from).to_vec();
+        taken.extend(grounded.iter().map(|&p| mesh.parts()[p].name.clone()));
+        let mut electrodes = Vec::new();
+        for (k, table) in self.file.boundary.electrode.iter().enumerate() {
+            let at = format!("{} ([[boundary.electrode]] number {})", self.locate(key), k + 1);
+            let name = table.name.clone();
+            if taken.contains(&name) || name.is_empty() {
+                return Err(input!(
+                    "{at}: the name '{name}' is taken (curve.csv has phi_center, phi_mean and a charge_<part> column per grounded part, and each electrode its phi_<name> and charge_<name>): give the electrode a name of its own"
+                ));
+            }
+            taken.push(name.clone());
+            if table.parts.is_empty() {
+                return Err(input!(
+                    "{at}: parts is empty: name the boundary parts the electrode covers"
+                ));
+            }
+            let parts = self.part_indices(mesh, "boundary.electrode.parts", &table.parts, false)?;
+            let voltage = match (table.voltage, table.charge) {
+                (Some(v), None) if v.is_finite() => v,
+                (Some(v), None) => {
+                    return Err(input!("{at}: voltage = {v} must be a finite number"));
+                }
+                (None, Some(_)) => {
+                    return Err(input!(
+                        "{at}: charge: floating electrodes (one unknown potential, a given total charge) are not available yet; give the electrode a voltage"
+                    ));
+                }
+                _ => {
+                    return Err(input!(
+                        "{at}: give the electrode one of voltage (its potential) or charge (a floating electrode's total charge), not both or neither"
+                    ));
+                }
+            };
+            electrodes.push(Electrode { name, parts, voltage });
+        }
+        Ok(electrodes)
+    }
+
     /// The problem, after [`Case::contact_settings`] has checked the ranges.
     pub(super) fn problem_checked(&self) -> Result<Problem> {
         let mesh = self.mesh()?;
@@ -469,10 +512,12 @@ impl Case {
             }
         }
         let clamped = parts("boundary.clamped", &b.clamped)?;
+        let grounded = parts("boundary.grounded", &b.grounded)?;
         let boundary = Boundary {
             supports: self.supports(&mesh, &clamped)?,
+            electrodes: self.electrodes(&mesh, &grounded)?,
             clamped,
-            grounded: parts("boundary.grounded", &b.grounded)?,
+            grounded,
             contact: parts("boundary.contact", &b.contact)?,
             traction,
             charge,

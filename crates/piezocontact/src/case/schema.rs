@@ -383,6 +383,23 @@ pub struct BoundarySection {
     /// Γb: surface charges.
     #[serde(default)]
     pub charge: Vec<ChargeLoad>,
+    /// Electrodes: parts at a prescribed potential.
+    #[serde(default)]
+    pub electrode: Vec<ElectrodeTable>,
+}
+
+/// `[[boundary.electrode]]`: an electrode, boundary parts at one potential.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ElectrodeTable {
+    /// Its name in outputs (`phi_<name>`, `charge_<name>`).
+    pub name: String,
+    /// The boundary parts it covers.
+    pub parts: Vec<String>,
+    /// Its potential \[potential\], scaled by a loading path's factors.
+    pub voltage: Option<f64>,
+    /// The total charge on a floating electrode \[charge\] (not available yet).
+    pub charge: Option<f64>,
 }
 
 /// `[loads]`: body loads of (2.1).

@@ -109,7 +109,7 @@ impl Column {
 pub fn curve_columns(
     rows: &[CurveRow],
     dim: usize,
-    (supports, parts): (&[String], &[String]),
+    (supports, parts, electrodes): (&[String], &[String], &[(String, f64)]),
 ) -> Vec<(String, Column)> {
     let real = |f: &dyn Fn(&CurveRow) -> f64| Column::Real(rows.iter().map(f).collect());
     let mut columns = vec![
@@ -138,29 +138,41 @@ pub fn curve_columns(
     columns.push(("kkt_residual".into(), real(&|r| r.kkt_residual)));
     columns.push(("converged".into(), Column::Flag(rows.iter().map(|r| r.converged).collect())));
     let per_row: Vec<_> =
-        rows.iter().map(|r| (r.supports.as_slice(), r.charges.as_slice())).collect();
-    columns.extend(held_and_charge_columns(dim, (supports, parts), &per_row));
+        rows.iter().map(|r| (r.supports.as_slice(), r.charges.as_slice(), r.load_factor)).collect();
+    columns.extend(held_and_charge_columns(dim, (supports, parts, electrodes), &per_row));
     columns
 }
 
+/// What the last columns of curve.csv read of a step: the reactions of the clamps and
+/// supports, the charges (grounded parts, then electrodes) and the load factor.
+type RowValues<'a> = (&'a [Vec<f64>], &'a [f64], f64);
+
 /// The columns every path's curve.csv ends with: `reaction_<name>_<x|y|z>` for each clamp
 /// and support named in `supports`, then `charge_<part>` for each grounded part in `parts`,
-/// from each row's reactions and charges (in those orders).
+/// then `phi_<name>` and `charge_<name>` for each electrode (name, voltage at load factor 1)
+/// in `electrodes`, from each row's reactions, charges (the grounded parts', then the
+/// electrodes') and load factor.
 fn held_and_charge_columns(
     dim: usize,
-    (supports, parts): (&[String], &[String]),
-    per_row: &[(&[Vec<f64>], &[f64])],
+    (supports, parts, electrodes): (&[String], &[String], &[(String, f64)]),
+    per_row: &[RowValues],
 ) -> Vec<(String, Column)> {
     let mut columns = Vec::new();
     for (j, support) in supports.iter().enumerate() {
         for (k, axis) in ["x", "y", "z"][..dim].iter().enumerate() {
-            let values = per_row.iter().map(|(r, _)| r[j][k]).collect();
+            let values = per_row.iter().map(|(r, ..)| r[j][k]).collect();
             columns.push((format!("reaction_{support}_{axis}"), Column::Real(values)));
         }
     }
     for (k, part) in parts.iter().enumerate() {
-        let values = per_row.iter().map(|(_, q)| q[k]).collect();
+        let values = per_row.iter().map(|(_, q, _)| q[k]).collect();
         columns.push((format!("charge_{part}"), Column::Real(values)));
+    }
+    for (j, (name, voltage)) in electrodes.iter().enumerate() {
+        let potentials = per_row.iter().map(|(.., factor)| voltage * factor).collect();
+        columns.push((format!("phi_{name}"), Column::Real(potentials)));
+        let charges = per_row.iter().map(|(_, q, _)| q[parts.len() + j]).collect();
+        columns.push((format!("charge_{name}"), Column::Real(charges)));
     }
     columns
 }
@@ -200,7 +212,7 @@ pub struct StaticCurveRow {
 pub fn static_curve_columns(
     rows: &[StaticCurveRow],
     dim: usize,
-    (supports, parts): (&[String], &[String]),
+    (supports, parts, electrodes): (&[String], &[String], &[(String, f64)]),
 ) -> Vec<(String, Column)> {
     let real = |f: &dyn Fn(&StaticCurveRow) -> f64| Column::Real(rows.iter().map(f).collect());
     let mut columns = vec![
@@ -211,8 +223,8 @@ pub fn static_curve_columns(
         columns.push((name.to_string(), real(&|r| r.reaction[k])));
     }
     let per_row: Vec<_> =
-        rows.iter().map(|r| (r.supports.as_slice(), r.charges.as_slice())).collect();
-    columns.extend(held_and_charge_columns(dim, (supports, parts), &per_row));
+        rows.iter().map(|r| (r.supports.as_slice(), r.charges.as_slice(), r.load_factor)).collect();
+    columns.extend(held_and_charge_columns(dim, (supports, parts, electrodes), &per_row));
     columns
 }
 

@@ -80,6 +80,33 @@ pub fn reactions_json(names: &[String], supports: &[Vec<f64>]) -> Value {
     Value::Object(names.iter().cloned().zip(supports.iter().map(|f| json!(f))).collect())
 }
 
+/// summary.json's `electrodes`: each grounded part (named by the part) and each electrode,
+/// with its parts, kind ("voltage"), potential (read off the solution `x`) and charge (from
+/// `charges`, in [`crate::problem::Problem::potential_parts`]' order of the electrodes).
+pub fn electrodes_json(built: &Built, dofs: &DofMap, x: &[f64], charges: &[f64]) -> Value {
+    let problem = &built.problem;
+    let names = problem.mesh.parts();
+    let potential =
+        |parts: &[usize]| problem.part_nodes(parts).first().map_or(0.0, |&node| x[dofs.phi(node)]);
+    let grounded = problem
+        .boundary
+        .grounded
+        .iter()
+        .map(|&p| (names[p].name.clone(), vec![names[p].name.clone()], potential(&[p])));
+    let electrodes = problem.boundary.electrodes.iter().map(|e| {
+        let parts = e.parts.iter().map(|&p| names[p].name.clone()).collect();
+        (e.name.clone(), parts, potential(&e.parts))
+    });
+    let list: Vec<Value> = grounded
+        .chain(electrodes)
+        .zip(charges)
+        .map(|((name, parts, potential), charge)| {
+            json!({ "name": name, "parts": parts, "kind": "voltage", "potential": potential, "charge": charge })
+        })
+        .collect();
+    Value::Array(list)
+}
+
 /// Adds the fields of `b` to the object `a`.
 pub fn merge(a: &mut Value, b: Value) {
     if let (Some(a), Value::Object(b)) = (a.as_object_mut(), b) {

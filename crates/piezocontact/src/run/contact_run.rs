@@ -10,7 +10,7 @@ use crate::output::fields::ContactFields;
 use crate::output::files;
 use crate::output::plot::{self, ContactView, MapLabels};
 use crate::report::summary::{
-    common_summary, contact_summary, hencky_tangent, merge, reactions_json,
+    common_summary, contact_summary, electrodes_json, hencky_tangent, merge, reactions_json,
 };
 use crate::report::{self, Row};
 use serde_json::{Value, json};
@@ -104,6 +104,9 @@ impl ContactRun {
         summary["hencky_tangent"] = json!(hencky_tangent(&self.solution, lags));
         let names = built.problem.support_names();
         summary["reactions"] = reactions_json(&names, &self.solution.balance.supports);
+        let (dofs, x, charges) =
+            (&self.solution.dofs, &self.solution.x, &self.solution.balance.charges);
+        summary["electrodes"] = electrodes_json(built, dofs, x, charges);
         summary
     }
 

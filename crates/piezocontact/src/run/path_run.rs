@@ -94,11 +94,17 @@ impl PathRun {
         problem.boundary.grounded.iter().map(|&p| problem.mesh.parts()[p].name.clone()).collect()
     }
 
+    /// The electrodes beside the grounded parts: each name with its voltage at load factor 1,
+    /// whose potential and charge curve.csv reports.
+    pub fn driven_electrodes(built: &Built) -> Vec<(String, f64)> {
+        built.problem.boundary.electrodes.iter().map(|e| (e.name.clone(), e.voltage)).collect()
+    }
+
     /// The columns of curve.csv.
     pub fn columns(&self, built: &Built) -> Vec<(String, Column)> {
         let supports = built.problem.reported_supports();
-        let parts = Self::electrodes(built);
-        curve_columns(&self.curve, built.problem.mesh.dim(), (&supports, &parts))
+        let (parts, driven) = (Self::electrodes(built), Self::driven_electrodes(built));
+        curve_columns(&self.curve, built.problem.mesh.dim(), (&supports, &parts, &driven))
     }
 
     /// Whether every step converged and the path reached its end.

@@ -92,7 +92,8 @@ impl StaticPathRun {
     pub fn columns(&self, built: &Built) -> Vec<(String, Column)> {
         let parts = PathRun::electrodes(built);
         let supports = built.problem.reported_supports();
-        static_curve_columns(&self.curve, built.problem.mesh.dim(), (&supports, &parts))
+        let driven = PathRun::driven_electrodes(built);
+        static_curve_columns(&self.curve, built.problem.mesh.dim(), (&supports, &parts, &driven))
     }
 
     /// The summary.json of the path: the last step's, with the path's steps.

@@ -5,7 +5,9 @@ use crate::case::Built;
 use crate::error::Result;
 use crate::linalg::LinearSolver;
 use crate::output::files;
-use crate::report::summary::{common_summary, memory, merge, reactions_json, timings};
+use crate::report::summary::{
+    common_summary, electrodes_json, memory, merge, reactions_json, timings,
+};
 use crate::system::{StaticSolution, solve_without_contact};
 use serde_json::{Value, json};
 use std::path::Path;
@@ -73,6 +75,7 @@ impl StaticRun {
                 },
                 "reactions": reactions_json(&built.problem.support_names(), &self.reactions.supports),
                 "charges": self.reactions.charges,
+                "electrodes": electrodes_json(built, &solution.dofs, &solution.x, &self.reactions.charges),
                 "timings_seconds": timings(&t),
                 "memory": memory(&t),
             }),

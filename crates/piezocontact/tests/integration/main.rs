@@ -10,6 +10,8 @@ mod common;
 mod contact;
 /// Manufactured solutions: convergence rates of the coupled system.
 mod convergence;
+/// Electrodes at a voltage: uniform fields, charges, outputs, bad tables.
+mod electrodes;
 /// The exact solver against tight Uzawa, r independence, Hencky active, the Schur complement.
 mod exact;
 /// Foundation surfaces: planes, tilted planes, negative gaps.
