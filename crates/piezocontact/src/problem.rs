@@ -127,7 +127,8 @@ const ON_AXIS: f64 = 1e-12;
 impl Problem {
     /// Checks that Γ1 and Γa have positive measure (else the system is singular: Korn's and
     /// Friedrichs' inequalities (2.9) need them), and that Γ3 shares no facet with Γ1 ∪ Γ2 ∪
-    /// Γa ∪ Γb, nor Γa with Γb, nor Γ1 with Γ2.
+    /// Γb (it may with Γa: an electrode touching the foundation), nor Γa with Γb, nor Γ1
+    /// with Γ2.
     pub fn new(
         mesh: Mesh,
         materials: impl Into<Materials>,
@@ -238,8 +239,9 @@ impl Problem {
             ("Γb (charge)", &charge),
             ("Γ3 (contact)", &b.contact),
         ];
-        // Pairs that must be disjoint: (Γ1, Γ2), (Γ3, all others), (Γa, Γb).
-        for (i, j) in [(0, 1), (2, 0), (2, 1), (2, 3), (2, 4), (3, 4)] {
+        // Pairs that must be disjoint: (Γ1, Γ2), (Γ3, all others but Γa: an electrode may
+        // touch the foundation), (Γa, Γb).
+        for (i, j) in [(0, 1), (2, 0), (2, 1), (2, 4), (3, 4)] {
             self.check_disjoint(roles[i], roles[j])?;
         }
         self.check_contact_parts_apart()

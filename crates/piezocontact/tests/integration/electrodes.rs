@@ -94,3 +94,35 @@ fn bad_electrodes_are_errors_naming_the_table() {
     let e = error(&side);
     assert!(e.contains("electrodes at different potentials must not touch"), "{e}");
 }
+
+/// An actuator against a stop: the block on rollers, its top face both the electrode (driven
+/// to −λ V0, so that the field V/t points along the poling and the block extends by d33 V)
+/// and Γ3 below a rigid plane at the gap g = d33 V0 (PV1, no penetration). On a path over
+/// λ = 0.5, 1, 1.5, 2: no contact force up to the onset at λ = 1, then the stop holds the top
+/// at g and presses with (d33 V − g) A / (s33^E t) (σ_xx = σ_yy = 0, E_z = V/t).
+#[test]
+fn an_actuator_driven_against_a_stop_presses_with_the_blocked_force() {
+    let s = voigt::inverse(&C).unwrap();
+    let d33 = voigt::product(&E, &s)[2][2];
+    let gap = 1e-3;
+    let v0 = gap / d33;
+    let rollers = "[[boundary.support]]\nparts = [\"x0\"]\nfix = [\"x\"]\n[[boundary.support]]\nparts = [\"y0\"]\nfix = [\"y\"]\n[[boundary.support]]\nname = \"floor\"\nparts = [\"bottom\"]\nfix = [\"z\"]\n";
+    let contact = format!(
+        "[contact]\nproblem = \"PV1\"\ngap = 0.0\n[foundation]\nkind = \"plane\"\npoint = [0.0, 0.0, {}]\nnormal = [0.0, 0.0, -1.0]\n[loading]\nload_factors = [0.5, 1.0, 1.5, 2.0]\n[solver]\nmethod = \"newton\"\n",
+        1.0 + gap
+    );
+    let text = block(-v0, rollers)
+        .replace("grounded = [\"bottom\"]", "grounded = [\"bottom\"]\ncontact = [\"top\"]")
+        + &contact;
+    let path = super::common::path_run(&build_text(&text).unwrap());
+    assert!(path.converged(), "{:?}", path.failure);
+    for row in &path.curve {
+        let lambda = row.load_factor;
+        let blocked = ((lambda - 1.0) * d33 * v0).max(0.0) * 2.0 / s[2][2];
+        let force = row.force[2];
+        assert!(
+            (force - blocked).abs() < 1e-8 * (d33 * v0 * 2.0 / s[2][2]),
+            "λ = {lambda}: {force} vs {blocked}"
+        );
+    }
+}
