@@ -345,8 +345,9 @@ fn electrodes(built: &Built, summary: &serde_json::Value) {
     let per = if integrals_dim(built) == 3 { String::new() } else { format!("/{}", units.length) };
     for e in summary["electrodes"].as_array().into_iter().flatten() {
         say!(
-            "  electrode {:<8} = potential {:.6e} {}, charge {:.6e} {}{per}",
+            "  electrode {:<8} ({}) = potential {:.6e} {}, charge {:.6e} {}{per}",
             e["name"].as_str().unwrap_or(""),
+            e["kind"].as_str().unwrap_or(""),
             e["potential"].as_f64().unwrap_or(f64::NAN),
             units.potential,
             e["charge"].as_f64().unwrap_or(f64::NAN),

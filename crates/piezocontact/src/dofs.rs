@@ -5,6 +5,10 @@
 //! renumbered with every free u before every free ϕ, so the matrix is `[K_uu G; Gᵀ −K_ϕϕ]`
 //! and the LDLᵀ pivot signs are +1 then −1.
 //!
+//! A floating electrode's nodes share one ϕ unknown (the electrode's potential): each
+//! element sums into its row and column, and its equation is the sum of the ϕ rows of its
+//! nodes, which balances the electrode's given charge ([`DofMap::floating`]).
+//!
 //! At a node with a turned frame ([`crate::frames`]: a roller on a face of any orientation)
 //! the d u unknowns are the components in that frame, ũ = R u (R's rows the frame's unit
 //! vectors); global vectors outside the system (x, forces) are in mesh components, and
@@ -40,6 +44,19 @@ pub struct DofMap {
     frames: Vec<(usize, [[f64; 3]; 3])>,
     /// Per node, its index in `frames` ([`NO_TABLE`] for the mesh axes); empty without frames.
     frame_of: Vec<usize>,
+    /// The floating electrodes.
+    floating: Vec<Floating>,
+}
+
+/// A floating electrode in the free numbering.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Floating {
+    /// Its potential's free unknown, which the ϕ of every node of it is.
+    pub unknown: usize,
+    /// Its nodes, ascending.
+    pub nodes: Vec<usize>,
+    /// Its given total charge at load factor 1 \[charge·length^(3−d)\].
+    pub charge: f64,
 }
 
 impl DofMap {
@@ -72,18 +89,35 @@ impl DofMap {
                 electrodes[node] = value;
             }
         }
+        let given = problem.floating_electrodes()?;
+        let mut floating_of = vec![NO_TABLE; n_nodes];
+        for (k, (nodes, _)) in given.iter().enumerate() {
+            nodes.iter().for_each(|&a| floating_of[a] = k);
+        }
+        let mut unknowns = vec![CONSTRAINED; given.len()];
         let mut free = vec![CONSTRAINED; total];
         let mut next = 0;
         let mut n_free_u = 0;
         for (g, c) in constrained.iter().enumerate() {
-            if !c {
+            let electrode = g.checked_sub(n_nodes * dim).map_or(NO_TABLE, |a| floating_of[a]);
+            if let Some(&unknown) = unknowns.get(electrode).filter(|&&k| k != CONSTRAINED) {
+                free[g] = unknown;
+            } else if !c {
                 free[g] = next;
+                if let Some(slot) = unknowns.get_mut(electrode) {
+                    *slot = next;
+                }
                 next += 1;
             }
             if g + 1 == n_nodes * dim {
                 n_free_u = next;
             }
         }
+        let floating = given
+            .into_iter()
+            .zip(unknowns)
+            .map(|((nodes, charge), unknown)| Floating { unknown, nodes, charge })
+            .collect();
         // What a loading path scales: the prescribed displacements and the electrodes' voltages
         // (the grounded parts' prescribed field of a verification problem stays).
         let mut scaled = prescribed[..n_nodes * dim].to_vec();
@@ -104,7 +138,42 @@ impl DofMap {
             table,
             frames,
             frame_of,
+            floating,
         })
+    }
+
+    /// The floating electrodes.
+    pub fn floating(&self) -> &[Floating] {
+        &self.floating
+    }
+
+    /// The floating electrode `node` is on, if any.
+    pub fn floating_of(&self, node: usize) -> Option<&Floating> {
+        let k = self.free[self.phi(node)];
+        self.floating.iter().find(|f| f.unknown == k)
+    }
+
+    /// The node whose ϕ stands for the floating electrode of `node` (its first), `node`
+    /// itself off them: nodes with the same one share their ϕ unknown.
+    pub fn phi_owner(&self, node: usize) -> usize {
+        self.floating_of(node).map_or(node, |f| f.nodes[0])
+    }
+
+    /// Sums, for each floating electrode, the ϕ rows of its nodes of a global `residual`
+    /// R = F_int − f − F_c, with its given charge times `load_factor` [-], into the row of its
+    /// first node (the others 0): the electrode's equation (Σ R + Q = 0). `scale` (the row
+    /// scales) alike, with |Q|.
+    pub fn sum_floating(&self, residual: &mut [f64], scale: &mut [f64], load_factor: f64) {
+        for f in &self.floating {
+            let charge = load_factor * f.charge;
+            let (mut r, mut s) = (charge, charge.abs());
+            for &a in &f.nodes {
+                let g = self.phi(a);
+                r += std::mem::take(&mut residual[g]);
+                s += std::mem::take(&mut scale[g]);
+            }
+            (residual[self.phi(f.nodes[0])], scale[self.phi(f.nodes[0])]) = (r, s);
+        }
     }
 
     /// The turned frame of `node` (rows R: its unit vectors in mesh components), `None` for

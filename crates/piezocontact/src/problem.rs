@@ -79,7 +79,8 @@ pub struct Boundary {
     pub supports: Vec<Support>,
     /// Prescribed potential on Γa \[potential\]; `None` is the model's ϕ = 0.
     pub grounded_value: Option<ScalarField>,
-    /// Electrodes at a prescribed potential (part of Γa, beyond the grounded parts).
+    /// Electrodes beyond the grounded parts: at a prescribed potential (part of Γa) or
+    /// floating.
     pub electrodes: Vec<Electrode>,
 }
 
@@ -90,8 +91,53 @@ pub struct Electrode {
     pub name: String,
     /// The boundary parts it covers.
     pub parts: Vec<usize>,
-    /// Its potential at load factor 1 \[potential\].
-    pub voltage: f64,
+    /// What holds it.
+    pub condition: ElectrodeCondition,
+}
+
+/// What holds an electrode, at load factor 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ElectrodeCondition {
+    /// A prescribed potential \[potential\].
+    Voltage(f64),
+    /// A floating electrode: one unknown potential over its parts, and its total charge
+    /// given \[charge·length^(3−d)\] (0: an open circuit).
+    Floating(f64),
+}
+
+impl Electrode {
+    /// Its prescribed potential at load factor 1, `None` for a floating electrode.
+    pub fn voltage(&self) -> Option<f64> {
+        match self.condition {
+            ElectrodeCondition::Voltage(v) => Some(v),
+            ElectrodeCondition::Floating(_) => None,
+        }
+    }
+
+    /// "voltage" or "floating", as outputs name the kind.
+    pub fn kind(&self) -> &'static str {
+        match self.condition {
+            ElectrodeCondition::Voltage(_) => "voltage",
+            ElectrodeCondition::Floating(_) => "floating",
+        }
+    }
+}
+
+/// How a node of an electrode is held: at a potential \[potential\], or on the floating
+/// electrode of that index.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Held {
+    At(f64),
+    Floating(usize),
+}
+
+impl std::fmt::Display for Held {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match self {
+            Held::At(v) => write!(f, "at {v}"),
+            Held::Floating(_) => write!(f, "floating"),
+        }
+    }
 }
 
 /// Body loads of (2.1).
@@ -218,12 +264,13 @@ impl Problem {
             });
         }
         let potential = self.potential_parts();
-        if measure(&potential) <= 0.0 {
+        if measure(&self.voltage_parts()) <= 0.0 {
             return Err(Error::EmptyRole {
                 role: "Γa (grounded)",
                 why: "the potential must be fixed on a part of positive measure, or it is only \
                       known up to a constant and the system is singular; name at least one \
-                      non-empty boundary part as grounded, or an electrode with a voltage",
+                      non-empty boundary part as grounded, or an electrode with a voltage (a \
+                      floating electrode does not fix it)",
             });
         }
         self.check_electrodes()?;
@@ -260,40 +307,67 @@ impl Problem {
         }
     }
 
-    /// Checks that every connected piece of the body touches Γ1 and Γa: a piece that does
-    /// not can move freely (or float electrically), and the system is singular.
+    /// Checks that every connected piece of the body touches Γ1 and Γa (directly, or through
+    /// a floating electrode that also covers a piece that does): a piece that does not can
+    /// move freely (or its potential is known up to a constant), and the system is singular.
     fn check_pieces(&self) -> Result<()> {
         let pieces = self.mesh.pieces();
-        let held = self.held_parts();
-        for (role, key, parts) in [
-            ("Γ1 (clamped)", "boundary.clamped or a [[boundary.support]]", &held),
-            ("Γa (grounded)", "boundary.grounded or an electrode", &self.potential_parts()),
-        ] {
-            let mut held = vec![false; pieces.cells.len()];
-            for node in self.part_nodes(parts) {
-                held[pieces.of_node[node]] = true;
-            }
-            let loose: Vec<String> = (0..held.len())
-                .filter(|&k| !held[k] && pieces.cells[k] > 0)
-                .map(|k| {
-                    let (lo, hi) = &pieces.boxes[k];
-                    format!(
-                        "piece {} ({} elements, bounding box {lo:?}–{hi:?})",
-                        k + 1,
-                        pieces.cells[k]
-                    )
-                })
-                .collect();
-            if !loose.is_empty() {
-                let count = pieces.cells.iter().filter(|c| **c > 0).count();
-                return Err(Error::Input(format!(
-                    "the body has {count} connected pieces and {} of them touch no {role} part: {}; such a piece is not held, and the system is singular: add a boundary part on it to {key}, or remove it from the mesh",
-                    loose.len(),
-                    loose.join("; ")
-                )));
+        let mut held = vec![false; pieces.cells.len()];
+        self.part_nodes(&self.held_parts())
+            .into_iter()
+            .for_each(|a| held[pieces.of_node[a]] = true);
+        self.check_held(
+            &pieces,
+            &held,
+            ("Γ1 (clamped)", "boundary.clamped or a [[boundary.support]]"),
+        )?;
+        let mut held = vec![false; pieces.cells.len()];
+        self.part_nodes(&self.voltage_parts())
+            .into_iter()
+            .for_each(|a| held[pieces.of_node[a]] = true);
+        let floating: Vec<Vec<usize>> = (self.boundary.electrodes.iter())
+            .filter(|e| e.voltage().is_none())
+            .map(|e| self.part_nodes(&e.parts).into_iter().map(|a| pieces.of_node[a]).collect())
+            .collect();
+        // A floating electrode ties the potentials of the pieces it covers.
+        for _ in 0..floating.len() {
+            for covered in &floating {
+                if covered.iter().any(|&k| held[k]) {
+                    covered.iter().for_each(|&k| held[k] = true);
+                }
             }
         }
-        Ok(())
+        let key = "boundary.grounded or an electrode with a voltage";
+        self.check_held(&pieces, &held, ("Γa (grounded or at a voltage)", key))
+    }
+
+    /// An error naming the pieces of the body that are not `held` by `role`.
+    fn check_held(
+        &self,
+        pieces: &crate::mesh::Pieces,
+        held: &[bool],
+        (role, key): (&str, &str),
+    ) -> Result<()> {
+        let loose: Vec<String> = (0..held.len())
+            .filter(|&k| !held[k] && pieces.cells[k] > 0)
+            .map(|k| {
+                let (lo, hi) = &pieces.boxes[k];
+                format!(
+                    "piece {} ({} elements, bounding box {lo:?}–{hi:?})",
+                    k + 1,
+                    pieces.cells[k]
+                )
+            })
+            .collect();
+        if loose.is_empty() {
+            return Ok(());
+        }
+        let count = pieces.cells.iter().filter(|c| **c > 0).count();
+        Err(Error::Input(format!(
+            "the body has {count} connected pieces and {} of them touch no {role} part: {}; such a piece is not held, and the system is singular: add a boundary part on it to {key}, or remove it from the mesh",
+            loose.len(),
+            loose.join("; ")
+        )))
     }
 
     fn check_disjoint(
@@ -315,37 +389,82 @@ impl Problem {
         b.grounded.iter().chain(b.electrodes.iter().flat_map(|e| &e.parts)).copied().collect()
     }
 
+    /// The parts where ϕ is prescribed: the grounded ones, then the voltage electrodes'.
+    pub fn voltage_parts(&self) -> Vec<usize> {
+        let b = &self.boundary;
+        let voltage = b.electrodes.iter().filter(|e| e.voltage().is_some());
+        b.grounded.iter().chain(voltage.flat_map(|e| &e.parts)).copied().collect()
+    }
+
     /// The potential each node of Γa is held at, at load factor 1 (the grounded parts' 0, or
-    /// their prescribed field, then each electrode's voltage), ascending by node; an error
-    /// where two of them share a facet, or a node with two different potentials.
+    /// their prescribed field, then each voltage electrode's), ascending by node; an error
+    /// where a node is held at two potentials, or on a floating electrode and held otherwise.
     pub fn electrode_potentials(&self) -> Result<Vec<(usize, f64)>> {
+        Ok(self
+            .electrode_nodes()?
+            .into_iter()
+            .filter_map(|(node, held)| match held {
+                Held::At(value) => Some((node, value)),
+                Held::Floating(_) => None,
+            })
+            .collect())
+    }
+
+    /// The nodes of each floating electrode (in the order of the electrodes that float,
+    /// ascending) with its charge at load factor 1 \[charge·length^(3−d)\]; an error as
+    /// [`Problem::electrode_potentials`].
+    pub fn floating_electrodes(&self) -> Result<Vec<(Vec<usize>, f64)>> {
+        let floating: Vec<(usize, f64)> = (self.boundary.electrodes.iter().enumerate())
+            .filter_map(|(k, e)| match e.condition {
+                ElectrodeCondition::Floating(q) => Some((k, q)),
+                ElectrodeCondition::Voltage(_) => None,
+            })
+            .collect();
+        let mut nodes = vec![Vec::new(); floating.len()];
+        for (node, held) in self.electrode_nodes()? {
+            if let Held::Floating(k) = held {
+                let j = floating.iter().position(|f| f.0 == k).unwrap_or_default();
+                nodes[j].push(node);
+            }
+        }
+        Ok(nodes.into_iter().zip(floating).map(|(n, (_, q))| (n, q)).collect())
+    }
+
+    /// What holds each node of an electrode or a grounded part, ascending by node; an error
+    /// where a node is held twice in different ways.
+    fn electrode_nodes(&self) -> Result<Vec<(usize, Held)>> {
         let b = &self.boundary;
         let mesh = &self.mesh;
         let grounded = |node: usize| b.grounded_value.as_ref().map_or(0.0, |f| f(mesh.node(node)));
-        let mut held: Vec<(usize, f64, String)> = self
+        let mut held: Vec<(usize, Held, String)> = self
             .part_nodes(&b.grounded)
             .into_iter()
-            .map(|node| (node, grounded(node), "the grounded parts".to_string()))
+            .map(|node| (node, Held::At(grounded(node)), "the grounded parts".to_string()))
             .collect();
-        for e in &b.electrodes {
-            let at = format!("the electrode '{}'", e.name);
-            held.extend(
-                self.part_nodes(&e.parts).into_iter().map(|node| (node, e.voltage, at.clone())),
-            );
+        for (k, e) in b.electrodes.iter().enumerate() {
+            let (at, how) = match e.condition {
+                ElectrodeCondition::Voltage(v) => {
+                    (format!("the electrode '{}'", e.name), Held::At(v))
+                }
+                ElectrodeCondition::Floating(_) => {
+                    (format!("the floating electrode '{}'", e.name), Held::Floating(k))
+                }
+            };
+            held.extend(self.part_nodes(&e.parts).into_iter().map(|node| (node, how, at.clone())));
         }
         held.sort_by_key(|h| h.0);
-        let mut potentials: Vec<(usize, f64)> = Vec::with_capacity(held.len());
+        let mut nodes: Vec<(usize, Held)> = Vec::with_capacity(held.len());
         for pair in held.chunk_by(|a, b| a.0 == b.0) {
-            let (node, value, first) = &pair[0];
-            if let Some((_, other, second)) = pair.iter().find(|h| h.1 != *value) {
+            let (node, how, first) = &pair[0];
+            if let Some((_, other, second)) = pair.iter().find(|h| h.1 != *how) {
                 return Err(Error::Input(format!(
-                    "node {node} at {:?} is on {first} at {value} and on {second} at {other}: electrodes at different potentials must not touch (they would be shorted); split the parts so that they share no node",
+                    "node {node} at {:?} is on {first} ({how}) and on {second} ({other}): electrodes under different conditions must not touch (they would be shorted); split the parts so that they share no node",
                     mesh.node(*node)
                 )));
             }
-            potentials.push((*node, *value));
+            nodes.push((*node, *how));
         }
-        Ok(potentials)
+        Ok(nodes)
     }
 
     /// Refuses electrodes that share a facet with each other or with a grounded part, and

@@ -114,7 +114,7 @@ impl CoupledSystem {
         let assembler = Assembler::new(problem, dofs, block_nodes, owned.as_deref())?;
         let pattern_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let load = assembler.restrict(&load_vector(problem, assembler.dofs(), 1.0));
+        let load = assembler.restrict_load(&load_vector(problem, assembler.dofs(), 1.0), 1.0);
         let assembly_seconds = t.elapsed().as_secs_f64();
         Ok(Self {
             assembler,
@@ -213,7 +213,8 @@ impl CoupledSystem {
             self.lifting_stale = true;
         }
         let dofs = self.assembler.dofs();
-        self.load = self.assembler.restrict(&load_vector(problem, dofs, load_factor));
+        self.load =
+            self.assembler.restrict_load(&load_vector(problem, dofs, load_factor), load_factor);
         self.load_factor = load_factor;
         self.unloaded = None;
         if !self.lifting.is_empty() {

@@ -171,7 +171,9 @@ impl Condensed {
             this.u.push(u);
             this.axes.push(axes);
             let dof = dofs.phi(node);
-            let phi = if !with_phi {
+            // A floating electrode's ϕ (one unknown for all its nodes) stays out: no law of
+            // the condensed problem reads it without conduction, which refuses it.
+            let phi = if !with_phi || dofs.floating_of(node).is_some() {
                 Phi::Interior
             } else if dofs.free_index(dof) == CONSTRAINED {
                 Phi::Prescribed(dof)

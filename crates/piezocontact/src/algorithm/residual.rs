@@ -56,6 +56,8 @@ pub struct Balance {
     /// the electric equation, what an electrometer between it and ground reads; a node shared
     /// by two parts counts in the first [charge·length^(3−d)].
     pub charges: Vec<f64>,
+    /// The potential of each electrode beyond the grounded parts \[potential\].
+    pub potentials: Vec<f64>,
 }
 
 /// What the assessment reads of a contact solution.
@@ -100,6 +102,7 @@ pub fn assess(
         supports: Vec::new(),
         imbalance: 0.0,
         charges: Vec::new(),
+        potentials: Vec::new(),
     };
     // The radial forces of a body of revolution sum to no resultant: only y counts.
     let first = usize::from(problem.axisymmetric);
@@ -113,6 +116,7 @@ pub fn assess(
         (0..dofs.n_total()).map(|g| f_int[g] - f_ext[g] - contact_force[g]).collect();
     dofs.to_frames(&mut residual);
     dofs.frame_bound(&mut row_scale);
+    dofs.sum_floating(&mut residual, &mut row_scale, solution.load_factor);
     for gdof in 0..dofs.n_total() {
         let (residual, row_scale) = (residual[gdof], row_scale[gdof]);
         let is_u = gdof < dim * problem.mesh.n_nodes();
@@ -128,9 +132,9 @@ pub fn assess(
             }
         }
     }
-    let reactions = reactions(problem, dofs, (&f_int, &f_ext), &contact_force);
-    (balance.reaction, balance.supports, balance.charges) =
-        (reactions.total, reactions.supports, reactions.charges);
+    let reactions = reactions(problem, (dofs, x), (&f_int, &f_ext), &contact_force);
+    (balance.reaction, balance.supports, balance.charges, balance.potentials) =
+        (reactions.total, reactions.supports, reactions.charges, reactions.potentials);
     let ratio = |r: f64, s: f64| if s > 0.0 { (r / s).sqrt() } else { r.sqrt() };
     kkt.equilibrium_u = ratio(r_u, s_u);
     kkt.equilibrium_phi = ratio(r_phi, s_phi);
@@ -189,13 +193,14 @@ fn contact_conditions(
     (contact_force, kkt)
 }
 
-/// The reactions of the constrained rows, from the internal and applied forces (`f_int`,
-/// `f_ext`) and the contact forces and fluxes on the Γ3 rows: the force of the clamps on the
-/// body (d components, [stress·length^(d−1)]) and the charge on each part of Γa
-/// (the reactions of its ϕ rows, with their sign turned).
+/// The reactions of the constrained rows of the state `x`, from the internal and applied
+/// forces (`f_int`, `f_ext`) and the contact forces and fluxes on the Γ3 rows: the force of
+/// the clamps on the body (d components, [stress·length^(d−1)]) and the charge on each part
+/// of Γa and each electrode (the reactions of its ϕ rows, with their sign turned), with the
+/// electrodes' potentials.
 pub fn reactions(
     problem: &Problem,
-    dofs: &DofMap,
+    (dofs, x): (&DofMap, &[f64]),
     (f_int, f_ext): (&[f64], &[f64]),
     contact_force: &[f64],
 ) -> Reactions {
@@ -205,7 +210,9 @@ pub fn reactions(
     let mut phi_reaction = vec![0.0; n];
     let mut force: Vec<f64> = f_int[..dim * n].iter().zip(f_ext).map(|(i, e)| i - e).collect();
     dofs.to_frames(&mut force);
-    for gdof in (0..dofs.n_total()).filter(|&g| dofs.free_index(g) == CONSTRAINED) {
+    // Every ϕ row's reaction: a floating electrode's nodes are free, its charge theirs.
+    let phi = |g: usize| g >= dim * n;
+    for gdof in (0..dofs.n_total()).filter(|&g| phi(g) || dofs.free_index(g) == CONSTRAINED) {
         if gdof < dim * n {
             let direction = dofs.direction(gdof / dim, gdof % dim);
             for (c, n_c) in direction.iter().enumerate().take(dim).filter(|(_, n)| **n != 0.0) {
@@ -223,7 +230,11 @@ pub fn reactions(
         total[0] = 0.0;
         supports.iter_mut().for_each(|s| s[0] = 0.0);
     }
-    Reactions { total, supports, charges: electrode_charges(problem, &phi_reaction) }
+    let charges = electrode_charges(problem, &phi_reaction);
+    let first = |e: &crate::problem::Electrode| problem.part_nodes(&e.parts).first().copied();
+    let potentials =
+        problem.boundary.electrodes.iter().map(|e| first(e).map_or(0.0, |a| x[dofs.phi(a)]));
+    Reactions { total, supports, charges, potentials: potentials.collect() }
 }
 
 /// The reactions of the constrained rows ([`reactions`]).
@@ -235,8 +246,10 @@ pub struct Reactions {
     /// The force of each clamp and support, in the order of
     /// [`Problem::support_names`] (a component fixed by several counts in the first).
     pub supports: Vec<Vec<f64>>,
-    /// The charge on each part of Γa [charge·length^(3−d)].
+    /// The charge on each part of Γa and each electrode [charge·length^(3−d)].
     pub charges: Vec<f64>,
+    /// The potential of each electrode beyond the grounded parts \[potential\].
+    pub potentials: Vec<f64>,
 }
 
 /// The reactions ([`reactions`]) of a state `x` without contact, with Hencky's law at x (as
@@ -252,7 +265,7 @@ pub fn reactions_without_contact(
     let (f_int, _) = internal_force(problem, dofs, x, &moduli)?;
     let f_ext = load_vector(problem, dofs, load_factor);
     let none = vec![0.0; dofs.n_total()];
-    Ok(reactions(problem, dofs, (&f_int, &f_ext), &none))
+    Ok(reactions(problem, (dofs, x), (&f_int, &f_ext), &none))
 }
 
 /// The charge on each part of Γa (the grounded parts, then the electrodes) from the reactions

@@ -63,8 +63,11 @@ pub struct Assembler {
     /// nnz + r is row r of the lifting.
     cell_offsets: Vec<usize>,
     cell_slots: Vec<u32>,
-    /// The cells in groups that share no node, summed one group after the other.
+    /// The cells in groups that share no node (nor, touching a floating electrode, its
+    /// unknown), summed one group after the other; then the cells that found no group, in
+    /// order on one thread.
     groups: Vec<Vec<usize>>,
+    alone: Vec<usize>,
     /// Nodes that carry a nodal block, and the slots of their [`nodal_pairs`].
     block_nodes: Vec<usize>,
     block_slots: Vec<usize>,
@@ -116,10 +119,11 @@ impl Assembler {
                 block_slots.push(slot.ok_or_else(missing(r, c))?);
             }
         }
-        let mut groups = node_disjoint_groups(mesh);
+        let (mut groups, mut alone) = node_disjoint_groups(mesh, &dofs);
         if partial {
             groups.iter_mut().for_each(|g| g.retain(|&c| kept(c)));
             groups.retain(|g| !g.is_empty());
+            alone.retain(|&c| kept(c));
         }
         let complete = owned.map(|o| (0..dofs.n_free()).map(|k| o[pattern.group(k)]).collect());
         Ok(Self {
@@ -128,6 +132,7 @@ impl Assembler {
             cell_offsets,
             cell_slots,
             groups,
+            alone,
             block_nodes: block_nodes.to_vec(),
             block_slots,
             complete,
@@ -199,16 +204,17 @@ impl Assembler {
         let dim = problem.mesh.dim();
         let sums: Vec<AtomicU64> =
             (0..self.pattern.nnz() + self.dofs.n_free()).map(|_| AtomicU64::new(0)).collect();
+        let add_cells = |cells: &[usize]| {
+            cells.iter().try_for_each(|&c| {
+                let slots = &self.cell_slots[self.cell_offsets[c]..self.cell_offsets[c + 1]];
+                let cell = Cell { c, modulus: moduli[c], tangent: linearisation.tangent.get(c) };
+                with_simplex!(dim, add_cell(problem, &self.dofs, &cell, slots, &sums))
+            })
+        };
         for group in &self.groups {
-            group.par_chunks(PER_TASK).try_for_each(|cells| {
-                cells.iter().try_for_each(|&c| {
-                    let slots = &self.cell_slots[self.cell_offsets[c]..self.cell_offsets[c + 1]];
-                    let cell =
-                        Cell { c, modulus: moduli[c], tangent: linearisation.tangent.get(c) };
-                    with_simplex!(dim, add_cell(problem, &self.dofs, &cell, slots, &sums))
-                })
-            })?;
+            group.par_chunks(PER_TASK).try_for_each(add_cells)?;
         }
+        add_cells(&self.alone)?;
         let turned: Vec<NodalBlock> = blocks
             .iter()
             .zip(&self.block_nodes)
@@ -228,6 +234,19 @@ impl Assembler {
             sums.into_iter().map(|s| f64::from_bits(s.into_inner())).collect();
         let lifting = values.split_off(self.pattern.nnz()).into_iter().map(|l| -l).collect();
         Ok((self.pattern.matrix(values)?, lifting))
+    }
+
+    /// The load f̌ on the free DOFs from its global vector `load` (in mesh components) at
+    /// `load_factor` [-]: the sum of the rows that share an unknown (a floating electrode's
+    /// ϕ rows), less the electrode's given charge times the factor (the ϕ equations are
+    /// Gauss's law with its sign turned).
+    pub fn restrict_load(&self, load: &[f64], load_factor: f64) -> Vec<f64> {
+        let mut free = self.restrict(load);
+        for f in self.dofs.floating() {
+            let sum: f64 = f.nodes.iter().map(|&a| load[self.dofs.phi(a)]).sum();
+            free[f.unknown] = sum - load_factor * f.charge;
+        }
+        free
     }
 
     /// The entries of a global vector (in mesh components) at the free DOFs, in the nodes'
@@ -363,14 +382,36 @@ fn lower_pattern(mesh: &Mesh, dofs: &DofMap, owned: Option<&[bool]>) -> Result<S
         if dof < dim * mesh.n_nodes() { dof / dim } else { dof - dim * mesh.n_nodes() }
     };
     let is_owned = |a: usize| owned.is_none_or(|o| o[a]);
-    let rows_of = |j: usize| {
-        let a = node_of(global_of_free[j]);
+    let rows_at = |a: usize, j: usize| {
         let near =
             neighbours[ptr[a]..ptr[a + 1]].iter().filter(move |&&b| is_owned(a) || is_owned(b));
         let u = near.clone().flat_map(move |&b| (0..dim).map(move |i| dofs.u(b, i)));
         let phi = near.map(|&b| dofs.phi(b));
         u.chain(phi).map(|dof| dofs.free_index(dof)).filter(move |&k| k != CONSTRAINED && k >= j)
     };
+    let (col_ptr, row_idx) = match dofs.floating().is_empty() {
+        true => columns(n, |j| rows_at(node_of(global_of_free[j]), j))?,
+        // A floating electrode's unknown gathers the neighbours of all its nodes, and
+        // appears once in the columns of theirs: sorted and without repeats.
+        false => columns(n, |j| {
+            let floating = dofs.floating().iter().find(|f| f.unknown == j);
+            let sources = floating.map_or(vec![node_of(global_of_free[j])], |f| f.nodes.clone());
+            let mut rows: Vec<usize> = sources.into_iter().flat_map(|a| rows_at(a, j)).collect();
+            rows.sort_unstable();
+            rows.dedup();
+            rows.into_iter()
+        })?,
+    };
+    let nodes = global_of_free.iter().map(|&dof| node_of(dof)).collect();
+    SymmetricPattern::from_columns(n, col_ptr, row_idx)?.with_groups(nodes)
+}
+
+/// The columns (`col_ptr`, `row_idx`) of a pattern of order `n` whose column j holds the rows
+/// `rows_of(j)`, in that order.
+fn columns<I: Iterator<Item = usize>>(
+    n: usize,
+    rows_of: impl Fn(usize) -> I + Sync,
+) -> Result<(Vec<usize>, Vec<usize>)> {
     let counts: Vec<usize> = (0..n).into_par_iter().map(|j| rows_of(j).count()).collect();
     let col_ptr = offsets(&counts);
     let mut row_idx = vec![0usize; col_ptr[n]];
@@ -378,32 +419,36 @@ fn lower_pattern(mesh: &Mesh, dofs: &DofMap, owned: Option<&[bool]>) -> Result<S
         out.iter_mut().zip(rows_of(j)).for_each(|(slot, k)| *slot = k);
         Ok(())
     })?;
-    let nodes = global_of_free.iter().map(|&dof| node_of(dof)).collect();
-    SymmetricPattern::from_columns(n, col_ptr, row_idx)?.with_groups(nodes)
+    Ok((col_ptr, row_idx))
 }
 
-/// Splits the cells into groups in which no two cells share a node (greedy colouring in cell
-/// order); a cell that finds none of 128 groups free joins a last group summed alone.
-fn node_disjoint_groups(mesh: &Mesh) -> Vec<Vec<usize>> {
+/// Splits the cells into groups in which no two cells share a node, the nodes of a floating
+/// electrode counting as one (greedy colouring in cell order); the cells that find none of
+/// 128 groups free are returned apart, to be summed alone.
+fn node_disjoint_groups(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<usize>>, Vec<usize>) {
     const COLOURS: usize = 128;
     let mut used = vec![0u128; mesh.n_nodes()];
+    let owner: Vec<usize> = match dofs.floating().is_empty() {
+        true => Vec::new(),
+        false => (0..mesh.n_nodes()).map(|a| dofs.phi_owner(a)).collect(),
+    };
+    let key = |a: usize| owner.get(a).copied().unwrap_or(a);
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut crowded = Vec::new();
     for c in 0..mesh.n_cells() {
-        let taken = mesh.cell(c).iter().fold(0u128, |m, &a| m | used[a]);
+        let taken = mesh.cell(c).iter().fold(0u128, |m, &a| m | used[key(a)]);
         let colour = taken.trailing_ones() as usize;
         if colour >= COLOURS {
             crowded.push(c);
             continue;
         }
-        mesh.cell(c).iter().for_each(|&a| used[a] |= 1 << colour);
+        mesh.cell(c).iter().for_each(|&a| used[key(a)] |= 1 << colour);
         if groups.len() <= colour {
             groups.resize(colour + 1, Vec::new());
         }
         groups[colour].push(c);
     }
-    groups.extend(crowded.into_iter().map(|c| vec![c]));
-    groups
+    (groups, crowded)
 }
 
 /// The number of [`local_pairs`] of cell `c`.

@@ -19,8 +19,8 @@ use crate::material::plane::Plane;
 use crate::mesh::rectangle::{Diagonal, Rectangle, Segment, SegmentParts};
 use crate::mesh::{Mesh, gmsh};
 use crate::problem::{
-    BodyLoads, Boundary, Direction, Electrode, Problem, ScalarField, Support, VectorField,
-    constant_scalar, constant_vector,
+    BodyLoads, Boundary, Direction, Electrode, ElectrodeCondition, Problem, ScalarField, Support,
+    VectorField, constant_scalar, constant_vector,
 };
 use std::path::Path;
 use std::sync::Arc;
@@ -454,23 +454,20 @@ impl Case {
                 ));
             }
             let parts = self.part_indices(mesh, "boundary.electrode.parts", &table.parts, false)?;
-            let voltage = match (table.voltage, table.charge) {
-                (Some(v), None) if v.is_finite() => v,
-                (Some(v), None) => {
-                    return Err(input!("{at}: voltage = {v} must be a finite number"));
-                }
-                (None, Some(_)) => {
-                    return Err(input!(
-                        "{at}: charge: floating electrodes (one unknown potential, a given total charge) are not available yet; give the electrode a voltage"
-                    ));
+            let condition = match (table.voltage, table.charge) {
+                (Some(v), None) if v.is_finite() => ElectrodeCondition::Voltage(v),
+                (None, Some(q)) if q.is_finite() => ElectrodeCondition::Floating(q),
+                (Some(v), None) | (None, Some(v)) => {
+                    let key = if table.voltage.is_some() { "voltage" } else { "charge" };
+                    return Err(input!("{at}: {key} = {v} must be a finite number"));
                 }
                 _ => {
                     return Err(input!(
-                        "{at}: give the electrode one of voltage (its potential) or charge (a floating electrode's total charge), not both or neither"
+                        "{at}: give the electrode one of voltage (its potential) or charge (a floating electrode's total charge; 0 for an open circuit), not both or neither"
                     ));
                 }
             };
-            electrodes.push(Electrode { name, parts, voltage });
+            electrodes.push(Electrode { name, parts, condition });
         }
         Ok(electrodes)
     }

@@ -383,7 +383,7 @@ pub struct BoundarySection {
     /// Γb: surface charges.
     #[serde(default)]
     pub charge: Vec<ChargeLoad>,
-    /// Electrodes: parts at a prescribed potential.
+    /// Electrodes: parts at a prescribed potential, or floating.
     #[serde(default)]
     pub electrode: Vec<ElectrodeTable>,
 }
@@ -398,7 +398,8 @@ pub struct ElectrodeTable {
     pub parts: Vec<String>,
     /// Its potential \[potential\], scaled by a loading path's factors.
     pub voltage: Option<f64>,
-    /// The total charge on a floating electrode \[charge\] (not available yet).
+    /// The total charge on a floating electrode \[charge\] (0: an open circuit), scaled by a
+    /// loading path's factors.
     pub charge: Option<f64>,
 }
 

@@ -38,8 +38,10 @@ pub struct CurveRow {
     pub kkt_residual: f64,
     /// Whether the step converged.
     pub converged: bool,
-    /// The charge on each part of Γa [charge·length^(3−d)].
+    /// The charge on each part of Γa and each electrode [charge·length^(3−d)].
     pub charges: Vec<f64>,
+    /// The potential of each electrode beyond the grounded parts \[potential\].
+    pub potentials: Vec<f64>,
     /// The force of each clamp and support on the body, d components each.
     pub supports: Vec<Vec<f64>>,
 }
@@ -77,6 +79,7 @@ impl CurveRow {
             kkt_residual: solution.kkt.max,
             converged: solution.converged(),
             charges: solution.balance.charges.clone(),
+            potentials: solution.balance.potentials.clone(),
             supports: solution.balance.supports.clone(),
         }
     }
@@ -109,7 +112,7 @@ impl Column {
 pub fn curve_columns(
     rows: &[CurveRow],
     dim: usize,
-    (supports, parts, electrodes): (&[String], &[String], &[(String, f64)]),
+    (supports, parts, electrodes): (&[String], &[String], &[String]),
 ) -> Vec<(String, Column)> {
     let real = |f: &dyn Fn(&CurveRow) -> f64| Column::Real(rows.iter().map(f).collect());
     let mut columns = vec![
@@ -137,24 +140,25 @@ pub fn curve_columns(
     ));
     columns.push(("kkt_residual".into(), real(&|r| r.kkt_residual)));
     columns.push(("converged".into(), Column::Flag(rows.iter().map(|r| r.converged).collect())));
-    let per_row: Vec<_> =
-        rows.iter().map(|r| (r.supports.as_slice(), r.charges.as_slice(), r.load_factor)).collect();
+    let per_row: Vec<_> = rows
+        .iter()
+        .map(|r| (r.supports.as_slice(), r.charges.as_slice(), r.potentials.as_slice()))
+        .collect();
     columns.extend(held_and_charge_columns(dim, (supports, parts, electrodes), &per_row));
     columns
 }
 
 /// What the last columns of curve.csv read of a step: the reactions of the clamps and
-/// supports, the charges (grounded parts, then electrodes) and the load factor.
-type RowValues<'a> = (&'a [Vec<f64>], &'a [f64], f64);
+/// supports, the charges (grounded parts, then electrodes) and the electrodes' potentials.
+type RowValues<'a> = (&'a [Vec<f64>], &'a [f64], &'a [f64]);
 
 /// The columns every path's curve.csv ends with: `reaction_<name>_<x|y|z>` for each clamp
 /// and support named in `supports`, then `charge_<part>` for each grounded part in `parts`,
-/// then `phi_<name>` and `charge_<name>` for each electrode (name, voltage at load factor 1)
-/// in `electrodes`, from each row's reactions, charges (the grounded parts', then the
-/// electrodes') and load factor.
+/// then `phi_<name>` and `charge_<name>` for each electrode named in `electrodes`, from each
+/// row's reactions, charges (the grounded parts', then the electrodes') and potentials.
 fn held_and_charge_columns(
     dim: usize,
-    (supports, parts, electrodes): (&[String], &[String], &[(String, f64)]),
+    (supports, parts, electrodes): (&[String], &[String], &[String]),
     per_row: &[RowValues],
 ) -> Vec<(String, Column)> {
     let mut columns = Vec::new();
@@ -168,8 +172,8 @@ fn held_and_charge_columns(
         let values = per_row.iter().map(|(_, q, _)| q[k]).collect();
         columns.push((format!("charge_{part}"), Column::Real(values)));
     }
-    for (j, (name, voltage)) in electrodes.iter().enumerate() {
-        let potentials = per_row.iter().map(|(.., factor)| voltage * factor).collect();
+    for (j, name) in electrodes.iter().enumerate() {
+        let potentials = per_row.iter().map(|(.., phi)| phi[j]).collect();
         columns.push((format!("phi_{name}"), Column::Real(potentials)));
         let charges = per_row.iter().map(|(_, q, _)| q[parts.len() + j]).collect();
         columns.push((format!("charge_{name}"), Column::Real(charges)));
@@ -201,8 +205,10 @@ pub struct StaticCurveRow {
     pub reaction: Vec<f64>,
     /// The force of each clamp and support, d components each.
     pub supports: Vec<Vec<f64>>,
-    /// The charge on each part of Γa [charge·length^(3−d)].
+    /// The charge on each part of Γa and each electrode [charge·length^(3−d)].
     pub charges: Vec<f64>,
+    /// The potential of each electrode beyond the grounded parts \[potential\].
+    pub potentials: Vec<f64>,
 }
 
 /// The columns of the curve.csv of a loading path without contact: `step`, `load_factor`,
@@ -212,7 +218,7 @@ pub struct StaticCurveRow {
 pub fn static_curve_columns(
     rows: &[StaticCurveRow],
     dim: usize,
-    (supports, parts, electrodes): (&[String], &[String], &[(String, f64)]),
+    (supports, parts, electrodes): (&[String], &[String], &[String]),
 ) -> Vec<(String, Column)> {
     let real = |f: &dyn Fn(&StaticCurveRow) -> f64| Column::Real(rows.iter().map(f).collect());
     let mut columns = vec![
@@ -222,8 +228,10 @@ pub fn static_curve_columns(
     for (k, name) in ["reaction_x", "reaction_y", "reaction_z"][..dim].iter().enumerate() {
         columns.push((name.to_string(), real(&|r| r.reaction[k])));
     }
-    let per_row: Vec<_> =
-        rows.iter().map(|r| (r.supports.as_slice(), r.charges.as_slice(), r.load_factor)).collect();
+    let per_row: Vec<_> = rows
+        .iter()
+        .map(|r| (r.supports.as_slice(), r.charges.as_slice(), r.potentials.as_slice()))
+        .collect();
     columns.extend(held_and_charge_columns(dim, (supports, parts, electrodes), &per_row));
     columns
 }

@@ -88,20 +88,19 @@ pub fn electrodes_json(built: &Built, dofs: &DofMap, x: &[f64], charges: &[f64])
     let names = problem.mesh.parts();
     let potential =
         |parts: &[usize]| problem.part_nodes(parts).first().map_or(0.0, |&node| x[dofs.phi(node)]);
-    let grounded = problem
-        .boundary
-        .grounded
-        .iter()
-        .map(|&p| (names[p].name.clone(), vec![names[p].name.clone()], potential(&[p])));
+    let grounded =
+        problem.boundary.grounded.iter().map(|&p| {
+            (names[p].name.clone(), vec![names[p].name.clone()], "voltage", potential(&[p]))
+        });
     let electrodes = problem.boundary.electrodes.iter().map(|e| {
         let parts = e.parts.iter().map(|&p| names[p].name.clone()).collect();
-        (e.name.clone(), parts, potential(&e.parts))
+        (e.name.clone(), parts, e.kind(), potential(&e.parts))
     });
     let list: Vec<Value> = grounded
         .chain(electrodes)
         .zip(charges)
-        .map(|((name, parts, potential), charge)| {
-            json!({ "name": name, "parts": parts, "kind": "voltage", "potential": potential, "charge": charge })
+        .map(|((name, parts, kind, potential), charge)| {
+            json!({ "name": name, "parts": parts, "kind": kind, "potential": potential, "charge": charge })
         })
         .collect();
     Value::Array(list)

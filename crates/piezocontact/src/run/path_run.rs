@@ -94,10 +94,10 @@ impl PathRun {
         problem.boundary.grounded.iter().map(|&p| problem.mesh.parts()[p].name.clone()).collect()
     }
 
-    /// The electrodes beside the grounded parts: each name with its voltage at load factor 1,
-    /// whose potential and charge curve.csv reports.
-    pub fn driven_electrodes(built: &Built) -> Vec<(String, f64)> {
-        built.problem.boundary.electrodes.iter().map(|e| (e.name.clone(), e.voltage)).collect()
+    /// The names of the electrodes beside the grounded parts, whose potential and charge
+    /// curve.csv reports.
+    pub fn driven_electrodes(built: &Built) -> Vec<String> {
+        built.problem.boundary.electrodes.iter().map(|e| e.name.clone()).collect()
     }
 
     /// The columns of curve.csv.

@@ -64,6 +64,7 @@ impl StaticPathRun {
                 reaction: reactions.total.clone(),
                 supports: reactions.supports.clone(),
                 charges: reactions.charges.clone(),
+                potentials: reactions.potentials.clone(),
             });
             last_reactions = reactions;
         }

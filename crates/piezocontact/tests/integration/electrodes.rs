@@ -1,11 +1,13 @@
-//! Electrodes at a voltage (`[[boundary.electrode]]`): uniform fields of a PZT-5A block, which
-//! P1 elements give to round-off, with the expected charges and strains computed here from
-//! the material's constants (c^E, e, ε^S; d = e s^E and ε^T = ε^S + d eᵀ); the outputs; bad
-//! tables.
+//! Electrodes at a voltage or floating (`[[boundary.electrode]]`): uniform fields of a PZT-5A
+//! block, which P1 elements give to round-off, with the expected charges, potentials and
+//! strains computed here from the material's constants (c^E, e, ε^S; d = e s^E and ε^T = ε^S +
+//! d eᵀ); the outputs; bad tables.
 
 use super::common::{EPS0, build_text, mesh_file, solve_static};
 use super::materials::{C, E, stress_charge};
+use piezocontact::linalg::default_solver;
 use piezocontact::material::voigt;
+use piezocontact::run::Run;
 
 /// The box [0,2]×[0,1]×[0,1] (top area 2, thickness 1) of PZT-5A poled along z, its bottom
 /// grounded, its top an electrode at `volts`, held by `held` tables.
@@ -68,9 +70,79 @@ fn a_free_block_under_a_voltage_strains_by_d_and_holds_the_free_capacitance_s_ch
     assert!((charges[1] - q).abs() < 1e-9 * q, "drive: {} vs {q}", charges[1]);
 }
 
-/// Bad tables: both or neither of voltage and charge, a floating electrode (not available
-/// yet), a name of a curve.csv column, two electrodes on one facet, and electrodes at two
-/// potentials that touch.
+/// The rollers of a free block: x0 along x, y0 along y, the bottom along z.
+const ROLLERS: &str = "[[boundary.support]]\nparts = [\"x0\"]\nfix = [\"x\"]\n[[boundary.support]]\nparts = [\"y0\"]\nfix = [\"y\"]\n[[boundary.support]]\nname = \"floor\"\nparts = [\"bottom\"]\nfix = [\"z\"]\n";
+
+/// d = e s^E and ε^T33 = ε^S33 + Σ d3k e3k of the block's PZT-5A.
+fn free_constants() -> ([[f64; 6]; 3], f64) {
+    let s = voigt::inverse(&C).unwrap();
+    let d = voigt::product(&E, &s);
+    let eps_t33 = eps_s33() + (0..6).map(|k| d[2][k] * E[2][k]).sum::<f64>();
+    (d, eps_t33)
+}
+
+/// The block on rollers under a uniform pressure p on top (σ_zz = −p, the other stresses 0),
+/// its top electrode floating with no charge (an open circuit): D_z = d33 σ_zz + ε^T33 E_z = 0,
+/// so the top rises to V = −E_z t = d33 σ_zz t / ε^T33, |V| = g33 p t with g33 = d33/ε^T33.
+/// Short-circuited (the top at 0 V), E = 0 and the top holds Q = −D_z A = −d33 σ_zz A.
+#[test]
+fn an_open_circuit_block_under_pressure_reads_g33_and_a_short_circuit_d33() {
+    let (d, eps_t33) = free_constants();
+    let (d33, p) = (d[2][2], 0.01);
+    let pressed = |condition: &str| {
+        let text = block(0.0, ROLLERS).replace("voltage = 0", condition)
+            + &format!("[[boundary.traction]]\nparts = [\"top\"]\nf2 = [0.0, 0.0, {}]\n", -p);
+        solve_static(&text)
+    };
+    let (built, open) = pressed("charge = 0.0");
+    let volts = d33 * -p / eps_t33;
+    let potential = open.reactions.potentials[0];
+    assert!((potential - volts).abs() < 1e-9 * volts.abs(), "{potential} vs {volts}");
+    assert!(open.reactions.charges[1].abs() < 1e-9 * eps_t33 * 2.0 * volts.abs());
+    let summary = open.summary(&built);
+    assert_eq!(summary["electrodes"][1]["kind"], "floating");
+    let phi_top = summary["electrodes"][1]["potential"].as_f64().unwrap();
+    assert!((phi_top - volts).abs() < 1e-9 * volts.abs(), "{phi_top}");
+    let (_, short) = pressed("voltage = 0.0");
+    let q = -d33 * -p * 2.0;
+    let charge = short.reactions.charges[1];
+    assert!((charge - q).abs() < 1e-9 * q.abs(), "{charge} vs {q}");
+}
+
+/// A free block whose top electrode floats with a given charge Q: V = Q t / (ε^T33 A), of
+/// Q's sign, and the grounded bottom holds −Q; on a loading path the charge, and so the
+/// potential in curve.csv, scale with the load factor.
+#[test]
+fn a_floating_electrode_with_a_charge_rises_to_q_over_the_free_capacitance() {
+    let (_, eps_t33) = free_constants();
+    let charge = -3e-12;
+    let text = block(0.0, ROLLERS).replace("voltage = 0", &format!("charge = {charge}"));
+    let (_, run) = solve_static(&text);
+    let volts = charge * 1.0 / (eps_t33 * 2.0);
+    let (potential, charges) = (run.reactions.potentials[0], &run.reactions.charges);
+    assert!((potential - volts).abs() < 1e-9 * volts.abs(), "{potential} vs {volts}");
+    assert!((charges[1] - charge).abs() < 1e-9 * charge.abs(), "{charges:?}");
+    assert!((charges[0] + charge).abs() < 1e-9 * charge.abs(), "{charges:?}");
+    let path = text + "[loading]\nload_factors = [0.5, 1.0]\n";
+    let built = build_text(&path).unwrap();
+    let Run::StaticPath(run) = super::common::run_with(&built, default_solver()) else {
+        panic!("not a loading path without contact")
+    };
+    let columns = run.columns(&built);
+    let column = |name: &str| match &columns.iter().find(|c| c.0 == name).unwrap().1 {
+        piezocontact::report::Column::Real(v) => v.clone(),
+        other => panic!("{other:?}"),
+    };
+    let (phi, q) = (column("phi_drive"), column("charge_drive"));
+    for (k, factor) in [0.5, 1.0].iter().enumerate() {
+        assert!((phi[k] - factor * volts).abs() < 1e-9 * volts.abs(), "{phi:?}");
+        assert!((q[k] - factor * charge).abs() < 1e-9 * charge.abs(), "{q:?}");
+    }
+}
+
+/// Bad tables: both or neither of voltage and charge, a name of a curve.csv column, two
+/// electrodes on one facet, electrodes under different conditions that touch, and a body
+/// whose potential only a floating electrode holds.
 #[test]
 fn bad_electrodes_are_errors_naming_the_table() {
     let error = |text: &str| build_text(text).err().expect("an error").to_string();
@@ -80,8 +152,6 @@ fn bad_electrodes_are_errors_naming_the_table() {
         e.contains("[[boundary.electrode]] number 1") && e.contains("not both or neither"),
         "{e}"
     );
-    let e = error(&base.replace("voltage = 0.2", "charge = 0.0"));
-    assert!(e.contains("floating electrodes") && e.contains("not available yet"), "{e}");
     let e = error(&base.replace("name = \"drive\"", "name = \"mean\""));
     assert!(e.contains("the name 'mean' is taken"), "{e}");
     let twice = format!(
@@ -92,7 +162,13 @@ fn bad_electrodes_are_errors_naming_the_table() {
     let side =
         format!("{base}[[boundary.electrode]]\nname = \"side\"\nparts = [\"x1\"]\nvoltage = 0.5\n");
     let e = error(&side);
-    assert!(e.contains("electrodes at different potentials must not touch"), "{e}");
+    assert!(e.contains("electrodes under different conditions must not touch"), "{e}");
+    let e = error(&side.replace("voltage = 0.5", "charge = 0.0"));
+    assert!(e.contains("the floating electrode 'side'") && e.contains("must not touch"), "{e}");
+    let alone =
+        base.replace("voltage = 0.2", "charge = 0.0").replace("grounded = [\"bottom\"]", "");
+    let e = error(&alone);
+    assert!(e.contains("a floating electrode does not fix it"), "{e}");
 }
 
 /// An actuator against a stop: the block on rollers, its top face both the electrode (driven
@@ -124,5 +200,35 @@ fn an_actuator_driven_against_a_stop_presses_with_the_blocked_force() {
             (force - blocked).abs() < 1e-8 * (d33 * v0 * 2.0 / s[2][2]),
             "λ = {lambda}: {force} vs {blocked}"
         );
+    }
+}
+
+/// A sensor pressed by a stop: the block on rollers, its top face Γ3 and an open-circuit
+/// floating electrode, pushed down by a rigid plane (PV1, no penetration) to a uniform state.
+/// Whatever the depth, D_z = 0 ties the top's potential to the contact force F:
+/// V = d33 σ_zz t / ε^T33 with σ_zz = −F/A — the exact solver and Uzawa alike.
+#[test]
+fn a_sensor_pressed_by_a_stop_reads_g33_times_the_contact_pressure() {
+    let (d, eps_t33) = free_constants();
+    let contact = "[contact]\nproblem = \"PV1\"\ngap = 0.0\n[foundation]\nkind = \"plane\"\npoint = [0.0, 0.0, 0.999]\nnormal = [0.0, 0.0, -1.0]\n";
+    let text = block(0.0, ROLLERS)
+        .replace("voltage = 0", "charge = 0.0")
+        .replace("grounded = [\"bottom\"]", "grounded = [\"bottom\"]\ncontact = [\"top\"]")
+        + contact;
+    for method in ["newton", "uzawa"] {
+        let built = build_text(&format!("{text}[solver]\nmethod = \"{method}\"\n")).unwrap();
+        let run = super::common::contact_run(&built);
+        assert!(run.solution.converged(), "{method}");
+        let balance = &run.solution.balance;
+        let sigma_zz = -balance.contact[2].abs() / 2.0;
+        let volts = d[2][2] * sigma_zz / eps_t33;
+        let potential = balance.potentials[0];
+        // Uzawa stops on the change of its multipliers (8e-8 relative here).
+        let tolerance = if method == "newton" { 1e-9 } else { 1e-6 };
+        assert!(
+            (potential - volts).abs() < tolerance * volts.abs(),
+            "{method}: {potential} vs {volts}"
+        );
+        assert!(balance.charges[1].abs() < tolerance * eps_t33 * 2.0 * volts.abs(), "{method}");
     }
 }
