@@ -5,7 +5,8 @@
 //!   dotted keys to values, applied in the dict's order as `--set`s are.
 //! - `Case.from_dict(...)`, `Case.from_file(...)` and `Case.solve()`.
 //! - `Solution`: `summary` (summary.json as a dict), `contact` (the contact.csv columns),
-//!   `points`, `u`, `phi`, `converged`, and `write(directory)` (the files `run` writes).
+//!   `electrodes` (summary.json's list: name, parts, kind, potential, charge), `points`, `u`,
+//!   `phi`, `converged`, and `write(directory)` (the files `run` writes).
 //!
 //! Bad input raises `CaseError`, a `ValueError` with the command line's message (file, line,
 //! key); what `run` warns of a case, a `CaseWarning` (a `UserWarning`). In `overrides`, a
@@ -305,6 +306,14 @@ impl Solution {
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let text = serde_json::to_string(&self.run.summary(&self.built)).map_err(case_error)?;
         py.import("json")?.call_method1("loads", (text,))
+    }
+
+    /// Every electrode (the grounded parts, then the `[[boundary.electrode]]` tables) as
+    /// summary.json's `electrodes` gives it: a list of dicts with `name`, `parts`, `kind`
+    /// ("voltage" or "floating"), `potential` and `charge` (the case's units).
+    #[getter]
+    fn electrodes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.summary(py)?.get_item("electrodes")
     }
 
     /// The contact.csv columns as 1-D numpy arrays (float, and `status` as str), one entry per

@@ -241,6 +241,28 @@ def test_plane_models_and_normal_rollers_read_as_in_the_case_file(tmp_path):
         piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
 
 
+def test_electrodes_read_as_in_the_case_file(tmp_path):
+    # A dielectric plate (e = 0) 2 wide and 1 thick: the top floats with a charge Q per unit
+    # thickness, so that it rises to V = Q t / (β33 L) and the grounded bottom holds −Q.
+    beta33, charge = 830.0 * 8.885e-3, 2e-3
+    case = {
+        "mesh": {"x": [0.0, 2.0], "y": [0.0, 1.0], "nx": 4, "ny": 2,
+                 "segments": {"bottom": ["[0,2]x{0}"], "top": ["[0,2]x{1}"]}},
+        "material": {"law": "linear", "young": 60.0, "poisson": 0.3, "e31": 0.0, "e33": 0.0,
+                     "e15": 0.0, "eps0": 8.885e-3, "beta11_rel": 916.0, "beta33_rel": 830.0},
+        "boundary": {"clamped": ["bottom"], "grounded": ["bottom"],
+                     "electrode": [{"name": "sense", "parts": ["top"], "charge": charge}]},
+    }
+    solved = piezocontact.Case.from_dict(case, base_dir=tmp_path).solve()
+    bottom, sense = solved.electrodes
+    assert sense["name"] == "sense" and sense["kind"] == "floating" and sense["parts"] == ["top"]
+    volts = charge * 1.0 / (beta33 * 2.0)
+    assert abs(sense["potential"] - volts) < 1e-9 * volts
+    assert abs(sense["charge"] - charge) < 1e-9 * charge
+    assert bottom["kind"] == "voltage" and abs(bottom["charge"] + charge) < 1e-9 * charge
+    assert np.abs(solved.phi - volts * solved.points[:, 1]).max() < 1e-9 * volts
+
+
 def test_materials_by_region_and_presets_read_as_in_the_case_file(tmp_path):
     material = {"law": "linear", "young": 100.0, "poisson": 0.3, "e32": -5.4, "e33": 15.8, "e24": 12.3,
                 "eps0": 8.885e-3, "beta22_rel": 916.0, "beta33_rel": 830.0}

@@ -179,6 +179,11 @@ struct BenchArgs {
     /// the wall times, the median of 3 interleaved runs of each.
     #[arg(long, conflicts_with_all = ["contact", "path", "lu", "sizes", "case", "materials", "quarter", "mesh"])]
     axisym: bool,
+    /// Time the 3D indentation (cases/indentation-3d.toml, on --mesh if given) with its top
+    /// face an electrode at 0 V against the same face floating: factor entries, numeric
+    /// factorisation and the exact solver's wall time, the median of 5 interleaved runs.
+    #[arg(long, conflicts_with_all = ["contact", "path", "lu", "sizes", "case", "materials", "quarter", "axisym"])]
+    floating: bool,
     /// One measurement of --contact (internal).
     #[arg(long, hide = true)]
     one: Option<String>,
@@ -294,6 +299,7 @@ fn bench_command(args: BenchArgs) -> Result<Outcome> {
         materials,
         quarter,
         axisym,
+        floating,
         one,
         ordering,
         backend,
@@ -307,6 +313,9 @@ fn bench_command(args: BenchArgs) -> Result<Outcome> {
     }
     if axisym {
         return bench::axisym::run().map(|_| Outcome::Done);
+    }
+    if floating {
+        return bench::electrodes::run(mesh.as_deref()).map(|_| Outcome::Done);
     }
     if quarter {
         let mesh = mesh.unwrap_or_else(|| PathBuf::from("meshes/indent-quarter-h0.015.msh"));

@@ -9,6 +9,7 @@
 //! - [`materials`]: the assembly with one material and with four by region;
 //! - [`axisym`]: the ball indentation in 3D and as a body of revolution;
 //! - [`quarter`]: the quarter model against the whole block, and rollers against a clamp;
+//! - [`electrodes`]: the indentation with its top face floating against the same grounded;
 //! - `petsc` (feature `petsc`): the PETSc + MUMPS backend under mpirun beside faer;
 //! - [`one`]: `bench --one SPEC`, one measurement of the above in a child process.
 //!
@@ -19,6 +20,7 @@
 
 pub mod axisym;
 pub mod contact;
+pub mod electrodes;
 pub mod factorisation;
 pub mod materials;
 pub mod one;
@@ -114,6 +116,51 @@ pub fn factorised_once(
     system.factorize(problem, &g, &[])?;
     system.solve(None)?;
     Ok((system, dof_map))
+}
+
+/// The numeric factorisation of the systems of two cases at x = 0: the median time of
+/// `runs` interleaved factorisations of each \[s\] and its factor's entries, printed on a
+/// line per side named by `names`.
+pub fn numeric_times(
+    sides: &[piezocontact::case::Built; 2],
+    names: [&str; 2],
+    runs: usize,
+) -> Result<[(f64, f64); 2]> {
+    let mut systems = Vec::new();
+    for built in sides {
+        let (system, _) = factorised_once(&built.problem, piezocontact::linalg::default_solver())?;
+        let zero = vec![0.0; system.dofs().n_total()];
+        let moduli = secant_moduli(&built.problem, system.dofs(), &zero)?;
+        systems.push((system, moduli));
+    }
+    let mut seconds = [Vec::new(), Vec::new()];
+    for _ in 0..runs {
+        for (k, (system, moduli)) in systems.iter_mut().enumerate() {
+            let before = system.solver_stats().numeric_seconds;
+            system.factorize(&sides[k].problem, moduli, &[])?;
+            seconds[k].push(system.solver_stats().numeric_seconds - before);
+        }
+    }
+    let medians = seconds.map(median);
+    let mut out = [(0.0, 0.0); 2];
+    for (k, name) in names.iter().enumerate() {
+        let stats = systems[k].0.solver_stats();
+        let entries = stats.factor_len as f64;
+        out[k] = (medians[k], entries);
+        crate::say!(
+            "  {name:<22} {:>8} free DOFs  factor {entries:.3e} entries  numeric {:.4} s  {:.3} ns per entry",
+            systems[k].0.dofs().n_free(),
+            medians[k],
+            1e9 * medians[k] / entries
+        );
+    }
+    Ok(out)
+}
+
+/// The median of `s` (the upper one of an even count).
+pub fn median(mut s: Vec<f64>) -> f64 {
+    s.sort_by(f64::total_cmp);
+    s[s.len() / 2]
 }
 
 /// Peak resident memory of this process, in MiB (0 where the system does not say).

@@ -5,10 +5,9 @@
 //! only): the factor's entries and the numeric factorisation's time per entry. The same
 //! binary, the sides interleaved, the median of 5 of each.
 
-use super::factorised_once;
+use super::{median, numeric_times};
 use crate::say;
 use anyhow::{Result, anyhow};
-use piezocontact::assembly::secant_moduli;
 use piezocontact::case::{Built, Case};
 use piezocontact::linalg::default_solver;
 use piezocontact::run::Run;
@@ -90,40 +89,10 @@ fn contact_times(sides: &[Built; 2], names: [&str; 2]) -> Result<()> {
 /// The quarter's system held by the clamp and by rollers: factor entries, the median
 /// numeric factorisation time of [`RUNS`] interleaved ones, and the time per entry.
 fn factor_times(held: &[Built; 2]) -> Result<()> {
-    let mut systems = Vec::new();
-    for built in held {
-        let (system, _) = factorised_once(&built.problem, default_solver())?;
-        let zero = vec![0.0; system.dofs().n_total()];
-        let moduli = secant_moduli(&built.problem, system.dofs(), &zero)?;
-        systems.push((system, moduli));
-    }
-    let mut seconds = [Vec::new(), Vec::new()];
-    for _ in 0..RUNS {
-        for (k, (system, moduli)) in systems.iter_mut().enumerate() {
-            let before = system.solver_stats().numeric_seconds;
-            system.factorize(&held[k].problem, moduli, &[])?;
-            seconds[k].push(system.solver_stats().numeric_seconds - before);
-        }
-    }
-    let medians = seconds.map(median);
     say!("the quarter's numeric factorisation, median of {RUNS} interleaved runs:");
-    let mut per_entry = [0.0; 2];
-    for (k, name) in ["clamped bottom", "bottom on rollers (z)"].iter().enumerate() {
-        let stats = systems[k].0.solver_stats();
-        let entries = stats.factor_len as f64;
-        per_entry[k] = medians[k] / entries;
-        say!(
-            "  {name:<22} {:>8} free DOFs  factor {entries:.3e} entries  numeric {:.4} s  {:.3} ns per entry",
-            systems[k].0.dofs().n_free(),
-            medians[k],
-            1e9 * per_entry[k]
-        );
-    }
+    let names = ["clamped bottom", "bottom on rollers (z)"];
+    let sides = numeric_times(held, names, RUNS)?;
+    let per_entry = sides.map(|(seconds, entries)| seconds / entries);
     say!("  rollers / clamp time per entry {:.3} (target ≤ 1.1)", per_entry[1] / per_entry[0]);
     Ok(())
-}
-
-fn median(mut s: Vec<f64>) -> f64 {
-    s.sort_by(f64::total_cmp);
-    s[s.len() / 2]
 }

@@ -232,3 +232,44 @@ fn a_sensor_pressed_by_a_stop_reads_g33_times_the_contact_pressure() {
         assert!(balance.charges[1].abs() < tolerance * eps_t33 * 2.0 * volts.abs(), "{method}");
     }
 }
+
+/// cases/actuator-stop.toml: the stop's force at every step of the voltage ramp is the
+/// blocked force max(0, d33 λ|V0| − g) A/(s33^E t), A = 2, t = 1, from the preset's constants
+/// (Berlincourt's PZT-5A, those of this file).
+#[test]
+fn the_committed_actuator_meets_its_stop_at_d33_v_equal_to_the_gap() {
+    let built = super::common::committed_case("actuator-stop.toml", &[]).build().unwrap();
+    let path = super::common::path_run(&built);
+    assert!(path.converged(), "{:?}", path.failure);
+    let s = voigt::inverse(&C).unwrap();
+    let d33 = voigt::product(&E, &s)[2][2];
+    let (v0, gap) = (1e-3, 2.5e-4);
+    let largest = (d33 * v0 - gap) * 2.0 / s[2][2];
+    assert!(largest > 0.0);
+    for row in &path.curve {
+        let lambda = row.load_factor;
+        let blocked = (lambda * d33 * v0 - gap).max(0.0) * 2.0 / s[2][2];
+        let force = row.force[2];
+        assert!((force - blocked).abs() < 1e-8 * largest, "λ = {lambda}: {force} vs {blocked}");
+        assert!((row.potentials[0] + lambda * v0).abs() < 1e-15, "{:?}", row.potentials);
+    }
+}
+
+/// cases/force-sensor.toml: an open circuit, so no charge flows to either electrode while
+/// the ball presses harder and the floating top's potential grows with the force (negative:
+/// compression along the poling).
+#[test]
+fn the_committed_force_sensor_reads_a_voltage_and_no_charge() {
+    let built = super::common::committed_case("force-sensor.toml", &[]).build().unwrap();
+    let path = super::common::path_run(&built);
+    assert!(path.converged(), "{:?}", path.failure);
+    let last = path.curve.last().unwrap();
+    let scale = eps_s33() * std::f64::consts::PI * 4.0 * last.potentials[0].abs();
+    let mut previous = (0.0, 0.0);
+    for row in &path.curve {
+        let (force, phi) = (row.force[1], row.potentials[0]);
+        assert!(force > previous.0 && phi < previous.1, "{force} {phi} after {previous:?}");
+        assert!(row.charges.iter().all(|q| q.abs() < 1e-9 * scale), "{:?}", row.charges);
+        previous = (force, phi);
+    }
+}
