@@ -15,7 +15,7 @@
 //! [`DofMap::expand`] and [`DofMap::to_frames`] turn them.
 
 use crate::error::Result;
-use crate::problem::Problem;
+use crate::problem::{Factors, Problem};
 
 /// Marks a constrained global DOF in [`DofMap::free_index`].
 pub const CONSTRAINED: usize = usize::MAX;
@@ -160,12 +160,12 @@ impl DofMap {
     }
 
     /// Sums, for each floating electrode, the ϕ rows of its nodes of a global `residual`
-    /// R = F_int − f − F_c, with its given charge times `load_factor` [-], into the row of its
-    /// first node (the others 0): the electrode's equation (Σ R + Q = 0). `scale` (the row
-    /// scales) alike, with |Q|.
-    pub fn sum_floating(&self, residual: &mut [f64], scale: &mut [f64], load_factor: f64) {
+    /// R = F_int − f − F_c, with its given charge times `electrode_factor` [-], into the row
+    /// of its first node (the others 0): the electrode's equation (Σ R + Q = 0). `scale` (the
+    /// row scales) alike, with |Q|.
+    pub fn sum_floating(&self, residual: &mut [f64], scale: &mut [f64], electrode_factor: f64) {
         for f in &self.floating {
-            let charge = load_factor * f.charge;
+            let charge = electrode_factor * f.charge;
             let (mut r, mut s) = (charge, charge.abs());
             for &a in &f.nodes {
                 let g = self.phi(a);
@@ -313,11 +313,14 @@ impl DofMap {
         !self.displacements.is_empty()
     }
 
-    /// Sets the prescribed displacements and the electrodes' voltages to `load_factor` [-]
-    /// times the case's (a step of a loading path); the grounded parts stay at their potential.
-    pub fn scale_displacements(&mut self, load_factor: f64) {
+    /// Sets the prescribed displacements to `factors.loads` [-] times the case's and the
+    /// electrodes' voltages to `factors.electrodes` times theirs (a step of a loading path);
+    /// the grounded parts stay at their potential.
+    pub fn scale_displacements(&mut self, factors: Factors) {
+        let u = self.n_nodes * self.dim;
         for (g, unit) in self.displacements.iter().enumerate() {
-            self.prescribed[g] = load_factor * unit;
+            let factor = if g < u { factors.loads } else { factors.electrodes };
+            self.prescribed[g] = factor * unit;
         }
     }
 

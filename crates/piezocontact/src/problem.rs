@@ -123,6 +123,23 @@ impl Electrode {
     }
 }
 
+/// The factors a step of a loading path puts on a case's loads, supports' displacements
+/// and surface charges (`loads`), and on its electrodes' voltages and charges
+/// (`electrodes`) [-]; a bare factor is both.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Factors {
+    /// On f0, q0, f2, q2 and the prescribed displacements [-].
+    pub loads: f64,
+    /// On the electrodes' voltages and floating charges [-].
+    pub electrodes: f64,
+}
+
+impl From<f64> for Factors {
+    fn from(factor: f64) -> Self {
+        Self { loads: factor, electrodes: factor }
+    }
+}
+
 /// How a node of an electrode is held: at a potential \[potential\], or on the floating
 /// electrode of that index.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -8,7 +8,7 @@ use crate::assembly::{Assembler, Linearisation, NodalBlock, load_vector, node_ne
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::{DenseMatrix, LinearSolver, SchurComplement, SolverStats, SymmetricMatrix};
-use crate::problem::Problem;
+use crate::problem::{Factors, Problem};
 use std::time::Instant;
 
 /// Wall-clock seconds spent in each phase, and what the linear solver counted.
@@ -45,10 +45,10 @@ pub struct CoupledSystem {
     assembler: Assembler,
     solver: Box<dyn LinearSolver>,
     matrix: Option<SymmetricMatrix>,
-    /// f̌ on the free DOFs, the loads scaled by `load_factor`: it does not depend on x_n.
+    /// f̌ on the free DOFs, the loads scaled by `factors`: it does not depend on x_n.
     load: Vec<f64>,
-    /// The factor on the applied loads that `load` holds [-].
-    load_factor: f64,
+    /// The factors on the applied loads and electrodes that `load` holds.
+    factors: Factors,
     /// The Dirichlet lifting of the current matrix (with Hencky's tangent, (K_T − K_sec) x_n),
     /// on the free DOFs.
     lifting: Vec<f64>,
@@ -121,7 +121,7 @@ impl CoupledSystem {
             solver,
             matrix: None,
             load,
-            load_factor: 1.0,
+            factors: Factors::from(1.0),
             lifting: Vec::new(),
             rhs: Vec::new(),
             unloaded: None,
@@ -200,22 +200,24 @@ impl CoupledSystem {
         Ok(())
     }
 
-    /// Assembles f̌ again with every load of `problem` scaled by `load_factor` [-] (a step of a
-    /// loading path), keeping the matrix and its factorisation; nothing when f̌ holds that
-    /// factor already.
-    pub fn scale_loads(&mut self, problem: &Problem, load_factor: f64) {
-        if load_factor == self.load_factor {
+    /// Assembles f̌ again with every load of `problem` scaled by `factors` (a step of a
+    /// loading path: a bare factor [-] on the loads and the electrodes alike), keeping the
+    /// matrix and its factorisation; nothing when f̌ holds those factors already.
+    pub fn scale_loads(&mut self, problem: &Problem, factors: impl Into<Factors>) {
+        let factors = factors.into();
+        if factors == self.factors {
             return;
         }
         let t = Instant::now();
         if self.assembler.dofs().has_prescribed_displacements() {
-            self.assembler.scale_displacements(load_factor);
+            self.assembler.scale_displacements(factors);
             self.lifting_stale = true;
         }
         let dofs = self.assembler.dofs();
-        self.load =
-            self.assembler.restrict_load(&load_vector(problem, dofs, load_factor), load_factor);
-        self.load_factor = load_factor;
+        self.load = self
+            .assembler
+            .restrict_load(&load_vector(problem, dofs, factors.loads), factors.electrodes);
+        self.factors = factors;
         self.unloaded = None;
         if !self.lifting.is_empty() {
             self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
@@ -368,26 +370,26 @@ pub fn solve_without_contact(
     problem: &Problem,
     solver: Box<dyn LinearSolver>,
 ) -> Result<StaticSolution> {
-    let mut steps = solve_without_contact_at(problem, solver, &[1.0])?;
+    let mut steps = solve_without_contact_at(problem, solver, &[Factors::from(1.0)])?;
     Ok(steps.pop().expect("one solution per load factor"))
 }
 
-/// [`solve_without_contact`] at each of `load_factors` [-] in turn (a loading path without
-/// contact), every load and prescribed displacement scaled by the factor, each from the last
+/// [`solve_without_contact`] at each of `load_factors` in turn (a loading path without
+/// contact), every load, prescribed displacement and electrode scaled by its factors, each from the last
 /// one's secant moduli, on one system (one symbolic analysis); a step whose secant steps reach
 /// their cap is the last, marked with its failure.
 pub fn solve_without_contact_at(
     problem: &Problem,
     solver: Box<dyn LinearSolver>,
-    load_factors: &[f64],
+    load_factors: &[Factors],
 ) -> Result<Vec<StaticSolution>> {
     let mut system = CoupledSystem::new(problem, DofMap::new(problem)?, &[], solver)?;
     let zero = vec![0.0; system.dofs().n_total()];
     let mut moduli = secant_moduli(problem, system.dofs(), &zero)?;
     system.factorize(problem, &moduli, &[])?;
     let mut solutions = Vec::with_capacity(load_factors.len());
-    for &load_factor in load_factors {
-        system.scale_loads(problem, load_factor);
+    for &factors in load_factors {
+        system.scale_loads(problem, factors);
         if system.lifting_stale() {
             system.factorize(problem, &moduli, &[])?;
         }

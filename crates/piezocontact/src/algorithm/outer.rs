@@ -22,7 +22,7 @@ use crate::contact::{ContactModel, ContactSurface, NodalFriction};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::{LinearSolver, SolverStats, default_solver};
-use crate::problem::Problem;
+use crate::problem::{Factors, Problem};
 use crate::system::CoupledSystem;
 
 /// Parameters of the outer fixed point and the inner method.
@@ -131,18 +131,19 @@ impl ContactSolver {
         (self.system.solver_stats(), method.dense_bytes(), method.condensed_nodes())
     }
 
-    /// Solves `problem` (that of [`ContactSolver::new`]) with its loads scaled by
-    /// `load_factor` [-], in contact with `model`'s foundation, from the last solution (from 0
+    /// Solves `problem` (that of [`ContactSolver::new`]) with its loads and electrodes scaled
+    /// by `factors` (a bare factor [-] on both), in contact with `model`'s foundation, from the last solution (from 0
     /// the first time).
     pub fn solve(
         &mut self,
         problem: &Problem,
         model: &ContactModel,
-        load_factor: f64,
+        factors: impl Into<Factors>,
         progress: &(dyn Fn(Progress) + Sync),
     ) -> Result<ContactSolution> {
-        self.system.scale_loads(problem, load_factor);
-        let mut solution = self.start(problem, model, load_factor);
+        let factors = factors.into();
+        self.system.scale_loads(problem, factors);
+        let mut solution = self.start(problem, model, factors);
         self.hencky.start(self.system.lifting_stale());
         solution.failure = self.iterate(problem, model, &mut solution, progress)?;
         let solution = self.finish(problem, model, solution)?;
@@ -152,11 +153,11 @@ impl ContactSolver {
 
     /// The first iterate of a solve: the last solution (measuring the slip from it under
     /// incremental friction), or 0.
-    fn start(&self, problem: &Problem, model: &ContactModel, load_factor: f64) -> ContactSolution {
+    fn start(&self, problem: &Problem, model: &ContactModel, factors: Factors) -> ContactSolution {
         let surface =
             self.surface.clone().with_gaps(problem, &model.foundation, model.compliance.gap);
         let dofs = self.system.dofs().clone();
-        let mut solution = ContactSolution::start(surface, dofs, load_factor);
+        let mut solution = ContactSolution::start(surface, dofs, factors);
         if let Some((x, s)) = &self.last {
             (solution.x, solution.s) = (x.clone(), s.clone());
             if model.friction.as_ref().is_some_and(|f| f.path == FrictionPath::Incremental) {

@@ -70,6 +70,8 @@ pub struct SolutionView<'a> {
     pub surface: &'a ContactSurface,
     /// The factor on the applied loads [-].
     pub load_factor: f64,
+    /// The factor on the electrodes' voltages and charges [-].
+    pub electrode_factor: f64,
     /// λ_c, λ_f.
     pub state: &'a ContactState,
     /// σ_ν on the Γ3 nodes \[stress\].
@@ -116,7 +118,7 @@ pub fn assess(
         (0..dofs.n_total()).map(|g| f_int[g] - f_ext[g] - contact_force[g]).collect();
     dofs.to_frames(&mut residual);
     dofs.frame_bound(&mut row_scale);
-    dofs.sum_floating(&mut residual, &mut row_scale, solution.load_factor);
+    dofs.sum_floating(&mut residual, &mut row_scale, solution.electrode_factor);
     for gdof in 0..dofs.n_total() {
         let (residual, row_scale) = (residual[gdof], row_scale[gdof]);
         let is_u = gdof < dim * problem.mesh.n_nodes();

@@ -5,6 +5,7 @@ use super::residual::{Balance, KktResidual, SolutionView};
 use crate::contact::{ContactModel, ContactState, ContactSurface, NodalFriction, NodeStatus};
 use crate::dofs::DofMap;
 use crate::error::Error;
+use crate::problem::Factors;
 use crate::system::Timings;
 
 /// The result of Algorithm 1 or 3.
@@ -18,6 +19,9 @@ pub struct ContactSolution {
     pub surface: ContactSurface,
     /// The factor on the applied loads of the problem solved [-] (1 but on a loading path).
     pub load_factor: f64,
+    /// The factor on the electrodes' voltages and charges [-] (the load factor but where a
+    /// path gives `electrode_factors`).
+    pub electrode_factor: f64,
     /// The multipliers of the last inner solve.
     pub state: ContactState,
     /// s_{n+1} = µ|Rσ_ν(x_{n+1})|: the friction bound of the last outer step \[stress\].
@@ -56,7 +60,7 @@ pub struct ContactSolution {
 impl ContactSolution {
     /// The state before the first outer step on `surface` with the DOFs `dofs`: x_0 = 0,
     /// λ = 0, s_0 = 0.
-    pub(super) fn start(surface: ContactSurface, dofs: DofMap, load_factor: f64) -> Self {
+    pub(super) fn start(surface: ContactSurface, dofs: DofMap, factors: Factors) -> Self {
         let n3 = surface.len();
         Self {
             kkt: KktResidual::default(),
@@ -65,7 +69,8 @@ impl ContactSolution {
             x: vec![0.0; dofs.n_total()],
             dofs,
             surface,
-            load_factor,
+            load_factor: factors.loads,
+            electrode_factor: factors.electrodes,
             state: ContactState::cold(n3),
             s: vec![0.0; n3],
             sigma_nu: vec![0.0; n3],
@@ -98,6 +103,7 @@ impl ContactSolution {
             dofs: &self.dofs,
             surface: &self.surface,
             load_factor: self.load_factor,
+            electrode_factor: self.electrode_factor,
             state: &self.state,
             sigma_nu: &self.sigma_nu,
             s: &self.s,

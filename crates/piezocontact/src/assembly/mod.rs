@@ -151,8 +151,8 @@ impl Assembler {
 
     /// The prescribed displacements set to `load_factor` [-] times the case's
     /// ([`DofMap::scale_displacements`]); the next matrix assembled lifts them.
-    pub fn scale_displacements(&mut self, load_factor: f64) {
-        self.dofs.scale_displacements(load_factor);
+    pub fn scale_displacements(&mut self, factors: crate::problem::Factors) {
+        self.dofs.scale_displacements(factors);
     }
 
     /// Gives up the DOF map.
@@ -236,15 +236,15 @@ impl Assembler {
         Ok((self.pattern.matrix(values)?, lifting))
     }
 
-    /// The load f̌ on the free DOFs from its global vector `load` (in mesh components) at
-    /// `load_factor` [-]: the sum of the rows that share an unknown (a floating electrode's
-    /// ϕ rows), less the electrode's given charge times the factor (the ϕ equations are
-    /// Gauss's law with its sign turned).
-    pub fn restrict_load(&self, load: &[f64], load_factor: f64) -> Vec<f64> {
+    /// The load f̌ on the free DOFs from its global vector `load` (in mesh components): the
+    /// sum of the rows that share an unknown (a floating electrode's ϕ rows), less the
+    /// electrode's given charge times `electrode_factor` [-] (the ϕ equations are Gauss's law
+    /// with its sign turned).
+    pub fn restrict_load(&self, load: &[f64], electrode_factor: f64) -> Vec<f64> {
         let mut free = self.restrict(load);
         for f in self.dofs.floating() {
             let sum: f64 = f.nodes.iter().map(|&a| load[self.dofs.phi(a)]).sum();
-            free[f.unknown] = sum - load_factor * f.charge;
+            free[f.unknown] = sum - electrode_factor * f.charge;
         }
         free
     }

@@ -288,10 +288,11 @@ impl Case {
         if let Some(f) = &l.load_factors {
             keys.finite("load_factors", f)?;
         }
-        let steps = match (depths, &l.load_factors) {
+        let mut steps = match (depths, &l.load_factors) {
+            (None, None) if l.electrode_factors.is_some() => Vec::new(),
             (None, None) => {
                 return Err(input!(
-                    "{}: [loading] needs loading.depths (the foundation's path) or loading.load_factors (the loads' factors)",
+                    "{}: [loading] needs loading.depths (the foundation's path), loading.load_factors (the loads' factors) or loading.electrode_factors (the electrodes')",
                     self.locate("loading")
                 ));
             }
@@ -309,13 +310,53 @@ impl Case {
                 .map(|(k, &depth)| LoadStep {
                     depth,
                     load_factor: f.as_ref().map_or(1.0, |f| f[k]),
+                    electrode_factor: f.as_ref().map_or(1.0, |f| f[k]),
                 })
                 .collect(),
-            (None, Some(f)) => {
-                f.iter().map(|&load_factor| LoadStep { depth: 0.0, load_factor }).collect()
-            }
+            (None, Some(f)) => f
+                .iter()
+                .map(|&load_factor| LoadStep {
+                    depth: 0.0,
+                    load_factor,
+                    electrode_factor: load_factor,
+                })
+                .collect(),
         };
+        if let Some(e) = &l.electrode_factors {
+            self.electrode_factors(&keys, e, &mut steps)?;
+        }
         Ok(Some(Loading { direction, steps }))
+    }
+
+    /// Puts `loading.electrode_factors` (`factors`) on the `steps` of the depths or load
+    /// factors (steps at load factor 1 without either), one per step.
+    fn electrode_factors(
+        &self,
+        keys: &Keys,
+        factors: &[f64],
+        steps: &mut Vec<LoadStep>,
+    ) -> Result<()> {
+        keys.finite("electrode_factors", factors)?;
+        if self.file.boundary.electrode.is_empty() {
+            return Err(input!(
+                "{}: loading.electrode_factors scales the electrodes' voltages and charges, and the case has no [[boundary.electrode]]: add one, or remove the key",
+                keys.locate("electrode_factors")
+            ));
+        }
+        if steps.is_empty() {
+            let step = LoadStep { depth: 0.0, load_factor: 1.0, electrode_factor: 1.0 };
+            steps.resize(factors.len(), step);
+        }
+        if factors.len() != steps.len() {
+            return Err(input!(
+                "{}: loading.electrode_factors has {} steps and the path {} (its depths or load_factors): give one factor per step",
+                keys.locate("electrode_factors"),
+                factors.len(),
+                steps.len()
+            ));
+        }
+        steps.iter_mut().zip(factors).for_each(|(s, &f)| s.electrode_factor = f);
+        Ok(())
     }
 
     /// The depths of `[loading]`, checked, `None` without them; a case with depths needs a

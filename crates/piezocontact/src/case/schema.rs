@@ -602,6 +602,9 @@ pub struct LoadingSection {
     pub depths: Option<Depths>,
     /// The factors on f0, q0, f2 and q2, one per step [-].
     pub load_factors: Option<Vec<f64>>,
+    /// The factors on the electrodes' voltages and charges, one per step [-] (else the load
+    /// factors'); alone, steps at load factor 1.
+    pub electrode_factors: Option<Vec<f64>>,
 }
 
 /// `loading.depths`: a list, or a range.

@@ -19,8 +19,18 @@ pub struct LoadStep {
     /// The foundation's displacement along the direction from its `[foundation]` position
     /// \[length\].
     pub depth: f64,
-    /// The factor on every applied load [-].
+    /// The factor on every applied load and support displacement [-].
     pub load_factor: f64,
+    /// The factor on the electrodes' voltages and charges [-]: `loading.electrode_factors`,
+    /// else the load factor.
+    pub electrode_factor: f64,
+}
+
+impl LoadStep {
+    /// The step's factors on the loads and on the electrodes.
+    pub fn factors(&self) -> crate::problem::Factors {
+        crate::problem::Factors { loads: self.load_factor, electrodes: self.electrode_factor }
+    }
 }
 
 impl Loading {

@@ -53,7 +53,7 @@ impl PathRun {
             let what = step_name(k, n, load);
             log::info!("{what}");
             let step_model = loading.model_at(model, load);
-            let solution = match solver.solve(problem, &step_model, load.load_factor, progress) {
+            let solution = match solver.solve(problem, &step_model, load.factors(), progress) {
                 Ok(solution) => solution,
                 Err(e) if k > 0 => {
                     failure = Some(format!("{what} failed: {e}"));

@@ -11,6 +11,7 @@ use crate::error::Result;
 use crate::linalg::LinearSolver;
 use crate::output::files;
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
+use crate::problem::Factors;
 use crate::report::{Column, StaticCurveRow, columns_csv, static_curve_columns};
 use crate::system::{StaticSolution, solve_without_contact, solve_without_contact_at};
 use plotters::prelude::SeriesLabelPosition;
@@ -42,7 +43,10 @@ impl StaticPathRun {
         let start = Instant::now();
         let problem = &built.problem;
         let factors: Vec<f64> = loading.steps.iter().map(|s| s.load_factor).collect();
-        let solutions = if problem.materials.is_linear() {
+        let steps: Vec<Factors> = loading.steps.iter().map(|s| s.factors()).collect();
+        // A linear body's path is its solution at factor 1 scaled, where one factor scales all.
+        let one_factor = loading.steps.iter().all(|s| s.electrode_factor == s.load_factor);
+        let solutions = if problem.materials.is_linear() && one_factor {
             let unit = solve_without_contact(problem, solver);
             let unit = unit.map_err(|e| built.context(e))?;
             let scaled = |&factor: &f64| StaticSolution {
@@ -51,7 +55,7 @@ impl StaticPathRun {
             };
             factors.iter().map(scaled).collect()
         } else {
-            solve_without_contact_at(problem, solver, &factors).map_err(|e| built.context(e))?
+            solve_without_contact_at(problem, solver, &steps).map_err(|e| built.context(e))?
         };
         let mut curve = Vec::with_capacity(factors.len());
         let mut last_reactions = Reactions::default();

@@ -273,3 +273,48 @@ fn the_committed_force_sensor_reads_a_voltage_and_no_charge() {
         previous = (force, phi);
     }
 }
+
+/// `loading.electrode_factors` scale the electrodes apart from the loads. Without contact:
+/// the block on rollers under a constant pressure p (σ_zz = −p), its top floating with the
+/// charge λ_e Q, rises to V = (λ_e Q/A + d33 σ_zz) t/ε^T33 (D_z = −λ_e Q/A). With contact:
+/// the committed actuator held at load factor 1 while only its voltage ramps presses with
+/// the blocked force of each voltage.
+#[test]
+fn electrode_factors_scale_the_electrodes_apart_from_the_loads() {
+    let (d, eps_t33) = free_constants();
+    // Q comparable with the charge the pressure displaces, d33 p A.
+    let (p, charge) = (0.01, 5e-3);
+    let text = block(0.0, ROLLERS).replace("voltage = 0", &format!("charge = {charge}"))
+        + &format!("[[boundary.traction]]\nparts = [\"top\"]\nf2 = [0.0, 0.0, {}]\n", -p)
+        + "[loading]\nload_factors = [1.0, 1.0, 1.0]\nelectrode_factors = [0.0, 0.5, 1.0]\n";
+    let built = build_text(&text).unwrap();
+    let Run::StaticPath(run) = super::common::run_with(&built, default_solver()) else {
+        panic!("not a loading path without contact")
+    };
+    for (row, lambda) in run.curve.iter().zip([0.0, 0.5, 1.0]) {
+        let volts = (lambda * charge / 2.0 + d[2][2] * -p) / eps_t33;
+        let potential = row.potentials[0];
+        assert!((potential - volts).abs() < 1e-9 * volts.abs(), "λ = {lambda}: {potential}");
+        assert!((row.charges[1] - lambda * charge).abs() < 1e-9 * charge, "{:?}", row.charges);
+    }
+    let ramp =
+        ["loading.load_factors=[1.0, 1.0, 1.0]", "loading.electrode_factors=[0.5, 0.8, 1.0]"];
+    let built = super::common::committed_case("actuator-stop.toml", &ramp).build().unwrap();
+    let path = super::common::path_run(&built);
+    let s = voigt::inverse(&C).unwrap();
+    let d33 = voigt::product(&E, &s)[2][2];
+    let largest = (d33 * 1e-3 - 2.5e-4) * 2.0 / s[2][2];
+    for (row, lambda) in path.curve.iter().zip([0.5, 0.8, 1.0]) {
+        let blocked = (lambda * d33 * 1e-3 - 2.5e-4).max(0.0) * 2.0 / s[2][2];
+        assert!((row.force[2] - blocked).abs() < 1e-8 * largest, "λ = {lambda}: {}", row.force[2]);
+        assert!((row.potentials[0] + lambda * 1e-3).abs() < 1e-15);
+    }
+    let e = build_text(
+        &(block(0.2, ROLLERS)
+            + "[loading]\nload_factors = [1.0]\nelectrode_factors = [0.5, 1.0]\n"),
+    )
+    .err()
+    .unwrap()
+    .to_string();
+    assert!(e.contains("loading.electrode_factors has 2 steps and the path 1"), "{e}");
+}
