@@ -111,6 +111,11 @@ impl CoupledSystem {
             }
             None => None,
         };
+        if owned.is_some() && !dofs.floating().is_empty() {
+            return Err(Error::Input(
+                "floating electrodes are not available on more than one process yet (the row of a floating electrode's potential would span the processes' parts): run on one process, or give the electrodes a voltage".into(),
+            ));
+        }
         let assembler = Assembler::new(problem, dofs, block_nodes, owned.as_deref())?;
         let pattern_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
