@@ -138,7 +138,8 @@ impl PathRun {
     ) -> Result<()> {
         self.last.write_with(built, out, summary)?;
         let problem = &built.problem;
-        let parts = Self::electrodes(built);
+        let mut parts = Self::electrodes(built);
+        parts.extend(Self::driven_electrodes(built));
         let csv = columns_csv(&self.columns(built), self.curve.len());
         files::write_atomic(&out.join("curve.csv"), csv.as_bytes())?;
         let solution = &self.last.solution;
@@ -152,7 +153,8 @@ impl PathRun {
 
     /// The curves against the depth (against the load factor when the foundation does not
     /// move): the force P = −F·direction (F·e_d without a direction), the charges of the
-    /// electrodes, and ϕ at the centre and in the mean over the contact zone.
+    /// electrodes `parts` (the grounded parts, then the others), and ϕ at the centre, in the
+    /// mean over the contact zone and on each electrode beside the grounded parts.
     fn figures(&self, (built, loading): (&Built, &Loading), parts: &[String]) -> Vec<LinePlot> {
         let units = &built.units;
         let dim = built.problem.mesh.dim();
@@ -168,14 +170,16 @@ impl PathRun {
         let force = |r: &CurveRow| {
             if moves { (0..dim).map(|k| r.force[k] * along[k]).sum() } else { r.force[dim - 1] }
         };
-        let per_depth = if dim == 2 { format!("/{}", units.length) } else { String::new() };
+        // A body of revolution's forces and charges are totals, as in 3D.
+        let totals = dim == 3 || built.problem.axisymmetric;
+        let per_depth = if totals { String::new() } else { format!("/{}", units.length) };
         let line = |label: String, k: usize, y: &dyn Fn(&CurveRow) -> f64| Series {
             label,
             points: self.curve.iter().map(|r| (x(r), y(r))).collect(),
             color: PALETTE[k % PALETTE.len()],
             markers: true,
         };
-        let area = if dim == 3 { format!("{}²", units.length) } else { units.length.clone() };
+        let area = if totals { format!("{}²", units.length) } else { units.length.clone() };
         let title = if built.title.is_empty() { "loading path" } else { built.title.as_str() };
         let plot = |title: String, y_label: String, series: Vec<Series>| LinePlot {
             title,
@@ -190,6 +194,14 @@ impl PathRun {
             .enumerate()
             .map(|(k, p)| line(format!("on {p}"), k + 1, &move |r: &CurveRow| r.charges[k]))
             .collect();
+        let grounded = built.problem.boundary.grounded.len();
+        let mut potentials = vec![
+            line("at the largest pressure".into(), 1, &|r: &CurveRow| r.phi_center),
+            line("mean over the contact zone".into(), 2, &|r: &CurveRow| r.phi_mean),
+        ];
+        for (j, name) in parts[grounded..].iter().enumerate() {
+            potentials.push(line(format!("on {name}"), 3 + j, &move |r| r.potentials[j]));
+        }
         vec![
             plot(
                 title.to_string(),
@@ -204,10 +216,7 @@ impl PathRun {
             plot(
                 "potential under the indenter".into(),
                 format!("ϕ [{}]", units.potential),
-                vec![
-                    line("at the largest pressure".into(), 1, &|r: &CurveRow| r.phi_center),
-                    line("mean over the contact zone".into(), 2, &|r: &CurveRow| r.phi_mean),
-                ],
+                potentials,
             ),
         ]
     }
