@@ -59,6 +59,50 @@ pub struct Floating {
     pub charge: f64,
 }
 
+/// The free numbering of the DOFs whose first `u_count` are u's: each DOF not `constrained`
+/// in order, but the ϕ of all the nodes of a floating electrode (`given`: its nodes and
+/// charge) one unknown, numbered where its first DOF comes. Returns the free index of each
+/// DOF ([`CONSTRAINED`] for the others), the numbers of free u DOFs and of all free DOFs, and
+/// the floating electrodes.
+fn number(
+    constrained: &[bool],
+    u_count: usize,
+    given: Vec<(Vec<usize>, f64)>,
+) -> (Vec<usize>, usize, usize, Vec<Floating>) {
+    let mut floating_of = vec![NO_TABLE; constrained.len() - u_count];
+    for (k, (nodes, _)) in given.iter().enumerate() {
+        nodes.iter().for_each(|&a| floating_of[a] = k);
+    }
+    let mut unknowns: Vec<Option<usize>> = vec![None; given.len()];
+    let mut free = vec![CONSTRAINED; constrained.len()];
+    let (mut next, mut n_free_u) = (0, 0);
+    for (g, c) in constrained.iter().enumerate() {
+        let electrode = g.checked_sub(u_count).map_or(NO_TABLE, |a| floating_of[a]);
+        if let Some(&Some(unknown)) = unknowns.get(electrode) {
+            free[g] = unknown;
+        } else if !c {
+            free[g] = next;
+            if let Some(slot) = unknowns.get_mut(electrode) {
+                *slot = Some(next);
+            }
+            next += 1;
+        }
+        if g + 1 == u_count {
+            n_free_u = next;
+        }
+    }
+    let floating = given
+        .into_iter()
+        .zip(unknowns)
+        .map(|((nodes, charge), unknown)| Floating {
+            unknown: unknown.unwrap_or(CONSTRAINED),
+            nodes,
+            charge,
+        })
+        .collect();
+    (free, n_free_u, next, floating)
+}
+
 impl DofMap {
     /// Numbers the DOFs of `problem`: u fixed on Γ1, ϕ fixed on Γa.
     pub fn new(problem: &Problem) -> Result<Self> {
@@ -89,35 +133,8 @@ impl DofMap {
                 electrodes[node] = value;
             }
         }
-        let given = problem.floating_electrodes()?;
-        let mut floating_of = vec![NO_TABLE; n_nodes];
-        for (k, (nodes, _)) in given.iter().enumerate() {
-            nodes.iter().for_each(|&a| floating_of[a] = k);
-        }
-        let mut unknowns = vec![CONSTRAINED; given.len()];
-        let mut free = vec![CONSTRAINED; total];
-        let mut next = 0;
-        let mut n_free_u = 0;
-        for (g, c) in constrained.iter().enumerate() {
-            let electrode = g.checked_sub(n_nodes * dim).map_or(NO_TABLE, |a| floating_of[a]);
-            if let Some(&unknown) = unknowns.get(electrode).filter(|&&k| k != CONSTRAINED) {
-                free[g] = unknown;
-            } else if !c {
-                free[g] = next;
-                if let Some(slot) = unknowns.get_mut(electrode) {
-                    *slot = next;
-                }
-                next += 1;
-            }
-            if g + 1 == n_nodes * dim {
-                n_free_u = next;
-            }
-        }
-        let floating = given
-            .into_iter()
-            .zip(unknowns)
-            .map(|((nodes, charge), unknown)| Floating { unknown, nodes, charge })
-            .collect();
+        let (free, n_free_u, n_free, floating) =
+            number(&constrained, n_nodes * dim, problem.floating_electrodes()?);
         // What a loading path scales: the prescribed displacements and the electrodes' voltages
         // (the grounded parts' prescribed field of a verification problem stays).
         let mut scaled = prescribed[..n_nodes * dim].to_vec();
@@ -126,7 +143,6 @@ impl DofMap {
         }
         let nonzero = scaled.iter().any(|v| *v != 0.0);
         let displacements = if nonzero { scaled } else { Vec::new() };
-        let n_free = next;
         Ok(Self {
             dim,
             n_nodes,

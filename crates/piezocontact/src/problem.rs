@@ -431,20 +431,12 @@ impl Problem {
     /// ascending) with its charge at load factor 1 \[charge·length^(3−d)\]; an error as
     /// [`Problem::electrode_potentials`].
     pub fn floating_electrodes(&self) -> Result<Vec<(Vec<usize>, f64)>> {
-        let floating: Vec<(usize, f64)> = (self.boundary.electrodes.iter().enumerate())
-            .filter_map(|(k, e)| match e.condition {
-                ElectrodeCondition::Floating(q) => Some((k, q)),
-                ElectrodeCondition::Voltage(_) => None,
-            })
-            .collect();
-        let mut nodes = vec![Vec::new(); floating.len()];
-        for (node, held) in self.electrode_nodes()? {
-            if let Held::Floating(k) = held {
-                let j = floating.iter().position(|f| f.0 == k).unwrap_or_default();
-                nodes[j].push(node);
-            }
-        }
-        Ok(nodes.into_iter().zip(floating).map(|(n, (_, q))| (n, q)).collect())
+        self.electrode_nodes()?;
+        let floating = self.boundary.electrodes.iter().filter_map(|e| match e.condition {
+            ElectrodeCondition::Floating(q) => Some((self.part_nodes(&e.parts), q)),
+            ElectrodeCondition::Voltage(_) => None,
+        });
+        Ok(floating.collect())
     }
 
     /// What holds each node of an electrode or a grounded part, ascending by node; an error

@@ -4,14 +4,11 @@
 //! factor's entries, the numeric factorisation (median of 5 interleaved runs) and the exact
 //! solver's wall time of each, in one run of the same binary.
 
-use super::{median, numeric_times};
+use super::{contact_walls, numeric_times};
 use crate::say;
 use anyhow::{Result, anyhow};
 use piezocontact::case::{Built, Case};
-use piezocontact::linalg::default_solver;
-use piezocontact::run::Run;
 use std::path::Path;
-use std::time::Instant;
 
 /// The runs of each side.
 const RUNS: usize = 5;
@@ -47,20 +44,10 @@ pub fn run(mesh: Option<&Path>) -> Result<()> {
         factors[1].0 / factors[0].0,
         factors[1].1 / factors[0].1
     );
-    let mut seconds = [Vec::new(), Vec::new()];
-    for _ in 0..RUNS {
-        for (k, built) in sides.iter().enumerate() {
-            let start = Instant::now();
-            let Run::Contact(solved) = Run::solve(built, default_solver(), &|_| {})? else {
-                return Err(anyhow!("the indentation case is no single contact run"));
-            };
-            seconds[k].push(start.elapsed().as_secs_f64());
-            if !solved.solution.converged() {
-                return Err(anyhow!("side {} did not converge", k + 1));
-            }
-        }
+    let (walls, runs) = contact_walls(&sides, RUNS)?;
+    if let Some(k) = runs.iter().position(|r| !r.solution.converged()) {
+        return Err(anyhow!("side {} did not converge", k + 1));
     }
-    let walls = seconds.map(median);
     say!(
         "  the exact solver on PV2 (µ = 0.3): grounded {:.4} s, floating {:.4} s, ratio {:.3}",
         walls[0],

@@ -157,6 +157,34 @@ pub fn numeric_times(
     Ok(out)
 }
 
+/// Runs the contact cases `sides` `runs` times each, interleaved: the median wall time of
+/// each \[s\], and each side's last run (an error where a side is no single contact run).
+pub fn contact_walls(
+    sides: &[piezocontact::case::Built; 2],
+    runs: usize,
+) -> Result<([f64; 2], Vec<piezocontact::run::ContactRun>)> {
+    let mut seconds = [Vec::new(), Vec::new()];
+    let mut last = Vec::new();
+    for run in 0..runs {
+        for (k, built) in sides.iter().enumerate() {
+            let start = Instant::now();
+            let solved = piezocontact::run::Run::solve(
+                built,
+                piezocontact::linalg::default_solver(),
+                &|_| {},
+            )?;
+            seconds[k].push(start.elapsed().as_secs_f64());
+            let piezocontact::run::Run::Contact(solved) = solved else {
+                bail!("{}: no single contact run", built.origin.path.display());
+            };
+            if run + 1 == runs {
+                last.push(solved);
+            }
+        }
+    }
+    Ok((seconds.map(median), last))
+}
+
 /// The median of `s` (the upper one of an even count).
 pub fn median(mut s: Vec<f64>) -> f64 {
     s.sort_by(f64::total_cmp);

@@ -5,14 +5,11 @@
 //! only): the factor's entries and the numeric factorisation's time per entry. The same
 //! binary, the sides interleaved, the median of 5 of each.
 
-use super::{median, numeric_times};
+use super::{contact_walls, numeric_times};
 use crate::say;
 use anyhow::{Result, anyhow};
 use piezocontact::case::{Built, Case};
-use piezocontact::linalg::default_solver;
-use piezocontact::run::Run;
 use std::path::Path;
-use std::time::Instant;
 
 /// The runs of each side.
 const RUNS: usize = 5;
@@ -59,23 +56,11 @@ pub fn run(quarter: &Path) -> Result<()> {
 /// The exact solver on the quarter and on the whole block: the median wall time of
 /// [`RUNS`] interleaved runs each.
 fn contact_times(sides: &[Built; 2], names: [&str; 2]) -> Result<()> {
-    let mut seconds = [Vec::new(), Vec::new()];
-    let mut figures = Vec::new();
-    for run in 0..RUNS {
-        for (k, built) in sides.iter().enumerate() {
-            let start = Instant::now();
-            let Run::Contact(solved) = Run::solve(built, default_solver(), &|_| {})? else {
-                return Err(anyhow!("the quarter case is no single contact run"));
-            };
-            seconds[k].push(start.elapsed().as_secs_f64());
-            if run == 0 {
-                let s = &solved.solution;
-                let dofs = s.dofs.n_free();
-                figures.push((dofs, s.condensed_nodes, s.surface.len(), s.kkt.max));
-            }
-        }
-    }
-    let medians = seconds.map(median);
+    let (medians, runs) = contact_walls(sides, RUNS)?;
+    let figures = runs.iter().map(|r| {
+        let s = &r.solution;
+        (s.dofs.n_free(), s.condensed_nodes, s.surface.len(), s.kkt.max)
+    });
     say!("the exact solver on PV2 (µ = 0.3), median of {RUNS} interleaved runs:");
     for ((name, median), (dofs, condensed, gamma3, kkt)) in names.iter().zip(medians).zip(figures) {
         say!(

@@ -51,12 +51,9 @@ fn a_clamped_block_under_a_voltage_holds_the_clamped_capacitance_s_charge() {
 #[test]
 fn a_free_block_under_a_voltage_strains_by_d_and_holds_the_free_capacitance_s_charge() {
     let volts = 0.2;
-    let rollers = "[[boundary.support]]\nparts = [\"x0\"]\nfix = [\"x\"]\n[[boundary.support]]\nparts = [\"y0\"]\nfix = [\"y\"]\n[[boundary.support]]\nname = \"floor\"\nparts = [\"bottom\"]\nfix = [\"z\"]\n";
-    let (built, run) = solve_static(&block(volts, rollers));
-    let s = voigt::inverse(&C).unwrap();
-    let d = voigt::product(&E, &s);
+    let (built, run) = solve_static(&block(volts, ROLLERS));
+    let (d, eps_t33) = free_constants();
     let (d31, d33) = (d[2][0], d[2][2]);
-    let eps_t33 = eps_s33() + (0..6).map(|k| d[2][k] * E[2][k]).sum::<f64>();
     let field = -volts;
     let (lateral, through) = (d31 * field, d33 * field);
     super::common::assert_displacements(
@@ -72,6 +69,14 @@ fn a_free_block_under_a_voltage_strains_by_d_and_holds_the_free_capacitance_s_ch
 
 /// The rollers of a free block: x0 along x, y0 along y, the bottom along z.
 const ROLLERS: &str = "[[boundary.support]]\nparts = [\"x0\"]\nfix = [\"x\"]\n[[boundary.support]]\nparts = [\"y0\"]\nfix = [\"y\"]\n[[boundary.support]]\nname = \"floor\"\nparts = [\"bottom\"]\nfix = [\"z\"]\n";
+
+/// The blocked force of the block on rollers driven to |V| = `volts` against a stop at the
+/// gap `gap`: max(0, d33 |V| − g) A/(s33^E t), A = 2, t = 1 (σ_xx = σ_yy = 0, E_z = V/t).
+fn blocked_force(volts: f64, gap: f64) -> f64 {
+    let s = voigt::inverse(&C).unwrap();
+    let d33 = voigt::product(&E, &s)[2][2];
+    (d33 * volts - gap).max(0.0) * 2.0 / s[2][2]
+}
 
 /// d = e s^E and ε^T33 = ε^S33 + Σ d3k e3k of the block's PZT-5A.
 fn free_constants() -> ([[f64; 6]; 3], f64) {
@@ -178,28 +183,23 @@ fn bad_electrodes_are_errors_naming_the_table() {
 /// at g and presses with (d33 V − g) A / (s33^E t) (σ_xx = σ_yy = 0, E_z = V/t).
 #[test]
 fn an_actuator_driven_against_a_stop_presses_with_the_blocked_force() {
-    let s = voigt::inverse(&C).unwrap();
-    let d33 = voigt::product(&E, &s)[2][2];
+    let (d, _) = free_constants();
     let gap = 1e-3;
-    let v0 = gap / d33;
-    let rollers = "[[boundary.support]]\nparts = [\"x0\"]\nfix = [\"x\"]\n[[boundary.support]]\nparts = [\"y0\"]\nfix = [\"y\"]\n[[boundary.support]]\nname = \"floor\"\nparts = [\"bottom\"]\nfix = [\"z\"]\n";
+    let v0 = gap / d[2][2];
     let contact = format!(
         "[contact]\nproblem = \"PV1\"\ngap = 0.0\n[foundation]\nkind = \"plane\"\npoint = [0.0, 0.0, {}]\nnormal = [0.0, 0.0, -1.0]\n[loading]\nload_factors = [0.5, 1.0, 1.5, 2.0]\n[solver]\nmethod = \"newton\"\n",
         1.0 + gap
     );
-    let text = block(-v0, rollers)
+    let text = block(-v0, ROLLERS)
         .replace("grounded = [\"bottom\"]", "grounded = [\"bottom\"]\ncontact = [\"top\"]")
         + &contact;
     let path = super::common::path_run(&build_text(&text).unwrap());
     assert!(path.converged(), "{:?}", path.failure);
+    let largest = blocked_force(2.0 * v0, gap);
     for row in &path.curve {
-        let lambda = row.load_factor;
-        let blocked = ((lambda - 1.0) * d33 * v0).max(0.0) * 2.0 / s[2][2];
-        let force = row.force[2];
-        assert!(
-            (force - blocked).abs() < 1e-8 * (d33 * v0 * 2.0 / s[2][2]),
-            "λ = {lambda}: {force} vs {blocked}"
-        );
+        let (lambda, force) = (row.load_factor, row.force[2]);
+        let blocked = blocked_force(lambda * v0, gap);
+        assert!((force - blocked).abs() < 1e-8 * largest, "λ = {lambda}: {force} vs {blocked}");
     }
 }
 
@@ -234,22 +234,26 @@ fn a_sensor_pressed_by_a_stop_reads_g33_times_the_contact_pressure() {
 }
 
 /// cases/actuator-stop.toml: the stop's force at every step of the voltage ramp is the
-/// blocked force max(0, d33 λ|V0| − g) A/(s33^E t), A = 2, t = 1, from the preset's constants
-/// (Berlincourt's PZT-5A, those of this file).
+/// blocked force ([`blocked_force`]) from the preset's constants (Berlincourt's PZT-5A, those
+/// of this file), the onset at d33 V = g.
 #[test]
 fn the_committed_actuator_meets_its_stop_at_d33_v_equal_to_the_gap() {
-    let built = super::common::committed_case("actuator-stop.toml", &[]).build().unwrap();
+    let ramp: Vec<f64> = (1..=10).map(|k| 0.1 * k as f64).collect();
+    assert_committed_actuator(&[], &ramp);
+}
+
+/// cases/actuator-stop.toml with `sets`, its electrode driven to −λ V0 at the steps' factors
+/// λ in `factors` (V0 = 1e-3 GV, g = 0.25 mm): at each, the stop presses with the blocked
+/// force of λ V0, to 1e-8 of the largest.
+fn assert_committed_actuator(sets: &[&str], factors: &[f64]) {
+    let built = super::common::committed_case("actuator-stop.toml", sets).build().unwrap();
     let path = super::common::path_run(&built);
-    assert!(path.converged(), "{:?}", path.failure);
-    let s = voigt::inverse(&C).unwrap();
-    let d33 = voigt::product(&E, &s)[2][2];
+    assert!(path.converged() && path.curve.len() == factors.len(), "{:?}", path.failure);
     let (v0, gap) = (1e-3, 2.5e-4);
-    let largest = (d33 * v0 - gap) * 2.0 / s[2][2];
+    let largest = blocked_force(v0, gap);
     assert!(largest > 0.0);
-    for row in &path.curve {
-        let lambda = row.load_factor;
-        let blocked = (lambda * d33 * v0 - gap).max(0.0) * 2.0 / s[2][2];
-        let force = row.force[2];
+    for (row, lambda) in path.curve.iter().zip(factors) {
+        let (force, blocked) = (row.force[2], blocked_force(lambda * v0, gap));
         assert!((force - blocked).abs() < 1e-8 * largest, "λ = {lambda}: {force} vs {blocked}");
         assert!((row.potentials[0] + lambda * v0).abs() < 1e-15, "{:?}", row.potentials);
     }
@@ -299,16 +303,7 @@ fn electrode_factors_scale_the_electrodes_apart_from_the_loads() {
     }
     let ramp =
         ["loading.load_factors=[1.0, 1.0, 1.0]", "loading.electrode_factors=[0.5, 0.8, 1.0]"];
-    let built = super::common::committed_case("actuator-stop.toml", &ramp).build().unwrap();
-    let path = super::common::path_run(&built);
-    let s = voigt::inverse(&C).unwrap();
-    let d33 = voigt::product(&E, &s)[2][2];
-    let largest = (d33 * 1e-3 - 2.5e-4) * 2.0 / s[2][2];
-    for (row, lambda) in path.curve.iter().zip([0.5, 0.8, 1.0]) {
-        let blocked = (lambda * d33 * 1e-3 - 2.5e-4).max(0.0) * 2.0 / s[2][2];
-        assert!((row.force[2] - blocked).abs() < 1e-8 * largest, "λ = {lambda}: {}", row.force[2]);
-        assert!((row.potentials[0] + lambda * 1e-3).abs() < 1e-15);
-    }
+    assert_committed_actuator(&ramp, &[0.5, 0.8, 1.0]);
     let e = build_text(
         &(block(0.2, ROLLERS)
             + "[loading]\nload_factors = [1.0]\nelectrode_factors = [0.5, 1.0]\n"),
