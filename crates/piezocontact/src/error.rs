@@ -46,10 +46,12 @@ pub enum Error {
     #[error("the mesh has no {dim}D cells ({what})")]
     NoCells { dim: usize, what: String },
 
-    /// A facet of a boundary part is not a boundary facet of the body.
+    /// A facet of a boundary part is not a boundary facet of the body (or, of a part inside
+    /// the body, no face of an element).
     #[error(
         "boundary part '{part}': facet with nodes {nodes:?} is not on the boundary of the body \
-         (it is not a face of exactly one element)"
+         (it is not a face of exactly one element); a group of facets is either wholly on the \
+         boundary or wholly inside the body (faces of two elements, for an electrode)"
     )]
     FacetNotOnBoundary { part: String, nodes: Vec<usize> },
 

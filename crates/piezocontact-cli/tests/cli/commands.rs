@@ -474,7 +474,7 @@ fn error_messages() {
         &["case.toml", &format!("line {}", line_of("nx = "))],
     );
     let segment = variant(&dir, "[2,10]x{0}", "[2,10]x{7}");
-    assert_error(&["check", segment.to_str().unwrap()], &["[2,10]x{7}", "holds no boundary facet"]);
+    assert_error(&["check", segment.to_str().unwrap()], &["[2,10]x{7}", "holds no facet"]);
     assert_error(
         &["check", "cases/paper-7.1.toml", "--set", "mesh.file=missing.msh"],
         &["mesh.x describes the built-in rectangle"],

@@ -34,6 +34,16 @@ pub(super) enum MethodParameters {
     Newton(newton::Parameters),
 }
 
+/// What a list of parts names: the parts of a role (clamped, grounded, contact, a support),
+/// of a load (at least one, sharing no facet), or of an electrode (which may lie inside the
+/// body).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum PartList {
+    Role,
+    Load,
+    Electrode,
+}
+
 /// A validated case: everything a run takes.
 pub struct Built {
     /// The checked problem.
@@ -327,17 +337,18 @@ impl Case {
         self.file.solver.max_outer.unwrap_or(DEFAULTS.max_outer)
     }
 
-    /// The indices in `mesh` of the boundary parts `names` that the list at `key` gives,
-    /// each named once (a facet named twice would count twice). A load's list (`load`: a
-    /// traction's or a charge's) holds at least one part, for a load on no part would be
-    /// dropped without a word, and its parts share no facet, on which it would act twice.
+    /// The indices in `mesh` of the parts `names` that the list at `key` gives, each named
+    /// once (a facet named twice would count twice). A load's list holds at least one part,
+    /// for a load on no part would be dropped without a word, and its parts share no facet, on
+    /// which it would act twice; only an electrode's may name groups inside the body.
     fn part_indices(
         &self,
         mesh: &Mesh,
         key: &str,
         names: &[String],
-        load: bool,
+        list: PartList,
     ) -> Result<Vec<usize>> {
+        let load = list == PartList::Load;
         if load && names.is_empty() {
             return Err(input!(
                 "{}: {key} is empty: name the boundary parts the load acts on, or remove the table",
@@ -353,9 +364,13 @@ impl Case {
                 self.locate(key)
             ));
         }
+        let index = |n: &String| match list {
+            PartList::Electrode => mesh.any_part_index(n),
+            PartList::Role | PartList::Load => mesh.part_index(n),
+        };
         let indices: Vec<usize> = names
             .iter()
-            .map(|n| mesh.part_index(n).map_err(|e| input!("{}: {key}: {e}", self.locate(key))))
+            .map(|n| index(n).map_err(|e| input!("{}: {key}: {e}", self.locate(key))))
             .collect::<Result<_>>()?;
         let shared = if load { mesh.facet_shared_within(&indices) } else { None };
         if let Some((first, second, nodes)) = shared {
@@ -416,7 +431,8 @@ impl Case {
                     "{at}: parts is empty: name the boundary parts the support holds"
                 ));
             }
-            let parts = self.part_indices(mesh, "boundary.support.parts", &table.parts, false)?;
+            let parts =
+                self.part_indices(mesh, "boundary.support.parts", &table.parts, PartList::Role)?;
             let points = part_points(mesh, &parts);
             let fixed = support_components(&at, (&table.fix, table.displacement.as_deref()), dim)
                 .and_then(|fixed| displacement_fields(&at, fixed, dim, &points))?;
@@ -453,7 +469,12 @@ impl Case {
                     "{at}: parts is empty: name the boundary parts the electrode covers"
                 ));
             }
-            let parts = self.part_indices(mesh, "boundary.electrode.parts", &table.parts, false)?;
+            let parts = self.part_indices(
+                mesh,
+                "boundary.electrode.parts",
+                &table.parts,
+                PartList::Electrode,
+            )?;
             let condition = match (table.voltage, table.charge) {
                 (Some(v), None) if v.is_finite() => ElectrodeCondition::Voltage(v),
                 (None, Some(q)) if q.is_finite() => ElectrodeCondition::Floating(q),
@@ -478,8 +499,10 @@ impl Case {
         let dim = mesh.dim();
         let materials = self.materials(&mesh)?;
         let b = &self.file.boundary;
-        let parts = |key: &str, names: &[String]| self.part_indices(&mesh, key, names, false);
-        let load_parts = |key: &str, names: &[String]| self.part_indices(&mesh, key, names, true);
+        let parts =
+            |key: &str, names: &[String]| self.part_indices(&mesh, key, names, PartList::Role);
+        let load_parts =
+            |key: &str, names: &[String]| self.part_indices(&mesh, key, names, PartList::Load);
         let vector = |key: &str, v: &[f64]| -> Result<Vec<f64>> {
             if v.len() != dim || v.iter().any(|x| !x.is_finite()) {
                 return Err(input!(

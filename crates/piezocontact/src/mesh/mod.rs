@@ -19,26 +19,36 @@ use crate::element::{Simplex, facet_measure_normal};
 use crate::error::{Error, Result};
 use std::collections::{HashMap, HashSet};
 
-/// A named set of boundary facets.
+/// A named set of facets: on the boundary, or wholly inside the body (an interface between
+/// two regions, such as a bimorph's middle electrode), which only an electrode may name.
 #[derive(Clone, Debug)]
 pub struct BoundaryPart {
     /// Name of the part (a Gmsh physical name or a case's segment group).
     pub name: String,
-    /// Facet nodes, `dim` per facet, in the order that gives the outward normal.
+    /// Facet nodes, `dim` per facet, in the order that gives the outward normal (inside the
+    /// body, as given).
     facets: Vec<usize>,
-    /// The cell each facet belongs to.
+    /// The cell each facet belongs to (inside the body, one of its two).
     cells: Vec<usize>,
+    /// Whether every facet is a face of two cells.
+    interior: bool,
 }
 
 impl BoundaryPart {
     /// Creates a part from flat facet node lists (`dim` nodes per facet).
     pub fn new(name: impl Into<String>, facets: Vec<usize>) -> Self {
-        Self { name: name.into(), facets, cells: Vec::new() }
+        Self { name: name.into(), facets, cells: Vec::new(), interior: false }
     }
 
     /// Number of facets (of a part that belongs to a mesh).
     pub fn n_facets(&self) -> usize {
         self.cells.len()
+    }
+
+    /// Whether the part lies inside the body (each facet a face of two cells): an
+    /// interface, which only an electrode may name.
+    pub fn is_interior(&self) -> bool {
+        self.interior
     }
 }
 
@@ -60,7 +70,7 @@ pub struct Mesh {
     cells: Vec<usize>,
     parts: Vec<BoundaryPart>,
     /// The names of groups that are not boundary parts, each with what it is (a physical
-    /// group of volumes in the mesh file, a group of facets inside the body), so that a case
+    /// group of volumes in the mesh file), so that a case
     /// naming one is told.
     other_groups: Vec<(String, String)>,
     /// Named sets of cells (materials' regions).
@@ -186,9 +196,26 @@ impl Mesh {
         &self.regions
     }
 
-    /// Index of the part called `name`, or an error listing the parts the mesh has, and
-    /// saying what `name` is when it names a group that is not a boundary part.
+    /// Index of the boundary part called `name`, or an error listing the parts the mesh has,
+    /// and saying what `name` is when it names a group that is not a boundary part.
     pub fn part_index(&self, name: &str) -> Result<usize> {
+        let p = self.any_part_index(name)?;
+        if self.parts[p].interior {
+            return Err(Error::UnknownBoundaryPart {
+                name: name.into(),
+                available: self.part_names(),
+                what: format!(
+                    "; '{name}' is a group of facets inside the body (each a face of two \
+                     elements), not on its boundary: only an electrode may name it"
+                ),
+            });
+        }
+        Ok(p)
+    }
+
+    /// Index of the part called `name`, on the boundary or inside the body (as an
+    /// electrode's parts may be); an error as [`Mesh::part_index`]'s.
+    pub fn any_part_index(&self, name: &str) -> Result<usize> {
         self.parts.iter().position(|p| p.name == name).ok_or_else(|| {
             let other = self.other_groups.iter().find(|(other, _)| other == name);
             let what = other.map_or(String::new(), |(_, what)| format!("; '{name}' is {what}"));
@@ -422,42 +449,41 @@ impl Mesh {
         Ok(())
     }
 
-    /// Matches part facets with the boundary facets of the cells and orders their nodes so
-    /// that [`Mesh::facet_geometry`] gives the outward normal.
+    /// Matches part facets with the facets of the cells: a part wholly inside the body (an
+    /// interface of a fragmented geometry) is kept as it is, marked interior; a boundary
+    /// part's facets are ordered so that [`Mesh::facet_geometry`] gives the outward normal. A
+    /// part partly inside, or with a facet of no cell, is an error.
     fn attach_parts(&mut self) -> Result<()> {
-        let boundary = self.boundary_facets();
+        let facets = self.facets_of_cells();
+        let boundary = self.boundary_facets(&facets);
         let dim = self.dim;
-        // A group of facets wholly inside the body (an interface of a fragmented geometry)
-        // is not a boundary part: set aside, and named in the message of a case that gives
-        // it a role. A part partly inside is an error below.
-        let inside = |part: &BoundaryPart| {
-            !part.facets.is_empty()
-                && part.facets.chunks_exact(dim).all(|f| !boundary.contains_key(&facet_key(f)))
-        };
-        let (inner, mut parts): (Vec<_>, Vec<_>) =
-            std::mem::take(&mut self.parts).into_iter().partition(inside);
-        let what = "a group of facets inside the body (each a face of two elements), not on its \
-                    boundary";
-        self.other_groups.extend(inner.into_iter().map(|p| (p.name, what.to_string())));
+        let mut parts = std::mem::take(&mut self.parts);
         for part in &mut parts {
+            part.interior = !part.facets.is_empty()
+                && part.facets.chunks_exact(dim).all(|f| !boundary.contains_key(&facet_key(f)));
             part.cells.clear();
             let mut oriented = Vec::with_capacity(part.facets.len());
             let mut seen = HashSet::new();
             for facet in part.facets.chunks_exact(dim) {
-                let Some(&(cell, ref nodes)) = boundary.get(&facet_key(facet)) else {
+                let key = facet_key(facet);
+                let found = match part.interior {
+                    true => facets.get(&key).map(|&(_, cell, _)| (cell, facet.to_vec())),
+                    false => boundary.get(&key).cloned(),
+                };
+                let Some((cell, nodes)) = found else {
                     return Err(Error::FacetNotOnBoundary {
                         part: part.name.clone(),
                         nodes: facet.to_vec(),
                     });
                 };
-                if !seen.insert(facet_key(facet)) {
+                if !seen.insert(key) {
                     return Err(Error::DuplicateFacet {
                         part: part.name.clone(),
                         nodes: facet.to_vec(),
                     });
                 }
                 part.cells.push(cell);
-                oriented.extend_from_slice(nodes);
+                oriented.extend_from_slice(&nodes);
             }
             part.facets = oriented;
         }
@@ -465,9 +491,9 @@ impl Mesh {
         Ok(())
     }
 
-    /// All boundary facets (faces of exactly one cell), each with its cell and its nodes in
-    /// the order whose normal points outward.
-    fn boundary_facets(&self) -> HashMap<FacetKey, (usize, Vec<usize>)> {
+    /// Every facet of the cells: how many cells it bounds, the first of them and the local
+    /// vertex opposite it there.
+    fn facets_of_cells(&self) -> HashMap<FacetKey, (usize, usize, usize)> {
         let n = self.dim + 1;
         let mut count: HashMap<FacetKey, (usize, usize, usize)> = HashMap::new();
         for c in 0..self.n_cells() {
@@ -478,9 +504,18 @@ impl Mesh {
             }
         }
         count
-            .into_iter()
+    }
+
+    /// The boundary facets among `facets` (faces of exactly one cell), each with its cell and
+    /// its nodes in the order whose normal points outward.
+    fn boundary_facets(
+        &self,
+        facets: &HashMap<FacetKey, (usize, usize, usize)>,
+    ) -> HashMap<FacetKey, (usize, Vec<usize>)> {
+        facets
+            .iter()
             .filter(|(_, (k, _, _))| *k == 1)
-            .map(|(key, (_, c, opposite))| (key, (c, self.outward_facet(c, opposite))))
+            .map(|(key, &(_, c, opposite))| (*key, (c, self.outward_facet(c, opposite))))
             .collect()
     }
 
@@ -554,10 +589,13 @@ mod tests {
         let part = |facets| vec![BoundaryPart::new("diag", facets)];
         let e = err(vec![0, 1, 2, 0, 2, 3], part(vec![0, 1, 0, 2]));
         assert!(e.to_string().contains("'diag'") && e.to_string().contains("not on the boundary"));
-        // A group wholly inside the body is set aside, and named when a case uses it.
+        // A group wholly inside the body is kept for electrodes, and refused by a role.
         let inside = Mesh::new(2, x.clone(), vec![0, 1, 2, 0, 2, 3], part(vec![0, 2])).unwrap();
         let e = inside.part_index("diag").unwrap_err().to_string();
         assert!(e.contains("'diag' is a group of facets inside the body"), "{e}");
+        assert!(inside.parts()[0].is_interior() && inside.any_part_index("diag").unwrap() == 0);
+        let e = err(vec![0, 1, 2, 0, 2, 3], part(vec![0, 2, 1, 3]));
+        assert!(e.to_string().contains("nodes [1, 3] is not on the boundary"), "{e}");
         let degenerate = vec![0.0, 0.0, 1.0, 0.0, 2.0, 0.0];
         let e = Mesh::new(2, degenerate, vec![0, 1, 2], vec![]).unwrap_err();
         assert!(e.to_string().contains("degenerate"), "{e}");

@@ -114,13 +114,16 @@ impl Rectangle {
         boundary.extend((0..ny).map(|j| [id(nx, j), id(nx, j + 1)]));
         boundary.extend((0..nx).map(|i| [id(i + 1, ny), id(i, ny)]));
         boundary.extend((0..ny).map(|j| [id(0, j + 1), id(0, j)]));
+        let mut inside = Vec::new();
+        inside.extend((1..ny).flat_map(|j| (0..nx).map(move |i| [id(i, j), id(i + 1, j)])));
+        inside.extend((1..nx).flat_map(|i| (0..ny).map(move |j| [id(i, j), id(i, j + 1)])));
         let h = ((self.x[1] - self.x[0]) / nx as f64).min((self.y[1] - self.y[0]) / ny as f64);
         let tol = 1e-9 * h;
         let node = |n: usize| &coords[2 * n..2 * n + 2];
         let mut named = Vec::with_capacity(parts.len());
         for (name, segments) in parts {
             let mut facets = Vec::new();
-            let mut taken = vec![false; boundary.len()];
+            let mut taken = vec![false; boundary.len() + inside.len()];
             for segment in segments {
                 if segment.ranges.len() != 2 {
                     return Err(Error::Segment {
@@ -128,9 +131,16 @@ impl Rectangle {
                         why: "a segment of a rectangle has two factors, as [0,2]x{0}".into(),
                     });
                 }
+                let held = |f: &[usize; 2]| f.iter().all(|&n| segment.contains(node(n), tol));
+                // A line holding no boundary facet holds the grid's lines inside (an
+                // interface, for an electrode).
+                let line = segment.ranges.iter().any(|(a, b)| a == b);
+                let on_boundary = boundary.iter().any(held);
+                let candidates =
+                    boundary.iter().chain(inside.iter().filter(|_| line && !on_boundary));
                 let mut holds_any = false;
-                for (f, taken) in boundary.iter().zip(&mut taken) {
-                    if f.iter().all(|&n| segment.contains(node(n), tol)) {
+                for (f, taken) in candidates.zip(&mut taken) {
+                    if held(f) {
                         holds_any = true;
                         // A part is the union of its segments: a facet counts once.
                         if !std::mem::replace(taken, true) {
@@ -142,8 +152,8 @@ impl Rectangle {
                     return Err(Error::Segment {
                         spec: segment.spec.clone(),
                         why: format!(
-                            "it holds no boundary facet of the rectangle [{},{}]x[{},{}] \
-                             (part '{name}')",
+                            "it holds no facet of the rectangle [{},{}]x[{},{}] on its boundary \
+                             or on a grid line inside (part '{name}')",
                             self.x[0], self.x[1], self.y[0], self.y[1]
                         ),
                     });
@@ -217,6 +227,29 @@ mod tests {
         }
     }
 
+    /// A line inside the rectangle holding no boundary facet holds the grid's edges on it: a
+    /// part inside the body (an electrode between two layers); a line on the boundary holds
+    /// the boundary's facets alone.
+    #[test]
+    fn lines_inside_hold_the_grid_edges_on_them() {
+        let r = Rectangle { x: [0.0, 4.0], y: [-1.0, 1.0], nx: 4, ny: 4, diagonal: Diagonal::Left };
+        let seg = |s: &str| vec![s.parse::<Segment>().unwrap()];
+        let parts = vec![
+            ("middle".to_string(), seg("[0,4]x{0}")),
+            ("half".to_string(), seg("{2}x[-1,0]")),
+            ("bottom".to_string(), seg("[0,4]x{-1}")),
+        ];
+        let mesh = r.mesh(&parts).unwrap();
+        let [middle, half, bottom] = [0, 1, 2].map(|p| &mesh.parts()[p]);
+        assert!(middle.is_interior() && half.is_interior() && !bottom.is_interior());
+        assert_eq!((middle.n_facets(), half.n_facets(), bottom.n_facets()), (4, 2, 4));
+        assert!((mesh.part_measure(0) - 4.0).abs() < 1e-12);
+        assert!(mesh.part_nodes(&[0]).iter().all(|&n| mesh.node(n)[1].abs() < 1e-12));
+        let e = mesh.part_index("middle").unwrap_err().to_string();
+        assert!(e.contains("only an electrode may name it"), "{e}");
+        assert_eq!(mesh.any_part_index("middle").unwrap(), 0);
+    }
+
     #[test]
     fn segment_errors() {
         for (spec, needle) in [
@@ -232,7 +265,7 @@ mod tests {
         let r =
             Rectangle { x: [0.0, 12.0], y: [0.0, 2.0], nx: 4, ny: 2, diagonal: Diagonal::Right };
         let e = r.mesh(&parts).unwrap_err().to_string();
-        assert!(e.contains("holds no boundary facet") && e.contains("'far'"), "{e}");
+        assert!(e.contains("holds no facet") && e.contains("'far'"), "{e}");
         let r = Rectangle { nx: 0, ..r };
         assert!(r.mesh(&[]).unwrap_err().to_string().contains("mesh.nx = 0"));
     }

@@ -145,6 +145,56 @@ fn a_floating_electrode_with_a_charge_rises_to_q_over_the_free_capacitance() {
     }
 }
 
+/// A two-layer stack: the block of meshes/box-layers.msh, its layers poled opposite (lower
+/// +z, upper −z), the outer faces grounded and the plane z = t/2 between the layers (a group
+/// inside the body) an electrode at V. Both layers see E_3 = −2V/t along their poling, so on
+/// rollers the block strains uniformly as one free layer under twice the field: Δt = −2 d33 V
+/// and the lateral strain −2 d31 V/t; the middle holds the two layers' free capacitances,
+/// 2 ε^T33 A V/(t/2), each outer face −ε^T33 A V/(t/2). A role other than an electrode's
+/// refuses the inside group.
+#[test]
+fn a_two_layer_stack_driven_through_its_middle_electrode_strains_twice() {
+    let volts = 0.2;
+    let layer = |name: &str, pole: f64| {
+        format!(
+            "[[material]]\nname = \"{name}\"\nregions = [\"{name}\"]\npoling = [0.0, 0.0, {pole}]\n{}",
+            stress_charge()
+        )
+    };
+    let text = format!(
+        "[mesh]\nfile = \"{}\"\n{}{}[boundary]\ngrounded = [\"bottom\", \"top\"]\n{ROLLERS}\
+         [[boundary.electrode]]\nname = \"mid\"\nparts = [\"middle\"]\nvoltage = {volts}\n",
+        mesh_file("box-layers.msh").display(),
+        layer("lower", 1.0),
+        layer("upper", -1.0)
+    );
+    let (built, run) = solve_static(&text);
+    let (d, eps_t33) = free_constants();
+    let field = -2.0 * volts;
+    let (lateral, through) = (d[2][0] * field, d[2][2] * field);
+    super::common::assert_displacements(
+        &built,
+        &run,
+        |p| vec![lateral * p[0], lateral * p[1], through * p[2]],
+        1e-9 * through.abs(),
+    );
+    let layer_charge = eps_t33 * 2.0 * volts / 0.5;
+    let charges = &run.reactions.charges;
+    for (k, want) in [-layer_charge, -layer_charge, 2.0 * layer_charge].into_iter().enumerate() {
+        assert!((charges[k] - want).abs() < 1e-9 * layer_charge, "{charges:?}");
+    }
+    let e =
+        build_text(&text.replace("grounded = [\"bottom\", \"top\"]", "grounded = [\"middle\"]"))
+            .err()
+            .expect("an error")
+            .to_string();
+    assert!(
+        e.contains("'middle' is a group of facets inside the body")
+            && e.contains("only an electrode"),
+        "{e}"
+    );
+}
+
 /// Bad tables: both or neither of voltage and charge, a name of a curve.csv column, two
 /// electrodes on one facet, electrodes under different conditions that touch, and a body
 /// whose potential only a floating electrode holds.

@@ -4,6 +4,8 @@
 mod axisymmetric;
 /// The linear-solver seam: a dense LU backend from outside the library.
 mod backend;
+/// Bimorphs: electrodes inside the body, against Smits's beam theory.
+mod bimorph;
 /// Shared builders: the PZT-5A material, meshes, exact fields.
 mod common;
 /// Algorithms 1–4: KKT conditions, balances, limits, counts.

@@ -28,7 +28,7 @@ pub(super) const E: Coupling = [
     [-5.4, -5.4, 15.8, 0.0, 0.0, 0.0],
 ];
 /// s^E of PZT-5A \[1/GPa\].
-const S: Voigt = [
+pub(super) const S: Voigt = [
     [16.4e-3, -5.74e-3, -7.22e-3, 0.0, 0.0, 0.0],
     [-5.74e-3, 16.4e-3, -7.22e-3, 0.0, 0.0, 0.0],
     [-7.22e-3, -7.22e-3, 18.8e-3, 0.0, 0.0, 0.0],
@@ -37,7 +37,7 @@ const S: Voigt = [
     [0.0, 0.0, 0.0, 0.0, 0.0, 44.3e-3],
 ];
 /// d of PZT-5A [C/GN].
-const D: Coupling = [
+pub(super) const D: Coupling = [
     [0.0, 0.0, 0.0, 0.0, 0.584, 0.0],
     [0.0, 0.0, 0.0, 0.584, 0.0, 0.0],
     [-0.171, -0.171, 0.374, 0.0, 0.0, 0.0],
@@ -66,8 +66,8 @@ pub(super) fn stress_charge() -> String {
     format!("c = {}\ne = {}\neps0 = {EPS0}\neps_rel = [916.0, 916.0, 830.0]\n", rows(&C), rows(&E))
 }
 
-/// The strain-charge form of PZT-5A as a `[material]` body.
-fn strain_charge() -> String {
+/// The strain-charge form of PZT-5A as a `[material]` body (ε^T33 = 1700 ε0).
+pub(super) fn strain_charge() -> String {
     format!(
         "s = {}\nd = {}\neps0 = {EPS0}\neps_rel = [1730.0, 1730.0, 1700.0]\n",
         rows(&S),
