@@ -76,7 +76,8 @@ impl Guess {
 /// ϕ of a Γ3 node in the condensed problem.
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Phi {
-    /// An unknown, at this position of the condensed vector.
+    /// An unknown, at this position of the condensed vector (shared by the nodes of a
+    /// floating electrode).
     Unknown(usize),
     /// Prescribed (the node is on Γa): its global index.
     Prescribed(usize),
@@ -171,12 +172,14 @@ impl Condensed {
             this.u.push(u);
             this.axes.push(axes);
             let dof = dofs.phi(node);
-            // A floating electrode's ϕ (one unknown for all its nodes) stays out: no law of
-            // the condensed problem reads it without conduction, which refuses it.
-            let phi = if !with_phi || dofs.floating_of(node).is_some() {
+            // A floating electrode's nodes share its one unknown: condensed once.
+            let shared = this.free.iter().position(|&f| f == dofs.free_index(dof));
+            let phi = if !with_phi {
                 Phi::Interior
             } else if dofs.free_index(dof) == CONSTRAINED {
                 Phi::Prescribed(dof)
+            } else if let Some(p) = shared.filter(|_| dofs.floating_of(node).is_some()) {
+                Phi::Unknown(p)
             } else {
                 Phi::Unknown(push(&mut this, dof))
             };

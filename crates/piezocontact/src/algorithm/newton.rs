@@ -298,12 +298,6 @@ impl InnerMethod for Newton {
     fn prepare(&mut self, setup: Setup, solver: Box<dyn LinearSolver>) -> Result<CoupledSystem> {
         let Setup { problem, dofs, surface, model } = setup;
         let with_phi = model.compliance.penetration > 0.0;
-        let conducts = model.conduction.as_ref().is_some_and(|c| c.ke > 0.0);
-        if with_phi && conducts && surface.nodes.iter().any(|&a| dofs.floating_of(a).is_some()) {
-            return Err(Error::Input(
-                "a floating electrode on Γ3 with a conductive foundation (ke > 0) is not available with the exact solver yet: the conduction current would enter its charge balance through one shared unknown; use solver.method = \"uzawa\", or ke = 0".into(),
-            ));
-        }
         let Parameters { max_condensed, guess, .. } = self.parameters;
         let frictionless = model.friction.is_none();
         let guess = guess.at_most(max_condensed);
@@ -879,6 +873,13 @@ impl<'a> Local<'a> {
             sigma_nu,
             r_sigma,
         };
+        // The ϕ rows: the condensed charge balance less the conduction flux of every node
+        // that reads the unknown (a floating electrode's nodes share one).
+        for phi in &cond.phi {
+            if let Phi::Unknown(p) = *phi {
+                eval.residual[p] = eval.forces[p];
+            }
+        }
         for i in (0..n3).filter(|&i| cond.kept[i]) {
             let (w, u, c) = (surface.weight[i], cond.u[i], self.c[i]);
             // The condensed components of the node: d, or the normal alone.
@@ -905,7 +906,6 @@ impl<'a> Local<'a> {
                 }
             }
             if let (Phi::Unknown(p), Some(phi)) = (cond.phi[i], phi) {
-                eval.residual[p] = eval.forces[p];
                 eval.residual[p] -= w * self.conduction * step.model.flux(u_nu, phi, gap);
             }
         }
@@ -1009,12 +1009,10 @@ impl<'a> Local<'a> {
         let add = |out: &mut [f64], column: usize, factor: f64| {
             out.iter_mut().zip(self.schur.col(column)).for_each(|(o, s)| *o += factor * s);
         };
-        if let (true, Some(phi)) = (Some(k) == phi_position, phi) {
+        if Some(k) == phi_position {
             add(out, k, 1.0);
             if step.model.conduction.is_some() {
-                let (d_u, d_phi) = step.model.flux_derivative(u_nu, phi, surface.gap[i]);
-                out[u[0]] -= w * self.conduction * d_u;
-                out[k] -= w * self.conduction * d_phi;
+                self.flux_gradient(y, k, out);
             }
             return;
         }
@@ -1060,6 +1058,22 @@ impl<'a> Local<'a> {
                 // ∂σ_ν,j = S_{ν_j,·} / w_j.
                 add(out, cond.u[j][0], -sign * weight / surface.weight[j]);
             }
+        }
+    }
+
+    /// The gradient of the conduction fluxes that the ϕ row `p` subtracts: those of every
+    /// node whose ϕ is the unknown p (one node, or a floating electrode's nodes), added to
+    /// `out`.
+    fn flux_gradient(&self, y: &[f64], p: usize, out: &mut [f64]) {
+        let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
+        let surface = step.surface;
+        let reading =
+            (0..cond.u.len()).filter(|&j| matches!(cond.phi[j], Phi::Unknown(q) if q == p));
+        for j in reading.filter(|&j| cond.kept[j]) {
+            let (w, u_nu) = (surface.weight[j], y[cond.u[j][0]]);
+            let (d_u, d_phi) = step.model.flux_derivative(u_nu, y[p], surface.gap[j]);
+            out[cond.u[j][0]] -= w * self.conduction * d_u;
+            out[p] -= w * self.conduction * d_phi;
         }
     }
 
@@ -1189,6 +1203,39 @@ mod tests {
             let checked = jacobian_case(&fixture);
             assert!(checked > 20, "{regularization}: {checked} rows checked");
         }
+    }
+
+    /// The same with Γ3 a floating electrode (no charge given): its nodes share one ϕ
+    /// unknown, whose row (never fixed, so checked) subtracts every node's conduction flux;
+    /// a little friction leaves slipping nodes, whose rows are checked at the solution.
+    #[test]
+    fn the_jacobian_with_a_floating_electrode_on_the_contact_face_matches_too() {
+        let text = format!(
+            "{PAPER_72}\n[[boundary.electrode]]\nname = \"sense\"\nparts = [\"contact\"]\ncharge = 0.0\n"
+        );
+        let fixture = Fixture::new(
+            &text,
+            &[
+                "mesh.nx=24",
+                "mesh.ny=4",
+                "mesh.segments.contact=[\"[3,9]x{0}\"]",
+                "material.law=\"linear\"",
+                "solver.method=\"newton\"",
+                "conductivity.ke=0.5",
+                "friction.mu=0.05",
+                "contact.penetration=0.5",
+            ],
+        );
+        let shared = solved_step(&fixture, |local, _| {
+            let cond = local.semismooth.condensed;
+            let unknowns: Vec<usize> = (cond.phi.iter())
+                .filter_map(|phi| if let Phi::Unknown(p) = phi { Some(*p) } else { None })
+                .collect();
+            unknowns.len() - 1 - unknowns.iter().filter(|&&p| p != unknowns[0]).count()
+        });
+        assert!(shared > 3, "{shared} more nodes read the electrode's unknown");
+        let checked = jacobian_case(&fixture);
+        assert!(checked > 10, "{checked} rows checked");
     }
 
     /// Prepares the exact solver on the fixture, solves one step, and checks the Jacobian at

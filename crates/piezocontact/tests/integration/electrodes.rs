@@ -283,6 +283,40 @@ fn a_sensor_pressed_by_a_stop_reads_g33_times_the_contact_pressure() {
     }
 }
 
+/// A sensor pressed by a conductive stop: as above, but PV2 with normal compliance (a finite
+/// penetration) and a foundation at ϕ0 that conducts (k_e > 0), so that the conduction flux
+/// q = ψ(u_ν − g_a) φ_L(V − ϕ0) enters the open-circuit electrode's balance. The state stays
+/// uniform, and the electrode's equation (no charge given) is D_z = q on its face, with
+/// D_z = d33 σ_zz + ε^T33 E_z, σ_zz = −F/A, E_z = −V/t: the exact solver (which condenses the
+/// electrode's one potential with every node's flux in its row) and Uzawa alike.
+#[test]
+fn a_sensor_pressed_by_a_conductive_stop_balances_its_charge_with_the_flux() {
+    let (d, eps_t33) = free_constants();
+    let contact = "[contact]\nproblem = \"PV2\"\npenetration = 0.01\nc_nu = 10.0\nalpha_nu = 2.0\nn_nu = 1.0\nh_nu_range = 1.0\n[friction]\nmu = 0.0\n[conductivity]\nke = 1000.0\nphi0 = 1e-3\ndelta = 1.0\nL = 1.0\n[foundation]\nkind = \"plane\"\npoint = [0.0, 0.0, 0.999]\nnormal = [0.0, 0.0, -1.0]\n";
+    let text = block(0.0, ROLLERS)
+        .replace("voltage = 0", "charge = 0.0")
+        .replace("grounded = [\"bottom\"]", "grounded = [\"bottom\"]\ncontact = [\"top\"]")
+        + contact;
+    for method in ["newton", "uzawa"] {
+        let built = build_text(&format!("{text}[solver]\nmethod = \"{method}\"\n")).unwrap();
+        let run = super::common::contact_run(&built);
+        assert!(run.solution.converged(), "{method}");
+        let (balance, model) = (&run.solution.balance, built.model.as_ref().unwrap());
+        let (force, potential) = (balance.contact[2].abs(), balance.potentials[0]);
+        let (x, dofs) = (&run.solution.x, &run.solution.dofs);
+        let top = built.problem.mesh.part_nodes(&[built.problem.mesh.part_index("top").unwrap()]);
+        let u_nu = x[dofs.u(top[0], 2)];
+        let q = model.flux(u_nu, potential, -0.001);
+        let d_z = d[2][2] * -force / 2.0 + eps_t33 * -potential;
+        // D_z's terms, of which q is a part: Uzawa's stopping rule (the change of its
+        // multipliers, 1e-4 by default) leaves 1e-5 of them.
+        let scale = (d[2][2] * force / 2.0).abs();
+        assert!(q.abs() > 0.1 * scale, "the conduction acts: q {q}, terms {scale}");
+        let tolerance = if method == "newton" { 1e-12 } else { 3e-5 };
+        assert!((d_z - q).abs() < tolerance * scale, "{method}: D_z {d_z} vs q {q}");
+    }
+}
+
 /// cases/actuator-stop.toml: the stop's force at every step of the voltage ramp is the
 /// blocked force ([`blocked_force`]) from the preset's constants (Berlincourt's PZT-5A, those
 /// of this file), the onset at d33 V = g.
