@@ -111,11 +111,6 @@ impl CoupledSystem {
             }
             None => None,
         };
-        if owned.is_some() && !dofs.floating().is_empty() {
-            return Err(Error::Input(
-                "floating electrodes are not available on more than one process yet (the row of a floating electrode's potential would span the processes' parts): run on one process, or give the electrodes a voltage".into(),
-            ));
-        }
         let assembler = Assembler::new(problem, dofs, block_nodes, owned.as_deref())?;
         let pattern_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
@@ -312,6 +307,18 @@ impl CoupledSystem {
     /// The linear solver's counts, times, factor size and ordering.
     pub fn solver_stats(&self) -> SolverStats {
         self.solver.stats()
+    }
+
+    /// [`CoupledSystem::solver_stats`] with the times of a distributed backend summed over its
+    /// processes, so that a choice made from them is the same on every process (each
+    /// measures its own; processes that chose apart would call the solver apart and hang).
+    pub fn agreed_stats(&mut self) -> Result<SolverStats> {
+        let mut stats = self.solver.stats();
+        if let Some(d) = self.solver.distributed() {
+            stats.solve_seconds = d.sum(stats.solve_seconds)?;
+            stats.numeric_seconds = d.sum(stats.numeric_seconds)?;
+        }
+        Ok(stats)
     }
 
     /// Timings so far.

@@ -453,7 +453,7 @@ impl Newton {
             grown.check_memory(crate::limits::available_memory())?;
             *condensed = grown;
             let solves = schur.solves_for(system, &condensed.free);
-            if !condensed::cheaper_by_solves(solves, &system.solver_stats()) {
+            if !condensed::cheaper_by_solves(solves, &system.agreed_stats()?) {
                 system.put_last(&condensed.free)?;
                 (step.progress)(Progress::Factorising { unknowns: system.dofs().n_free() });
                 system.factorize_linearised(step.problem, step.linearisation, &[])?;

@@ -54,6 +54,8 @@ pub type NodalBlock = [[f64; 3]; 3];
 /// the nodes its process owns: the pattern keeps the entries whose row or column belongs to
 /// an owned node, and only the cells that touch an owned node are summed, so that the owned
 /// rows are complete and the rest of the matrix is absent (the lifting's other rows partial).
+/// The process that owns a floating electrode's row assembles every cell touching the
+/// electrode ([`assembled_nodes`]).
 #[derive(Debug)]
 pub struct Assembler {
     dofs: DofMap,
@@ -90,8 +92,9 @@ impl Assembler {
     ) -> Result<Self> {
         let mesh = &problem.mesh;
         let dim = mesh.dim();
-        let pattern = lower_pattern(mesh, &dofs, owned)?;
-        let kept = |c: usize| owned.is_none_or(|o| mesh.cell(c).iter().any(|&a| o[a]));
+        let assembled = owned.map(|o| assembled_nodes(o, &dofs));
+        let pattern = lower_pattern(mesh, &dofs, assembled.as_deref())?;
+        let kept = |c: usize| assembled.as_ref().is_none_or(|o| mesh.cell(c).iter().any(|&a| o[a]));
         let (nnz, n_free) = (pattern.nnz(), dofs.n_free());
         if nnz + n_free > u32::MAX as usize {
             return Err(Error::LinearAlgebra(format!(
@@ -365,6 +368,18 @@ pub fn node_neighbours(mesh: &Mesh) -> (Vec<usize>, Vec<usize>) {
     (compact, sorted)
 }
 
+/// The nodes whose rows a distributed process assembles: those it `owned`, and every node of
+/// each floating electrode whose unknown's row it owns (that of the electrode's first node,
+/// the unknown's group in [`lower_pattern`]), so that this row, which spans all of them, is
+/// complete. The other rows of those nodes come out partial, and their owners hold them.
+fn assembled_nodes(owned: &[bool], dofs: &DofMap) -> Vec<bool> {
+    let mut assembled = owned.to_vec();
+    for floating in dofs.floating().iter().filter(|f| owned[f.nodes[0]]) {
+        floating.nodes.iter().for_each(|&a| assembled[a] = true);
+    }
+    assembled
+}
+
 /// The lower-triangle pattern of B̌ on the free DOFs: free DOFs k ≥ j of the nodes that share a
 /// cell with the node of column j — with `owned`, only the pairs of which one node is owned.
 /// Free numbers follow global numbers, in which every u comes before every ϕ, so the rows
@@ -402,7 +417,9 @@ fn lower_pattern(mesh: &Mesh, dofs: &DofMap, owned: Option<&[bool]>) -> Result<S
             rows.into_iter()
         })?,
     };
-    let nodes = global_of_free.iter().map(|&dof| node_of(dof)).collect();
+    let mut nodes: Vec<usize> = global_of_free.iter().map(|&dof| node_of(dof)).collect();
+    // A floating electrode's unknown belongs to its first node.
+    dofs.floating().iter().for_each(|f| nodes[f.unknown] = f.nodes[0]);
     SymmetricPattern::from_columns(n, col_ptr, row_idx)?.with_groups(nodes)
 }
 
