@@ -16,6 +16,7 @@
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use piezocontact::case::{Built, Case as CaseFile};
 use piezocontact::output::files::Claimed;
+use piezocontact::output::vtu::Encoding;
 use piezocontact::report::{Column, contact_columns, row_values};
 use piezocontact::run::Run;
 use pyo3::create_exception;
@@ -400,10 +401,20 @@ impl Solution {
     }
 
     /// Writes the files `piezocontact run` writes into `directory`; a directory holding
-    /// files piezocontact did not write is refused unless `force`.
-    #[pyo3(signature = (directory, force = false))]
-    fn write(&self, py: Python<'_>, directory: PathBuf, force: bool) -> PyResult<()> {
-        guarded(py, || self.write_files(&directory, force))?.map_err(|e| match e {
+    /// files piezocontact did not write is refused unless `force`. `vtu` is how solution.vtu
+    /// holds its numbers: "binary" (ParaView's appended raw data) or "ascii" (text).
+    #[pyo3(signature = (directory, force = false, vtu = "binary"))]
+    fn write(&self, py: Python<'_>, directory: PathBuf, force: bool, vtu: &str) -> PyResult<()> {
+        let vtu = match vtu {
+            "binary" => Encoding::Binary,
+            "ascii" => Encoding::Ascii,
+            other => {
+                return Err(case_error(format!(
+                    "vtu = {other:?}: solution.vtu is written \"binary\" or \"ascii\""
+                )));
+            }
+        };
+        guarded(py, || self.write_files(&directory, force, vtu))?.map_err(|e| match e {
             // A file that cannot be made or written is the system's: an OSError.
             piezocontact::Error::Io { .. } => PyOSError::new_err(e.to_string()),
             piezocontact::Error::ForeignOutput { .. } => {
@@ -416,9 +427,14 @@ impl Solution {
 
 impl Solution {
     /// [`Solution::write`] without the GIL.
-    fn write_files(&self, directory: &Path, force: bool) -> piezocontact::Result<()> {
+    fn write_files(
+        &self,
+        directory: &Path,
+        force: bool,
+        vtu: Encoding,
+    ) -> piezocontact::Result<()> {
         let _claim = Claimed::new(directory, force)?;
-        self.run.write(&self.built, directory)
+        self.run.write(&self.built, directory, vtu)
     }
 }
 

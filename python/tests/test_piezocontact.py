@@ -298,7 +298,13 @@ def test_write_writes_the_files_of_run(tmp_path):
     text = (out / "contact.csv").read_text()
     assert text.splitlines()[0] == "x,y,u_nu,u_tau,sigma_nu,sigma_tau,phi,s,status"
     assert len(text.splitlines()) == 1 + len(solution.contact["x"]) and text.endswith("\n")
-    assert (out / "solution.vtu").read_text().rstrip().endswith("</VTKFile>")
+    binary = (out / "solution.vtu").read_bytes()
+    assert b'format="appended"' in binary and binary.rstrip().endswith(b"</VTKFile>")
+    solution.write(tmp_path / "text", vtu="ascii")
+    text_vtu = (tmp_path / "text" / "solution.vtu").read_text()
+    assert 'format="ascii"' in text_vtu and len(text_vtu) > len(binary)
+    with pytest.raises(piezocontact.CaseError, match="binary"):
+        solution.write(tmp_path / "other", vtu="hex")
     cli_summary, _ = cli_run(PAPER_72, tmp_path / "cli", COARSE)
     assert sorted(p.name for p in out.iterdir()) == sorted(p.name for p in (tmp_path / "cli").iterdir())
     # A directory with someone else's files is refused, unless forced.

@@ -8,6 +8,7 @@ use piezocontact::case::{Built, Case};
 use piezocontact::dofs::DofMap;
 use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
+use piezocontact::output::vtu::Encoding;
 use piezocontact::report::summary::refusal_summary;
 use piezocontact::run::Run;
 use piezocontact_cli::progress::Reporter;
@@ -57,6 +58,10 @@ enum Command {
         /// Seconds between two plain progress lines when stdout is not a terminal.
         #[arg(long, default_value = "5", value_name = "SECONDS", value_parser = parse_seconds)]
         progress_interval: Duration,
+        /// How solution.vtu and a path's series hold their numbers: ParaView's binary
+        /// encoding (appended raw data), or ascii text (readable, several times larger).
+        #[arg(long, value_enum, default_value = "binary")]
+        vtu: VtuEncoding,
     },
     /// Run a case once per value of swept keys, in parallel; write DIR/sweep.csv.
     Sweep {
@@ -243,9 +248,9 @@ fn main() -> ExitCode {
 
 fn run(command: Command) -> Result<Outcome> {
     match command {
-        Command::Run { case, out, set, force, progress_interval } => {
+        Command::Run { case, out, set, force, progress_interval, vtu } => {
             let _claim = processes::is_root().then(|| claim(&out, force)).transpose()?;
-            run_case(&case, &out, &set, progress_interval)
+            run_case(&case, (&out, vtu.into()), &set, progress_interval)
         }
         Command::Sweep { case, set_list, set, reference, jobs, out, force } => {
             one_process("sweep")?;
@@ -448,7 +453,28 @@ fn failed(failure: &piezocontact::Error) -> Outcome {
     }
 }
 
-fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Result<Outcome> {
+/// The encodings of `run --vtu`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum VtuEncoding {
+    Binary,
+    Ascii,
+}
+
+impl From<VtuEncoding> for Encoding {
+    fn from(encoding: VtuEncoding) -> Self {
+        match encoding {
+            VtuEncoding::Binary => Encoding::Binary,
+            VtuEncoding::Ascii => Encoding::Ascii,
+        }
+    }
+}
+
+fn run_case(
+    path: &Path,
+    (out, vtu): (&Path, Encoding),
+    set: &[String],
+    interval: Duration,
+) -> Result<Outcome> {
     let case = Case::load(path, set)?;
     // The keys nothing reads, segment ends between nodes; the paper's hypotheses are check's
     // and summary.json's.
@@ -462,7 +488,7 @@ fn run_case(path: &Path, out: &Path, set: &[String], interval: Duration) -> Resu
     drop(reporter);
     let run = solved.map_err(|e| refused(&built, out, e))?;
     if processes::is_root() {
-        run.write(&built, out)?;
+        run.write(&built, out, vtu)?;
     }
     print::run(&run, &built, out);
     let Some(failure) = run.failure() else { return Ok(Outcome::Done) };

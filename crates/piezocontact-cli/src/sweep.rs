@@ -6,6 +6,7 @@ use anyhow::{Context, Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use piezocontact::case::{Built, Case};
 use piezocontact::output::files::write_atomic;
+use piezocontact::output::vtu::Encoding;
 use piezocontact::report::csv_number;
 use piezocontact::run::{ContactRun, Run};
 use rayon::prelude::*;
@@ -122,7 +123,7 @@ fn run_until(
 fn solve_job(job: &Job) -> Result<Solved> {
     let solved = solve_contact(&job.case).with_context(|| format!("run {}", job.label))?;
     if let Some(out) = &job.out {
-        solved.run.write(&solved.built, out)?;
+        solved.run.write(&solved.built, out, Encoding::default())?;
     }
     Ok(solved)
 }

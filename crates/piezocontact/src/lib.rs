@@ -94,7 +94,7 @@
 //!     let solution = &contact.solution;
 //!     println!("{} outer iterations, KKT residual {:.1e}", solution.outer_iterations(), solution.kkt.max);
 //! }
-//! run.write(&built, "out/example".as_ref())?;
+//! run.write(&built, "out/example".as_ref(), Default::default())?;
 //! # Ok(())
 //! # }
 //! ```

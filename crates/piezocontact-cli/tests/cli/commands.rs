@@ -1,7 +1,7 @@
 //! The `piezocontact` command end to end: runs, outputs (read back with an independent VTU
 //! reader), and one test per error message.
 
-use super::common::{piezocontact, root, run_coarse, temp_dir, text};
+use super::common::{piezocontact, read_vtu, root, run_coarse, temp_dir, text};
 use std::path::{Path, PathBuf};
 
 /// Writes a variant of the paper case with `from` replaced by `to`.
@@ -13,42 +13,44 @@ fn variant(dir: &Path, from: &str, to: &str) -> PathBuf {
     path
 }
 
-/// What the tests read from a .vtu file.
-struct Vtu {
-    points: usize,
-    cells: usize,
-    /// Point-data arrays (name, values).
-    point_data: Vec<(String, Vec<f64>)>,
-    /// Cell-data array names.
-    cell_names: Vec<String>,
-}
-
-/// Reads a .vtu file with vtkio.
-fn read_vtu(path: &Path) -> Vtu {
-    use vtkio::model::{Attribute, DataSet, Piece, VertexNumbers};
-    let vtk = vtkio::Vtk::import(path).unwrap();
-    let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
-        panic!("not an unstructured grid")
-    };
-    let Piece::Inline(piece) = &pieces[0] else { panic!("piece not inline") };
-    let VertexNumbers::XML { offsets, .. } = &piece.cells.cell_verts else {
-        panic!("legacy cells")
-    };
-    let arrays = |attrs: &[Attribute]| -> Vec<(String, Vec<f64>)> {
-        attrs
-            .iter()
-            .map(|a| match a {
-                Attribute::DataArray(d) => (d.name.clone(), d.data.clone().cast_into().unwrap()),
-                Attribute::Field { name, .. } => (name.clone(), Vec::new()),
-            })
-            .collect()
-    };
-    Vtu {
-        points: piece.num_points(),
-        cells: offsets.len(),
-        point_data: arrays(&piece.data.point),
-        cell_names: arrays(&piece.data.cell).into_iter().map(|(n, _)| n).collect(),
+/// `run --vtu ascii` writes the text form of the default binary file: every array equal bit
+/// for bit (the binary read by this file's own reader of appended raw data, the text by
+/// vtkio), the binary file the smaller.
+#[test]
+fn the_binary_vtu_holds_the_ascii_one_s_numbers_bit_for_bit() {
+    let dir = temp_dir("vtu-encodings");
+    let (binary, ascii) = (dir.join("binary"), dir.join("ascii"));
+    let o = run_coarse("cases/paper-7.2.toml", &binary, &[]);
+    assert!(o.status.success(), "{}", text(&o));
+    let o = piezocontact(&[
+        "run",
+        "cases/paper-7.2.toml",
+        "-q",
+        "--vtu",
+        "ascii",
+        "--set",
+        "mesh.nx=24",
+        "--set",
+        "mesh.ny=4",
+        "--out",
+        ascii.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    let file = |dir: &Path| dir.join("solution.vtu");
+    let (b, a) = (read_vtu(&file(&binary)), read_vtu(&file(&ascii)));
+    assert!(b.binary && !a.binary);
+    assert_eq!((b.points, b.cells), (a.points, a.cells));
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&b.coordinates), bits(&a.coordinates));
+    assert_eq!(b.connectivity, a.connectivity);
+    for (x, y) in
+        b.point_data.iter().chain(&b.cell_data).zip(a.point_data.iter().chain(&a.cell_data))
+    {
+        assert_eq!(x.0, y.0);
+        assert_eq!(bits(&x.1), bits(&y.1), "{}", x.0);
     }
+    let size = |dir: &Path| std::fs::metadata(file(dir)).unwrap().len();
+    assert!(size(&binary) < size(&ascii), "{} vs {} bytes", size(&binary), size(&ascii));
 }
 
 #[test]
@@ -103,7 +105,8 @@ fn run_writes_a_summary_a_contact_table_and_a_vtu_that_a_reader_accepts() {
         names,
         ["u", "phi", "contact_status", "contact_pressure", "friction_traction", "gap"]
     );
-    assert_eq!(vtu.cell_names, ["sigma", "D", "material", "poling"]);
+    let cell_names: Vec<&str> = vtu.cell_data.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(cell_names, ["sigma", "D", "material", "poling"]);
     // The gap on Γ3 is the paper's constant 0.5 m; PV1 has no friction traction.
     let on_gamma3 = vtu.point_data[2].1.iter().filter(|s| **s > 0.0).count();
     assert_eq!(vtu.point_data[5].1.iter().filter(|g| **g == 0.5).count(), on_gamma3);

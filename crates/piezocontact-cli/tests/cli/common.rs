@@ -155,3 +155,123 @@ fn coarse(head: &[&str], out: &Path, sets: &[&str]) -> Output {
     }
     piezocontact(&args)
 }
+
+/// What the tests read from a .vtu file.
+pub struct Vtu {
+    /// Whether the file holds appended raw data (the default binary encoding).
+    pub binary: bool,
+    pub points: usize,
+    pub cells: usize,
+    /// The points' coordinates, 3 per point.
+    pub coordinates: Vec<f64>,
+    /// The cells' nodes.
+    pub connectivity: Vec<i64>,
+    /// Point-data arrays (name, values).
+    pub point_data: Vec<(String, Vec<f64>)>,
+    /// Cell-data arrays (name, values).
+    pub cell_data: Vec<(String, Vec<f64>)>,
+}
+
+/// Reads a .vtu file: the binary encoding (appended raw data) with [`appended_arrays`], the
+/// text with vtkio — readers apart from the writer.
+pub fn read_vtu(path: &Path) -> Vtu {
+    let bytes = std::fs::read(path).unwrap();
+    if bytes.windows(RAW.len()).any(|w| w == RAW) {
+        return binary_vtu(&bytes);
+    }
+    use vtkio::model::{Attribute, DataSet, Piece, VertexNumbers};
+    let vtk = vtkio::Vtk::import(path).unwrap();
+    let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
+        panic!("not an unstructured grid")
+    };
+    let Piece::Inline(piece) = &pieces[0] else { panic!("piece not inline") };
+    let VertexNumbers::XML { offsets, connectivity } = &piece.cells.cell_verts else {
+        panic!("legacy cells")
+    };
+    let arrays = |attrs: &[Attribute]| -> Vec<(String, Vec<f64>)> {
+        attrs
+            .iter()
+            .map(|a| match a {
+                Attribute::DataArray(d) => (d.name.clone(), d.data.clone().cast_into().unwrap()),
+                Attribute::Field { name, .. } => (name.clone(), Vec::new()),
+            })
+            .collect()
+    };
+    Vtu {
+        binary: false,
+        points: piece.num_points(),
+        cells: offsets.len(),
+        coordinates: piece.points.clone().cast_into().unwrap(),
+        connectivity: connectivity.iter().map(|&n| n as i64).collect(),
+        point_data: arrays(&piece.data.point),
+        cell_data: arrays(&piece.data.cell),
+    }
+}
+
+/// Where a binary .vtu file's appended raw data begins.
+const RAW: &[u8] = b"<AppendedData encoding=\"raw\">\n_";
+
+/// The arrays of a binary .vtu file — each DataArray's section (the XML element it is in:
+/// Points, Cells, PointData, CellData), Name and bytes, in the file's order — read from
+/// their offsets after the `_` and their UInt64 byte counts.
+pub fn appended_arrays(bytes: &[u8]) -> Vec<(String, String, Vec<u8>)> {
+    let start = bytes.windows(RAW.len()).position(|w| w == RAW).unwrap() + RAW.len();
+    let header = std::str::from_utf8(&bytes[..start]).unwrap();
+    assert!(header.contains(r#"header_type="UInt64""#), "{header}");
+    let mut section = String::new();
+    let mut arrays = Vec::new();
+    for tag in header.split('<').skip(1) {
+        let name = tag.split([' ', '>', '/']).next().unwrap();
+        if ["Points", "Cells", "PointData", "CellData"].contains(&name) {
+            section = name.to_string();
+        }
+        if name != "DataArray" {
+            continue;
+        }
+        let attribute = |key: &str| {
+            let rest = tag.split(&format!(" {key}=\"")).nth(1)?;
+            Some(rest.split('"').next().unwrap().to_string())
+        };
+        assert_eq!(attribute("format").as_deref(), Some("appended"), "{tag}");
+        let at = start + attribute("offset").unwrap().parse::<usize>().unwrap();
+        let length = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
+        let name = attribute("Name").unwrap_or_default();
+        arrays.push((section.clone(), name, bytes[at + 8..at + 8 + length].to_vec()));
+    }
+    arrays
+}
+
+/// A binary .vtu file's arrays as [`Vtu`].
+fn binary_vtu(bytes: &[u8]) -> Vtu {
+    let floats = |b: &[u8]| -> Vec<f64> {
+        b.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect()
+    };
+    let ints = |b: &[u8]| -> Vec<i64> {
+        b.chunks_exact(8).map(|c| i64::from_le_bytes(c.try_into().unwrap())).collect()
+    };
+    let arrays = appended_arrays(bytes);
+    let find = |section: &str, name: &str| {
+        arrays.iter().find(|a| a.0 == section && a.1 == name).map(|a| a.2.clone()).unwrap()
+    };
+    let data = |section: &str| -> Vec<(String, Vec<f64>)> {
+        arrays.iter().filter(|a| a.0 == section).map(|a| (a.1.clone(), floats(&a.2))).collect()
+    };
+    let coordinates = floats(&find("Points", ""));
+    let offsets = ints(&find("Cells", "offsets"));
+    Vtu {
+        binary: true,
+        points: coordinates.len() / 3,
+        cells: offsets.len(),
+        coordinates,
+        connectivity: ints(&find("Cells", "connectivity")),
+        point_data: data("PointData"),
+        cell_data: data("CellData"),
+    }
+}
+
+/// Whether every number of a .vtu file (coordinates and fields) is finite.
+pub fn finite_vtu(path: &Path) -> bool {
+    let vtu = read_vtu(path);
+    let fields = vtu.point_data.iter().chain(&vtu.cell_data).flat_map(|(_, v)| v);
+    vtu.coordinates.iter().chain(fields).all(|x| x.is_finite())
+}

@@ -8,7 +8,7 @@
 //!   forced) and clears our own earlier output there, so that a rerun replaces it whole. The
 //!   files written are listed in the directory's [`MARKER`] file.
 
-use super::vtu::{Field, pvd, to_vtu};
+use super::vtu::{Encoding, Field, pvd, to_vtu};
 use crate::assembly::element_fields;
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
@@ -179,17 +179,18 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     commit(&tmp, path)
 }
 
-/// Writes DIR/summary.json and DIR/solution.vtu (with the extra point fields).
+/// Writes DIR/summary.json and DIR/solution.vtu (with the extra point fields, in
+/// `encoding`).
 pub fn write_results(
     out: &Path,
     summary: &serde_json::Value,
     problem: &Problem,
-    dofs: &DofMap,
-    x: &[f64],
+    (dofs, x): (&DofMap, &[f64]),
     extra: &[Field],
+    encoding: Encoding,
 ) -> Result<()> {
     write_summary(out, summary)?;
-    write_atomic(&out.join("solution.vtu"), solution_vtu(problem, dofs, x, extra)?.as_bytes())
+    write_atomic(&out.join("solution.vtu"), &solution_vtu(problem, dofs, x, extra, encoding)?)
 }
 
 /// Writes DIR/summary.json.
@@ -201,13 +202,14 @@ pub fn write_summary(out: &Path, summary: &serde_json::Value) -> Result<()> {
 
 /// The solution as a ParaView file: point data u (3 components), phi and `extra`; cell data
 /// sigma (3 × 3), D (3 components), material (the index of each cell's, in the case's order)
-/// and poling (3 components).
+/// and poling (3 components); its bytes in `encoding`.
 pub fn solution_vtu(
     problem: &Problem,
     dofs: &DofMap,
     x: &[f64],
     extra: &[Field],
-) -> Result<String> {
+    encoding: Encoding,
+) -> Result<Vec<u8>> {
     let mesh = &problem.mesh;
     let dim = mesh.dim();
     let mut u = Vec::with_capacity(3 * mesh.n_nodes());
@@ -242,16 +244,17 @@ pub fn solution_vtu(
             Field { name: "material", components: 1, values: &material },
             Field { name: "poling", components: 3, values: &poling },
         ],
+        encoding,
     ))
 }
 
-/// The series of a loading path: solution-NNNN.vtu per step (its VTU text, numbered from 1)
+/// The series of a loading path: solution-NNNN.vtu per step (its VTU bytes, numbered from 1)
 /// and solution.pvd, which ParaView opens as one animation.
-pub fn write_series(out: &Path, steps: impl Iterator<Item = Result<String>>) -> Result<()> {
+pub fn write_series(out: &Path, steps: impl Iterator<Item = Result<Vec<u8>>>) -> Result<()> {
     let mut collection = Vec::new();
     for (k, vtu) in steps.enumerate() {
         let name = format!("solution-{:04}.vtu", k + 1);
-        write_atomic(&out.join(&name), vtu?.as_bytes())?;
+        write_atomic(&out.join(&name), &vtu?)?;
         collection.push((k + 1, name));
     }
     write_atomic(&out.join("solution.pvd"), pvd(&collection).as_bytes())

@@ -9,6 +9,7 @@ use crate::linalg::LinearSolver;
 use crate::output::fields::ContactFields;
 use crate::output::files;
 use crate::output::plot::{self, ContactView, MapLabels};
+use crate::output::vtu::Encoding;
 use crate::report::summary::{
     common_summary, contact_summary, electrodes_json, hencky_tangent, merge, reactions_json,
 };
@@ -112,12 +113,17 @@ impl ContactRun {
 
     /// Writes the files of the run into `out`: contact.csv, summary.json and solution.vtu,
     /// and for a 3D body the map of Γ3 (contact_map.png and .svg).
-    pub fn write(&self, built: &Built, out: &Path) -> Result<()> {
-        self.write_with(built, out, &self.summary(built))
+    pub fn write(&self, built: &Built, out: &Path, vtu: Encoding) -> Result<()> {
+        self.write_with(built, (out, vtu), &self.summary(built))
     }
 
     /// [`ContactRun::write`] with `summary` as summary.json (a loading path's).
-    pub(super) fn write_with(&self, built: &Built, out: &Path, summary: &Value) -> Result<()> {
+    pub(super) fn write_with(
+        &self,
+        built: &Built,
+        (out, vtu): (&Path, Encoding),
+        summary: &Value,
+    ) -> Result<()> {
         std::fs::create_dir_all(out).map_err(|e| Error::Io {
             what: format!("cannot create {}", out.display()),
             cause: e.to_string(),
@@ -127,7 +133,8 @@ impl ContactRun {
         let csv = report::contact_csv(&self.rows, problem.mesh.dim());
         files::write_atomic(&out.join("contact.csv"), csv.as_bytes())?;
         let extra = fields.fields();
-        files::write_results(out, summary, problem, &solution.dofs, &solution.x, &extra)?;
+        let state = (&solution.dofs, solution.x.as_slice());
+        files::write_results(out, summary, problem, state, &extra, vtu)?;
         if problem.mesh.dim() == 3 {
             let units = &built.units;
             let title = if built.title.is_empty() { "Γ3" } else { built.title.as_str() };

@@ -20,6 +20,7 @@ use crate::case::Built;
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::LinearSolver;
+use crate::output::vtu::Encoding;
 use crate::report::Column;
 use serde_json::Value;
 use std::path::Path;
@@ -81,15 +82,17 @@ impl Run {
 
     /// Writes the run's files into `out` (created if needed): summary.json and solution.vtu;
     /// with contact contact.csv (and the map of Γ3 in 3D); on a path curve.csv, the steps'
-    /// solution-NNNN.vtu with solution.pvd and the curves' figure.
-    pub fn write(&self, built: &Built, out: &Path) -> Result<()> {
+    /// solution-NNNN.vtu with solution.pvd and the curves' figure; the .vtu files in `vtu`'s
+    /// encoding (ParaView's binary one by default).
+    pub fn write(&self, built: &Built, out: &Path, vtu: Encoding) -> Result<()> {
         let summary = self.summary(built);
+        let to = (out, vtu);
         match (self, &built.loading) {
-            (Self::Static(run), _) => run.write(built, out, &summary),
-            (Self::Contact(run), _) => run.write_with(built, out, &summary),
-            (Self::Path(path), Some(loading)) => path.write((built, loading), out, &summary),
-            (Self::Path(path), None) => path.last.write_with(built, out, &summary),
-            (Self::StaticPath(path), _) => path.write(built, out, &summary),
+            (Self::Static(run), _) => run.write(built, to, &summary),
+            (Self::Contact(run), _) => run.write_with(built, to, &summary),
+            (Self::Path(path), Some(loading)) => path.write((built, loading), to, &summary),
+            (Self::Path(path), None) => path.last.write_with(built, to, &summary),
+            (Self::StaticPath(path), _) => path.write(built, to, &summary),
         }
     }
 

@@ -12,6 +12,7 @@ use crate::linalg::LinearSolver;
 use crate::output::fields::ContactFields;
 use crate::output::files;
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
+use crate::output::vtu::Encoding;
 use crate::report::{self, Column, CurveRow, Row, columns_csv, curve_columns};
 use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
@@ -133,10 +134,10 @@ impl PathRun {
     pub(super) fn write(
         &self,
         (built, loading): (&Built, &Loading),
-        out: &Path,
+        (out, vtu): (&Path, Encoding),
         summary: &Value,
     ) -> Result<()> {
-        self.last.write_with(built, out, summary)?;
+        self.last.write_with(built, (out, vtu), summary)?;
         let problem = &built.problem;
         let mut parts = Self::electrodes(built);
         parts.extend(Self::driven_electrodes(built));
@@ -145,7 +146,7 @@ impl PathRun {
         let solution = &self.last.solution;
         let steps = self.states.iter().map(|(x, rows)| {
             let fields = ContactFields::new(&problem.mesh, &solution.surface, rows);
-            files::solution_vtu(problem, &solution.dofs, x, &fields.fields())
+            files::solution_vtu(problem, &solution.dofs, x, &fields.fields(), vtu)
         });
         files::write_series(out, steps)?;
         plot::panels(&self.figures((built, loading), &parts), &out.join("curve"))

@@ -11,6 +11,7 @@ use crate::error::Result;
 use crate::linalg::LinearSolver;
 use crate::output::files;
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
+use crate::output::vtu::Encoding;
 use crate::problem::Factors;
 use crate::report::{Column, StaticCurveRow, columns_csv, static_curve_columns};
 use crate::system::{StaticSolution, solve_without_contact, solve_without_contact_at};
@@ -113,13 +114,18 @@ impl StaticPathRun {
 
     /// Writes the last step's summary.json (`summary`) and solution.vtu, curve.csv,
     /// solution-NNNN.vtu per step with solution.pvd, and the curves' figure (curve.png/.svg).
-    pub(super) fn write(&self, built: &Built, out: &Path, summary: &Value) -> Result<()> {
-        self.last.write(built, out, summary)?;
+    pub(super) fn write(
+        &self,
+        built: &Built,
+        (out, vtu): (&Path, Encoding),
+        summary: &Value,
+    ) -> Result<()> {
+        self.last.write(built, (out, vtu), summary)?;
         let problem = &built.problem;
         let csv = columns_csv(&self.columns(built), self.curve.len());
         files::write_atomic(&out.join("curve.csv"), csv.as_bytes())?;
         let dofs = &self.last.solution.dofs;
-        let steps = self.states.iter().map(|x| files::solution_vtu(problem, dofs, x, &[]));
+        let steps = self.states.iter().map(|x| files::solution_vtu(problem, dofs, x, &[], vtu));
         files::write_series(out, steps)?;
         plot::panels(&self.figures(built), &out.join("curve"))
     }

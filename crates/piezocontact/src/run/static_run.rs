@@ -5,6 +5,7 @@ use crate::case::Built;
 use crate::error::Result;
 use crate::linalg::LinearSolver;
 use crate::output::files;
+use crate::output::vtu::Encoding;
 use crate::report::summary::{
     common_summary, electrodes_json, memory, merge, reactions_json, timings,
 };
@@ -87,8 +88,13 @@ impl StaticRun {
     }
 
     /// Writes `summary` as summary.json and solution.vtu into `out`.
-    pub(super) fn write(&self, built: &Built, out: &Path, summary: &Value) -> Result<()> {
+    pub(super) fn write(
+        &self,
+        built: &Built,
+        (out, vtu): (&Path, Encoding),
+        summary: &Value,
+    ) -> Result<()> {
         let solution = &self.solution;
-        files::write_results(out, summary, &built.problem, &solution.dofs, &solution.x, &[])
+        files::write_results(out, summary, &built.problem, (&solution.dofs, &solution.x), &[], vtu)
     }
 }
