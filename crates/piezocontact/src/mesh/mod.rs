@@ -223,13 +223,20 @@ impl Mesh {
         })
     }
 
-    /// Comma-separated part names, for messages.
+    /// Comma-separated part names, for messages: the boundary parts, then those inside the
+    /// body.
     pub fn part_names(&self) -> String {
-        if self.parts.is_empty() {
-            return "(no boundary parts)".into();
+        let names = |interior: bool| -> Vec<&str> {
+            let parts = self.parts.iter().filter(|p| p.interior == interior);
+            parts.map(|p| p.name.as_str()).collect()
+        };
+        let (boundary, inside) = (names(false), names(true));
+        let listed =
+            if boundary.is_empty() { "(no boundary parts)".into() } else { boundary.join(", ") };
+        match inside.is_empty() {
+            true => listed,
+            false => format!("{listed}; inside the body (for electrodes): {}", inside.join(", ")),
         }
-        let names: Vec<&str> = self.parts.iter().map(|p| p.name.as_str()).collect();
-        names.join(", ")
     }
 
     /// A facet that a part of `first` and a part of `second` share: the two parts' names and
