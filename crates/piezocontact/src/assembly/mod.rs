@@ -55,7 +55,7 @@ pub type NodalBlock = [[f64; 3]; 3];
 /// an owned node, and only the cells that touch an owned node are summed, so that the owned
 /// rows are complete and the rest of the matrix is absent (the lifting's other rows partial).
 /// The process that owns a floating electrode's row assembles every cell touching the
-/// electrode ([`assembled_nodes`]).
+/// electrode (`assembled_nodes`).
 #[derive(Debug)]
 pub struct Assembler {
     dofs: DofMap,
