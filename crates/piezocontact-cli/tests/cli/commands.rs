@@ -82,6 +82,8 @@ fn run_writes_a_summary_a_contact_table_and_a_vtu_that_a_reader_accepts() {
     for key in ["assembly", "symbolic", "numeric", "solve", "dense", "total"] {
         assert!(summary["timings_seconds"][key].as_f64().unwrap() >= 0.0, "{key}");
     }
+    // Building the case (the rectangle's mesh, the checks) takes time, outside the solve's.
+    assert!(summary["timings_seconds"]["case"].as_f64().unwrap() > 0.0);
     // contact.csv: the fixed header, one row per free Γ3 node (x = 2.5 … 9.5), ordered in x.
     let csv = std::fs::read_to_string(out.join("contact.csv")).unwrap();
     let mut lines = csv.lines();

@@ -67,6 +67,8 @@ pub struct Built {
     /// The plane model of a 2D slice of a 3D body (`mesh.plane`); `None` for a 3D body or the
     /// paper's 2D continuum.
     pub plane: Option<Plane>,
+    /// The time the build took: reading or building the mesh and checking the case \[s\].
+    pub seconds: f64,
 }
 
 impl Built {
@@ -89,6 +91,7 @@ impl Built {
 impl Case {
     /// Validates the case once and builds everything a run takes.
     pub fn build(&self) -> Result<Built> {
+        let start = std::time::Instant::now();
         self.check_backend()?;
         self.contact_settings()?;
         let problem = self.problem_checked()?;
@@ -119,6 +122,7 @@ impl Case {
             units: self.file.units.clone(),
             origin: self.origin.clone(),
             plane: self.plane_model(problem_dim)?,
+            seconds: start.elapsed().as_secs_f64(),
         })
     }
 

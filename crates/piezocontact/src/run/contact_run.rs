@@ -99,6 +99,7 @@ impl ContactRun {
         let mut summary = common_summary(built, &self.solution.dofs);
         merge(&mut summary, contact_summary(&self.model, &self.solution, &self.rows));
         summary["timings_seconds"]["total"] = json!(self.seconds);
+        summary["timings_seconds"]["case"] = json!(built.seconds);
         summary["warnings"] = json!(built.warnings);
         summary["method"] = json!(built.method_name());
         let lags = built.settings.method.lags_contact();

@@ -82,6 +82,7 @@ impl StaticRun {
             }),
         );
         summary["timings_seconds"]["total"] = json!(self.seconds);
+        summary["timings_seconds"]["case"] = json!(built.seconds);
         summary["warnings"] = json!(built.warnings);
         summary["factorisations"] = json!(self.solution.factorisations);
         summary
