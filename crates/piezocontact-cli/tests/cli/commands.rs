@@ -22,19 +22,7 @@ fn the_binary_vtu_holds_the_ascii_one_s_numbers_bit_for_bit() {
     let (binary, ascii) = (dir.join("binary"), dir.join("ascii"));
     let o = run_coarse("cases/paper-7.2.toml", &binary, &[]);
     assert!(o.status.success(), "{}", text(&o));
-    let o = piezocontact(&[
-        "run",
-        "cases/paper-7.2.toml",
-        "-q",
-        "--vtu",
-        "ascii",
-        "--set",
-        "mesh.nx=24",
-        "--set",
-        "mesh.ny=4",
-        "--out",
-        ascii.to_str().unwrap(),
-    ]);
+    let o = super::common::coarse(&["run", "cases/paper-7.2.toml", "--vtu", "ascii"], &ascii, &[]);
     assert!(o.status.success(), "{}", text(&o));
     let file = |dir: &Path| dir.join("solution.vtu");
     let (b, a) = (read_vtu(&file(&binary)), read_vtu(&file(&ascii)));

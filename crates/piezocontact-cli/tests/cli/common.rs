@@ -147,7 +147,7 @@ pub fn sweep_coarse(case: &str, list: &str, extra: &[&str], out: &Path, sets: &[
 }
 
 /// The command `head` with `--out OUT` on the coarse 24 × 4 mesh and more `--set`s.
-fn coarse(head: &[&str], out: &Path, sets: &[&str]) -> Output {
+pub fn coarse(head: &[&str], out: &Path, sets: &[&str]) -> Output {
     let mut args = head.to_vec();
     args.extend(["--out", out.to_str().unwrap(), "--set", "mesh.nx=24", "--set", "mesh.ny=4"]);
     for set in sets {

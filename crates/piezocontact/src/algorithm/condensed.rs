@@ -154,6 +154,9 @@ impl Condensed {
             this.global.push(dof);
             this.free.len() - 1
         };
+        // A floating electrode's nodes share its one unknown: condensed once, at the
+        // position kept here by its free index.
+        let mut floating: HashMap<usize, usize> = HashMap::new();
         for (i, &node) in surface.nodes.iter().enumerate() {
             if !kept[i] {
                 this.u.push([usize::MAX; 3]);
@@ -172,14 +175,13 @@ impl Condensed {
             this.u.push(u);
             this.axes.push(axes);
             let dof = dofs.phi(node);
-            // A floating electrode's nodes share its one unknown: condensed once.
-            let shared = this.free.iter().position(|&f| f == dofs.free_index(dof));
             let phi = if !with_phi {
                 Phi::Interior
             } else if dofs.free_index(dof) == CONSTRAINED {
                 Phi::Prescribed(dof)
-            } else if let Some(p) = shared.filter(|_| dofs.floating_of(node).is_some()) {
-                Phi::Unknown(p)
+            } else if dofs.floating_of(node).is_some() {
+                let k = dofs.free_index(dof);
+                Phi::Unknown(*floating.entry(k).or_insert_with(|| push(&mut this, dof)))
             } else {
                 Phi::Unknown(push(&mut this, dof))
             };

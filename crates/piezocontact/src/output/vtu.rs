@@ -58,22 +58,14 @@ impl Values<'_> {
 
     /// The values as text, `per_line` on each line.
     fn ascii(&self, per_line: usize, s: &mut String) {
-        let line = |s: &mut String, k: usize| {
-            s.push(if (k + 1).is_multiple_of(per_line) { '\n' } else { ' ' });
+        let words: Box<dyn Iterator<Item = String>> = match self {
+            Values::Float(v) => Box::new(v.iter().map(|x| format!("{x:e}"))),
+            Values::Int(v) => Box::new(v.iter().map(|x| x.to_string())),
+            Values::Byte(v) => Box::new(v.iter().map(|x| x.to_string())),
         };
-        match self {
-            Values::Float(v) => v.iter().enumerate().for_each(|(k, x)| {
-                let _ = write!(s, "{x:e}");
-                line(s, k);
-            }),
-            Values::Int(v) => v.iter().enumerate().for_each(|(k, x)| {
-                let _ = write!(s, "{x}");
-                line(s, k);
-            }),
-            Values::Byte(v) => v.iter().enumerate().for_each(|(k, x)| {
-                let _ = write!(s, "{x}");
-                line(s, k);
-            }),
+        for (k, word) in words.enumerate() {
+            s.push_str(&word);
+            s.push(if (k + 1).is_multiple_of(per_line) { '\n' } else { ' ' });
         }
         if !s.ends_with('\n') {
             s.push('\n');

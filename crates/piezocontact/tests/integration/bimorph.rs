@@ -32,6 +32,7 @@ impl Beam {
     /// `electrodes` on the parts top, bottom and middle (the line y = 0, inside the body).
     fn case(&self, (nx, ny): (usize, usize), electrodes: &str) -> String {
         let (l, t) = (self.length, self.thickness / 2.0);
+        let b = -t;
         let layer = |name: &str, pole: f64| {
             format!(
                 "[[material]]\nname = \"{name}\"\nregions = [\"{name}\"]\npoling = [0.0, {pole}]\n{}\n",
@@ -39,15 +40,11 @@ impl Beam {
             )
         };
         format!(
-            "[mesh]\nx = [0.0, {l}]\ny = [{}, {t}]\nnx = {nx}\nny = {ny}\nplane = \"stress\"\n\
-             [mesh.segments]\nclamp = [\"{{0}}x[{}, {t}]\"]\ntop = [\"[0,{l}]x{{{t}}}\"]\n\
-             bottom = [\"[0,{l}]x{{{}}}\"]\nmiddle = [\"[0,{l}]x{{0}}\"]\n\
-             [mesh.regions]\nupper = [\"[0,{l}]x[0,{t}]\"]\nlower = [\"[0,{l}]x[{},0]\"]\n{}{}\
+            "[mesh]\nx = [0.0, {l}]\ny = [{b}, {t}]\nnx = {nx}\nny = {ny}\nplane = \"stress\"\n\
+             [mesh.segments]\nclamp = [\"{{0}}x[{b}, {t}]\"]\ntop = [\"[0,{l}]x{{{t}}}\"]\n\
+             bottom = [\"[0,{l}]x{{{b}}}\"]\nmiddle = [\"[0,{l}]x{{0}}\"]\n\
+             [mesh.regions]\nupper = [\"[0,{l}]x[0,{t}]\"]\nlower = [\"[0,{l}]x[{b},0]\"]\n{}{}\
              [boundary]\nclamped = [\"clamp\"]\n{electrodes}",
-            -t,
-            -t,
-            -t,
-            -t,
             layer("upper", self.poles[0]),
             layer("lower", self.poles[1]),
         )
