@@ -434,7 +434,7 @@ impl Solution {
         vtu: Encoding,
     ) -> piezocontact::Result<()> {
         let _claim = Claimed::new(directory, force)?;
-        self.run.write(&self.built, directory, vtu)
+        self.run.write(&self.built, directory, vtu).map(|_| ())
     }
 }
 

@@ -16,7 +16,7 @@ use piezocontact_cli::{bench, print, processes, reproduce, sweep};
 use piezocontact_cli::{say, say_err};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// Static contact of a piezoelectric body with a foundation: P1 finite elements.
 #[derive(Parser)]
@@ -215,6 +215,8 @@ fn parse_mesh(s: &str) -> Result<(usize, usize), String> {
 }
 
 fn main() -> ExitCode {
+    // summary.json's total counts from here: the process's wall time.
+    let began = Instant::now();
     let cli = Cli::parse();
     let level = ["warn", "info", "debug"][usize::from(cli.verbose.min(2))];
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
@@ -236,7 +238,7 @@ fn main() -> ExitCode {
         if let Err(e) = started {
             return processes::fail(&format!("error: {e:#}"), 1);
         }
-        match run(cli.command) {
+        match run(cli.command, began) {
             Ok(Outcome::Done) => ExitCode::SUCCESS,
             Ok(Outcome::NotConverged) => ExitCode::from(3),
             Ok(Outcome::Failed) => ExitCode::from(4),
@@ -246,11 +248,11 @@ fn main() -> ExitCode {
     })
 }
 
-fn run(command: Command) -> Result<Outcome> {
+fn run(command: Command, started: Instant) -> Result<Outcome> {
     match command {
         Command::Run { case, out, set, force, progress_interval, vtu } => {
             let _claim = processes::is_root().then(|| claim(&out, force)).transpose()?;
-            run_case(&case, (&out, vtu.into()), &set, progress_interval)
+            run_case((&case, started), (&out, vtu.into()), &set, progress_interval)
         }
         Command::Sweep { case, set_list, set, reference, jobs, out, force } => {
             one_process("sweep")?;
@@ -470,7 +472,7 @@ impl From<VtuEncoding> for Encoding {
 }
 
 fn run_case(
-    path: &Path,
+    (path, started): (&Path, Instant),
     (out, vtu): (&Path, Encoding),
     set: &[String],
     interval: Duration,
@@ -481,16 +483,17 @@ fn run_case(
     for warning in case.setting_warnings() {
         say_err!("warning: {warning}");
     }
-    let built = case.build()?;
+    let built = Built { started, ..case.build()? };
     let reporter = Reporter::new(built.method_name(), interval);
     let progress = |event| reporter.event(event);
     let solved = built.linear_solver().and_then(|solver| Run::solve(&built, solver, &progress));
     drop(reporter);
     let run = solved.map_err(|e| refused(&built, out, e))?;
-    if processes::is_root() {
-        run.write(&built, out, vtu)?;
-    }
+    let summary = processes::is_root().then(|| run.write(&built, out, vtu)).transpose()?;
     print::run(&run, &built, out);
+    if let Some(summary) = summary.filter(|_| log::log_enabled!(log::Level::Info)) {
+        print::timings(&summary);
+    }
     let Some(failure) = run.failure() else { return Ok(Outcome::Done) };
     say_err!(
         "error: {}: {failure}; {} in {} (marked \"converged\": false)",

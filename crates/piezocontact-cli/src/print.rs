@@ -72,7 +72,7 @@ fn contact_run(run: &ContactRun, built: &Built, out: &Path) {
     // The exact solver's condensed problem, where there is one.
     let dense = if t.dense > 0.0 { format!(", dense problem {:.3} s", t.dense) } else { "".into() };
     say!(
-        "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}){dense}, total {:.3} s",
+        "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s ({} factorisations), solves {:.3} s ({}){dense}, solver in all {:.3} s",
         t.pattern,
         t.assembly,
         t.solver.symbolic_seconds,
@@ -268,7 +268,7 @@ fn static_run(run: &StaticRun, built: &Built, out: &Path) {
         say!("  Hencky's law       = {} secant steps", run.solution.factorisations - 1);
     }
     say!(
-        "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, total {:.3} s",
+        "  time: pattern {:.3} s, assembly {:.3} s, symbolic {:.3} s, numeric {:.3} s, solve {:.3} s, solver in all {:.3} s",
         t.pattern,
         t.assembly,
         t.solver.symbolic_seconds,
@@ -277,6 +277,35 @@ fn static_run(run: &StaticRun, built: &Built, out: &Path) {
         run.seconds
     );
     say!("  wrote summary.json and solution.vtu in {}", out.display());
+}
+
+/// Prints the table of a run's phases from its summary.json `timings_seconds`: the case,
+/// the solver's phases, each file, the rest and the total \[s\].
+pub fn timings(summary: &serde_json::Value) {
+    let t = &summary["timings_seconds"];
+    let seconds = |key: &str| t[key].as_f64().unwrap_or(0.0);
+    let total = seconds("total");
+    let line = |name: &str, s: f64| {
+        let share = if total > 0.0 { 100.0 * s / total } else { 0.0 };
+        say!("    {name:<28} {s:>9.3} s {share:>5.1} %");
+    };
+    say!("  the run's wall time by phase:");
+    line("case (mesh, checks)", seconds("case"));
+    for key in ["pattern", "assembly", "symbolic", "numeric", "solve", "dense", "assessment"] {
+        line(&format!("  {key}"), seconds(key));
+    }
+    let counted: f64 =
+        ["pattern", "assembly", "symbolic", "numeric", "solve", "dense", "assessment"]
+            .iter()
+            .map(|k| seconds(k))
+            .sum();
+    line("  (rest of the solver)", seconds("solver") - counted);
+    line("solver in all", seconds("solver"));
+    for (name, s) in t["files"].as_object().into_iter().flatten() {
+        line(&format!("writing {name}"), s.as_f64().unwrap_or(0.0));
+    }
+    line("other", seconds("other"));
+    line("total", total);
 }
 
 /// Prints a built case's mesh: its size, its bounding box and each boundary part with its

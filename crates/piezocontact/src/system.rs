@@ -24,6 +24,9 @@ pub struct Timings {
     /// The exact solver's dense condensed problem: its Schur complements (beyond the solves
     /// counted above) and Newton's iterations (0 without one) \[s\].
     pub dense: f64,
+    /// The assessment of the solution: its KKT residual and force balance, the table of Γ3
+    /// (without contact: the reactions and the extremes) \[s\].
+    pub assessment: f64,
     /// The bytes of the exact solver's dense condensed matrices at the end (0 without).
     pub dense_bytes: f64,
     /// The process's peak resident memory when these timings were taken \[bytes\] (`None`
@@ -328,6 +331,7 @@ impl CoupledSystem {
             assembly: self.assembly_seconds,
             solver: self.solver.stats(),
             dense: 0.0,
+            assessment: 0.0,
             dense_bytes: 0.0,
             peak_resident_bytes: crate::limits::peak_resident_bytes(),
         }

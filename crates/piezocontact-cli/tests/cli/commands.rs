@@ -67,7 +67,7 @@ fn run_writes_a_summary_a_contact_table_and_a_vtu_that_a_reader_accepts() {
     assert_eq!(summary["outer_criterion_history"].as_array().unwrap().len(), outer);
     assert!(summary["kkt_residual"]["max"].as_f64().unwrap() < 0.1);
     assert!(summary["balance"]["relative_imbalance"].as_f64().unwrap() < 1e-4);
-    for key in ["assembly", "symbolic", "numeric", "solve", "dense", "total"] {
+    for key in ["assembly", "symbolic", "numeric", "solve", "dense", "assessment", "total"] {
         assert!(summary["timings_seconds"][key].as_f64().unwrap() >= 0.0, "{key}");
     }
     // Building the case (the rectangle's mesh, the checks) takes time, outside the solve's.
@@ -381,6 +381,42 @@ fn check_prints_the_path_and_the_indentation_moduli() {
     let (insulating, grounded) = (value("C* insulating tip"), value("C* grounded tip"));
     assert!(insulating > grounded && grounded > e_star, "{t}");
     assert!(t.contains("GV/m (surface potential per indentation into the body)"), "{t}");
+}
+
+/// summary.json's timings cover the whole run: the case, the solver (its phases within it),
+/// each file written (a path's steps summed under one name) and the rest add up to `total`,
+/// which lies between the phases' sum and the process's wall time measured outside it;
+/// `run -v` prints them as a table.
+#[test]
+fn the_timings_cover_the_run_and_each_file() {
+    let out = temp_dir("timings");
+    let start = std::time::Instant::now();
+    let case = "cases/cantilever-load-factors.toml";
+    let o = piezocontact(&["-v", "run", case, "--out", out.to_str().unwrap()]);
+    let wall = start.elapsed().as_secs_f64();
+    assert!(o.status.success(), "{}", text(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let t = &summary["timings_seconds"];
+    let seconds = |key: &str| t[key].as_f64().unwrap_or_else(|| panic!("{key}: {t}"));
+    let files = t["files"].as_object().unwrap();
+    let mut names: Vec<&str> = files.keys().map(String::as_str).collect();
+    names.sort_unstable();
+    let expected = ["curve", "curve.csv", "solution-NNNN.vtu", "solution.pvd", "solution.vtu"];
+    assert_eq!(names, expected);
+    let written: f64 = files.values().map(|s| s.as_f64().unwrap()).sum();
+    assert!(files.values().all(|s| s.as_f64().unwrap() > 0.0), "{t}");
+    let phases = ["pattern", "assembly", "symbolic", "numeric", "solve", "dense", "assessment"];
+    let solver: f64 = phases.iter().map(|k| seconds(k)).sum();
+    assert!(solver <= seconds("solver") && seconds("assessment") > 0.0, "{t}");
+    let (total, other) = (seconds("total"), seconds("other"));
+    let named = seconds("case") + seconds("solver") + written;
+    assert!((named + other - total).abs() <= 1e-12 * total && other >= 0.0, "{t}");
+    assert!(named <= total && total <= wall, "{t}: the process took {wall} s");
+    let printed = text(&o);
+    for line in ["writing solution-NNNN.vtu", "assessment", "total"] {
+        assert!(printed.contains(line), "{line}: {printed}");
+    }
 }
 
 /// 1-based line of the first line of the paper case that starts with `prefix`.

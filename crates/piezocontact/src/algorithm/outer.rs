@@ -265,8 +265,10 @@ impl ContactSolver {
         let steps = self.hencky.steps();
         (solution.floored_steps, solution.chord_steps) = (steps.floored, steps.chords);
         let constant = method.complementarity_constant();
+        let start = std::time::Instant::now();
         (solution.kkt, solution.balance) =
             residual::assess(problem, model, constant, &solution.view())?;
+        solution.timings.assessment = start.elapsed().as_secs_f64();
         if solution.converged() {
             solution.failure = method.accept(&solution.kkt, &solution.outer_history);
         }

@@ -69,6 +69,9 @@ pub struct Built {
     pub plane: Option<Plane>,
     /// The time the build took: reading or building the mesh and checking the case \[s\].
     pub seconds: f64,
+    /// When the run began, from which summary.json's `total` counts: the start of the build,
+    /// or earlier where the caller sets it (the command line: its process's start).
+    pub started: std::time::Instant,
 }
 
 impl Built {
@@ -123,6 +126,7 @@ impl Case {
             origin: self.origin.clone(),
             plane: self.plane_model(problem_dim)?,
             seconds: start.elapsed().as_secs_f64(),
+            started: start,
         })
     }
 

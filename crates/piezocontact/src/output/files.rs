@@ -10,9 +10,12 @@
 
 use super::vtu::{Encoding, Field, pvd, to_vtu};
 use crate::assembly::element_fields;
+use crate::case::Built;
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::problem::Problem;
+use crate::report::summary::close_timings;
+use serde_json::Value;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -179,25 +182,84 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     commit(&tmp, path)
 }
 
-/// Writes DIR/summary.json and DIR/solution.vtu (with the extra point fields, in
-/// `encoding`).
-pub fn write_results(
-    out: &Path,
-    summary: &serde_json::Value,
-    problem: &Problem,
-    (dofs, x): (&DofMap, &[f64]),
-    extra: &[Field],
-    encoding: Encoding,
-) -> Result<()> {
-    write_summary(out, summary)?;
-    write_atomic(&out.join("solution.vtu"), &solution_vtu(problem, dofs, x, extra, encoding)?)
+/// The files a run writes into its output directory, each atomically, with the wall time
+/// each took — making its bytes and writing them \[s\] — under its name (the steps of a
+/// series summed under "solution-NNNN.vtu"), in the order written.
+pub struct Outputs<'a> {
+    /// The output directory.
+    pub dir: &'a Path,
+    /// The encoding of the .vtu files.
+    pub vtu: Encoding,
+    seconds: Vec<(String, f64)>,
+}
+
+impl<'a> Outputs<'a> {
+    /// The files of a run in `dir` (created if needed), the .vtu files in `vtu`.
+    pub fn new(dir: &'a Path, vtu: Encoding) -> Result<Self> {
+        std::fs::create_dir_all(dir)
+            .map_err(io(format!("cannot create the output directory {}", dir.display())))?;
+        Ok(Self { dir, vtu, seconds: Vec::new() })
+    }
+
+    /// Writes DIR/`name` with the bytes `make` returns.
+    pub fn file(&mut self, name: &str, make: impl FnOnce() -> Result<Vec<u8>>) -> Result<()> {
+        self.timed(name, |dir| write_atomic(&dir.join(name), &make()?))
+    }
+
+    /// Runs `write`, which writes the files `key` names into the directory it is given.
+    pub fn timed(&mut self, key: &str, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+        let start = std::time::Instant::now();
+        write(self.dir)?;
+        let seconds = start.elapsed().as_secs_f64();
+        match self.seconds.iter_mut().find(|(k, _)| k == key) {
+            Some((_, total)) => *total += seconds,
+            None => self.seconds.push((key.to_string(), seconds)),
+        }
+        Ok(())
+    }
+
+    /// Writes summary.json last: the solve's `summary` of a run of `built` with the run's
+    /// timings closed by the files written ([`close_timings`]); returns it.
+    pub fn finish(mut self, built: &Built, mut summary: Value) -> Result<Value> {
+        close_timings(&mut summary, built, &self.seconds);
+        self.file("summary.json", || summary_json(&summary))?;
+        Ok(summary)
+    }
+
+    /// Writes DIR/solution.vtu: the solution `state` with the extra point fields.
+    pub fn solution(
+        &mut self,
+        problem: &Problem,
+        (dofs, x): (&DofMap, &[f64]),
+        extra: &[Field],
+    ) -> Result<()> {
+        let vtu = self.vtu;
+        self.file("solution.vtu", || solution_vtu(problem, dofs, x, extra, vtu))
+    }
+
+    /// The series of a loading path: solution-NNNN.vtu for each of its `steps` (`make(k)`
+    /// the VTU bytes of step k, from 0; files numbered from 1) and solution.pvd, which
+    /// ParaView opens as one animation.
+    pub fn series(&mut self, steps: usize, make: impl Fn(usize) -> Result<Vec<u8>>) -> Result<()> {
+        let mut collection = Vec::new();
+        for k in 0..steps {
+            let name = format!("solution-{:04}.vtu", k + 1);
+            self.timed("solution-NNNN.vtu", |dir| write_atomic(&dir.join(&name), &make(k)?))?;
+            collection.push((k + 1, name));
+        }
+        self.file("solution.pvd", || Ok(pvd(&collection).into_bytes()))
+    }
 }
 
 /// Writes DIR/summary.json.
 pub fn write_summary(out: &Path, summary: &serde_json::Value) -> Result<()> {
-    let json = serde_json::to_string_pretty(summary)
-        .map_err(|e| Error::Input(format!("summary.json cannot be written: {e}")))?;
-    write_atomic(&out.join("summary.json"), json.as_bytes())
+    write_atomic(&out.join("summary.json"), &summary_json(summary)?)
+}
+
+/// The bytes of summary.json.
+pub fn summary_json(summary: &serde_json::Value) -> Result<Vec<u8>> {
+    serde_json::to_vec_pretty(summary)
+        .map_err(|e| Error::Input(format!("summary.json cannot be written: {e}")))
 }
 
 /// The solution as a ParaView file: point data u (3 components), phi and `extra`; cell data
@@ -246,16 +308,4 @@ pub fn solution_vtu(
         ],
         encoding,
     ))
-}
-
-/// The series of a loading path: solution-NNNN.vtu per step (its VTU bytes, numbered from 1)
-/// and solution.pvd, which ParaView opens as one animation.
-pub fn write_series(out: &Path, steps: impl Iterator<Item = Result<Vec<u8>>>) -> Result<()> {
-    let mut collection = Vec::new();
-    for (k, vtu) in steps.enumerate() {
-        let name = format!("solution-{:04}.vtu", k + 1);
-        write_atomic(&out.join(&name), &vtu?)?;
-        collection.push((k + 1, name));
-    }
-    write_atomic(&out.join("solution.pvd"), pvd(&collection).as_bytes())
 }

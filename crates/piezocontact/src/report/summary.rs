@@ -187,12 +187,26 @@ pub fn memory(t: &Timings) -> Value {
     })
 }
 
-/// The `timings_seconds` object of summary.json (without the total).
+/// Completes the `timings_seconds` of a run of `built`: `files`, each file's (or series')
+/// wall time as `written` lists them (empty before the files are written), `total`, the wall
+/// time since the run began (`built.started`), and `other`, the part of it no phase holds:
+/// total − case − solver − files \[s\].
+pub fn close_timings(summary: &mut Value, built: &Built, written: &[(String, f64)]) {
+    let total = built.started.elapsed().as_secs_f64();
+    let t = &mut summary["timings_seconds"];
+    let phases: f64 = ["case", "solver"].iter().filter_map(|k| t[*k].as_f64()).sum();
+    let files: f64 = written.iter().map(|(_, s)| s).sum();
+    t["files"] = Value::Object(written.iter().map(|(k, s)| (k.clone(), json!(s))).collect());
+    t["total"] = json!(total);
+    t["other"] = json!(total - phases - files);
+}
+
+/// The `timings_seconds` object of a solve in summary.json (without the run's phases).
 pub fn timings(t: &Timings) -> Value {
     let s = &t.solver;
     json!({
         "pattern": t.pattern, "assembly": t.assembly, "symbolic": s.symbolic_seconds,
         "numeric": s.numeric_seconds, "numeric_count": s.numeric_count, "solve": s.solve_seconds,
-        "solve_count": s.solve_count, "dense": t.dense,
+        "solve_count": s.solve_count, "dense": t.dense, "assessment": t.assessment,
     })
 }

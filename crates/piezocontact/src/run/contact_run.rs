@@ -7,7 +7,7 @@ use crate::contact::ContactModel;
 use crate::error::{Error, Result};
 use crate::linalg::LinearSolver;
 use crate::output::fields::ContactFields;
-use crate::output::files;
+use crate::output::files::Outputs;
 use crate::output::plot::{self, ContactView, MapLabels};
 use crate::output::vtu::Encoding;
 use crate::report::summary::{
@@ -50,10 +50,12 @@ impl ContactRun {
     pub(super) fn new(
         built: &Built,
         model: ContactModel,
-        solution: ContactSolution,
+        mut solution: ContactSolution,
         start: Instant,
     ) -> Self {
+        let table = Instant::now();
         let rows = report::rows(&built.problem, &model, &solution);
+        solution.timings.assessment += table.elapsed().as_secs_f64();
         Self { model, solution, rows, seconds: start.elapsed().as_secs_f64() }
     }
 
@@ -98,7 +100,7 @@ impl ContactRun {
     pub fn summary(&self, built: &Built) -> Value {
         let mut summary = common_summary(built, &self.solution.dofs);
         merge(&mut summary, contact_summary(&self.model, &self.solution, &self.rows));
-        summary["timings_seconds"]["total"] = json!(self.seconds);
+        summary["timings_seconds"]["solver"] = json!(self.seconds);
         summary["timings_seconds"]["case"] = json!(built.seconds);
         summary["warnings"] = json!(built.warnings);
         summary["method"] = json!(built.method_name());
@@ -112,35 +114,29 @@ impl ContactRun {
         summary
     }
 
-    /// Writes the files of the run into `out`: contact.csv, summary.json and solution.vtu,
-    /// and for a 3D body the map of Γ3 (contact_map.png and .svg).
-    pub fn write(&self, built: &Built, out: &Path, vtu: Encoding) -> Result<()> {
-        self.write_with(built, (out, vtu), &self.summary(built))
+    /// Writes the run's files into `out` (created if needed) as [`crate::run::Run::write`]
+    /// does for one contact solve (a sweep's runs); returns summary.json's document.
+    pub fn write(&self, built: &Built, out: &Path, vtu: Encoding) -> Result<Value> {
+        let mut outputs = Outputs::new(out, vtu)?;
+        self.write_files(built, &mut outputs)?;
+        outputs.finish(built, self.summary(built))
     }
 
-    /// [`ContactRun::write`] with `summary` as summary.json (a loading path's).
-    pub(super) fn write_with(
-        &self,
-        built: &Built,
-        (out, vtu): (&Path, Encoding),
-        summary: &Value,
-    ) -> Result<()> {
-        std::fs::create_dir_all(out).map_err(|e| Error::Io {
-            what: format!("cannot create {}", out.display()),
-            cause: e.to_string(),
-        })?;
+    /// Writes the files of the run but summary.json into `outputs`: contact.csv and
+    /// solution.vtu, and for a 3D body the map of Γ3 (contact_map.png and .svg).
+    pub(super) fn write_files(&self, built: &Built, outputs: &mut Outputs) -> Result<()> {
         let (problem, solution) = (&built.problem, &self.solution);
+        let dim = problem.mesh.dim();
+        outputs.file("contact.csv", || Ok(report::contact_csv(&self.rows, dim).into_bytes()))?;
         let fields = ContactFields::new(&problem.mesh, &solution.surface, &self.rows);
-        let csv = report::contact_csv(&self.rows, problem.mesh.dim());
-        files::write_atomic(&out.join("contact.csv"), csv.as_bytes())?;
-        let extra = fields.fields();
-        let state = (&solution.dofs, solution.x.as_slice());
-        files::write_results(out, summary, problem, state, &extra, vtu)?;
-        if problem.mesh.dim() == 3 {
+        outputs.solution(problem, (&solution.dofs, &solution.x), &fields.fields())?;
+        if dim == 3 {
             let units = &built.units;
             let title = if built.title.is_empty() { "Γ3" } else { built.title.as_str() };
             let labels = MapLabels { title, length: &units.length, stress: &units.stress };
-            plot::contact_map(&self.view(built), &labels, &out.join("contact_map"))?;
+            outputs.timed("contact_map", |dir| {
+                plot::contact_map(&self.view(built), &labels, &dir.join("contact_map"))
+            })?;
         }
         Ok(())
     }

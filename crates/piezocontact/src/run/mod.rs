@@ -20,8 +20,10 @@ use crate::case::Built;
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::LinearSolver;
+use crate::output::files::Outputs;
 use crate::output::vtu::Encoding;
 use crate::report::Column;
+use crate::report::summary::close_timings;
 use serde_json::Value;
 use std::path::Path;
 
@@ -69,8 +71,15 @@ impl Run {
         }
     }
 
-    /// The summary.json document.
+    /// The summary.json document, its timings up to now (before the files are written).
     pub fn summary(&self, built: &Built) -> Value {
+        let mut summary = self.solve_summary(built);
+        close_timings(&mut summary, built, &[]);
+        summary
+    }
+
+    /// The summary.json document of the solve, without the run's total time.
+    fn solve_summary(&self, built: &Built) -> Value {
         match (self, &built.loading) {
             (Self::Static(run), _) => run.summary(built),
             (Self::Contact(run), _) => run.summary(built),
@@ -83,17 +92,18 @@ impl Run {
     /// Writes the run's files into `out` (created if needed): summary.json and solution.vtu;
     /// with contact contact.csv (and the map of Γ3 in 3D); on a path curve.csv, the steps'
     /// solution-NNNN.vtu with solution.pvd and the curves' figure; the .vtu files in `vtu`'s
-    /// encoding (ParaView's binary one by default).
-    pub fn write(&self, built: &Built, out: &Path, vtu: Encoding) -> Result<()> {
-        let summary = self.summary(built);
-        let to = (out, vtu);
+    /// encoding (ParaView's binary one by default). summary.json comes last, with the time
+    /// each other file took; it is returned.
+    pub fn write(&self, built: &Built, out: &Path, vtu: Encoding) -> Result<Value> {
+        let mut outputs = Outputs::new(out, vtu)?;
         match (self, &built.loading) {
-            (Self::Static(run), _) => run.write(built, to, &summary),
-            (Self::Contact(run), _) => run.write_with(built, to, &summary),
-            (Self::Path(path), Some(loading)) => path.write((built, loading), to, &summary),
-            (Self::Path(path), None) => path.last.write_with(built, to, &summary),
-            (Self::StaticPath(path), _) => path.write(built, to, &summary),
-        }
+            (Self::Static(run), _) => run.write_files(built, &mut outputs),
+            (Self::Contact(run), _) => run.write_files(built, &mut outputs),
+            (Self::Path(path), Some(loading)) => path.write_files((built, loading), &mut outputs),
+            (Self::Path(path), None) => path.last.write_files(built, &mut outputs),
+            (Self::StaticPath(path), _) => path.write_files(built, &mut outputs),
+        }?;
+        outputs.finish(built, self.solve_summary(built))
     }
 
     /// The contact run: the run itself, or the last step of a path; `None` without contact.

@@ -10,13 +10,11 @@ use crate::contact::{ContactModel, LoadStep, Loading};
 use crate::error::{Error, Result};
 use crate::linalg::LinearSolver;
 use crate::output::fields::ContactFields;
-use crate::output::files;
+use crate::output::files::{self, Outputs};
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
-use crate::output::vtu::Encoding;
 use crate::report::{self, Column, CurveRow, Row, columns_csv, curve_columns};
 use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
-use std::path::Path;
 use std::time::Instant;
 
 /// A loading path solved step after step.
@@ -129,27 +127,28 @@ impl PathRun {
     }
 
     /// Writes the last step's files (contact.csv, solution.vtu, the 3D contact map),
-    /// `summary` as summary.json, curve.csv, solution-NNNN.vtu per step with solution.pvd,
-    /// and the curves' figure (curve.png and .svg).
-    pub(super) fn write(
+    /// curve.csv, solution-NNNN.vtu per step with solution.pvd, and the curves' figure
+    /// (curve.png and .svg) into `outputs`.
+    pub(super) fn write_files(
         &self,
         (built, loading): (&Built, &Loading),
-        (out, vtu): (&Path, Encoding),
-        summary: &Value,
+        outputs: &mut Outputs,
     ) -> Result<()> {
-        self.last.write_with(built, (out, vtu), summary)?;
+        self.last.write_files(built, outputs)?;
         let problem = &built.problem;
         let mut parts = Self::electrodes(built);
         parts.extend(Self::driven_electrodes(built));
-        let csv = columns_csv(&self.columns(built), self.curve.len());
-        files::write_atomic(&out.join("curve.csv"), csv.as_bytes())?;
-        let solution = &self.last.solution;
-        let steps = self.states.iter().map(|(x, rows)| {
+        let csv = || Ok(columns_csv(&self.columns(built), self.curve.len()).into_bytes());
+        outputs.file("curve.csv", csv)?;
+        let (solution, vtu) = (&self.last.solution, outputs.vtu);
+        let step = |k: usize| {
+            let (x, rows) = &self.states[k];
             let fields = ContactFields::new(&problem.mesh, &solution.surface, rows);
             files::solution_vtu(problem, &solution.dofs, x, &fields.fields(), vtu)
-        });
-        files::write_series(out, steps)?;
-        plot::panels(&self.figures((built, loading), &parts), &out.join("curve"))
+        };
+        outputs.series(self.states.len(), step)?;
+        let figures = self.figures((built, loading), &parts);
+        outputs.timed("curve", |dir| plot::panels(&figures, &dir.join("curve")))
     }
 
     /// The curves against the depth (against the load factor when the foundation does not

@@ -9,15 +9,13 @@ use crate::case::Built;
 use crate::contact::Loading;
 use crate::error::Result;
 use crate::linalg::LinearSolver;
-use crate::output::files;
+use crate::output::files::{self, Outputs};
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
-use crate::output::vtu::Encoding;
 use crate::problem::Factors;
 use crate::report::{Column, StaticCurveRow, columns_csv, static_curve_columns};
 use crate::system::{StaticSolution, solve_without_contact, solve_without_contact_at};
 use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
-use std::path::Path;
 use std::time::Instant;
 
 /// A loading path without contact, solved.
@@ -112,22 +110,17 @@ impl StaticPathRun {
         summary
     }
 
-    /// Writes the last step's summary.json (`summary`) and solution.vtu, curve.csv,
-    /// solution-NNNN.vtu per step with solution.pvd, and the curves' figure (curve.png/.svg).
-    pub(super) fn write(
-        &self,
-        built: &Built,
-        (out, vtu): (&Path, Encoding),
-        summary: &Value,
-    ) -> Result<()> {
-        self.last.write(built, (out, vtu), summary)?;
+    /// Writes the last step's solution.vtu, curve.csv, solution-NNNN.vtu per step with
+    /// solution.pvd, and the curves' figure (curve.png/.svg) into `outputs`.
+    pub(super) fn write_files(&self, built: &Built, outputs: &mut Outputs) -> Result<()> {
+        self.last.write_files(built, outputs)?;
         let problem = &built.problem;
-        let csv = columns_csv(&self.columns(built), self.curve.len());
-        files::write_atomic(&out.join("curve.csv"), csv.as_bytes())?;
-        let dofs = &self.last.solution.dofs;
-        let steps = self.states.iter().map(|x| files::solution_vtu(problem, dofs, x, &[], vtu));
-        files::write_series(out, steps)?;
-        plot::panels(&self.figures(built), &out.join("curve"))
+        let csv = || Ok(columns_csv(&self.columns(built), self.curve.len()).into_bytes());
+        outputs.file("curve.csv", csv)?;
+        let (dofs, vtu) = (&self.last.solution.dofs, outputs.vtu);
+        let step = |k: usize| files::solution_vtu(problem, dofs, &self.states[k], &[], vtu);
+        outputs.series(self.states.len(), step)?;
+        outputs.timed("curve", |dir| plot::panels(&self.figures(built), &dir.join("curve")))
     }
 
     /// The clamps' reaction and the electrodes' charges against the load factor.
