@@ -160,8 +160,7 @@ impl LdltSolver {
     }
 
     /// The symbolic analysis with the solver's ordering (for [`Ordering::Auto`], nested
-    /// dissection on a 3D pattern, else the one of AMD and nested dissection whose factor is
-    /// smaller), and the ordering's name. A factor
+    /// dissection where [`ordering::nested_pays`], else AMD), and the ordering's name. A factor
     /// whose trailing block is read (unknowns kept last) is supernodal.
     fn ordered_symbolic(
         &self,
@@ -192,13 +191,8 @@ impl LdltSolver {
                     "a custom ordering cannot keep unknowns last for a Schur complement".into(),
                 ));
             }
-            Ordering::Auto if ordering::three_dimensional(pattern) => (nd()?, "nd"),
-            Ordering::Auto => {
-                // Both analyses at once: they share nothing but the pattern.
-                let (by_nd, by_amd) = rayon::join(nd, amd);
-                let (by_nd, by_amd) = (by_nd?, by_amd?);
-                if by_nd.len_val() < by_amd.len_val() { (by_nd, "nd") } else { (by_amd, "amd") }
-            }
+            Ordering::Auto if ordering::nested_pays(pattern) => (nd()?, "nd"),
+            Ordering::Auto => (amd()?, "amd"),
         })
     }
 

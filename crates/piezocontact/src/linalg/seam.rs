@@ -13,9 +13,11 @@ use crate::error::Result;
 pub enum Ordering {
     /// Nested dissection straight away for the pattern of a 3D mesh (more than
     /// [`super::ordering::DENSE_ROWS`] stored entries per row of the lower half; about 30 for P1
-    /// tetrahedra, 11 for triangles), where it gave the smaller factor in every measurement;
-    /// otherwise both symbolic analyses, AMD's and nested dissection's, and the one with the
-    /// smaller factor.
+    /// tetrahedra, 11 for triangles), where it gave the smaller factor and the faster run in
+    /// every measurement; nested dissection too for a 2D pattern of at least
+    /// [`super::ordering::NESTED_2D`] unknowns whose numbering has no locality (a Gmsh
+    /// mesh's); otherwise AMD, one analysis either way ([`super::ordering::nested_pays`],
+    /// model §13).
     #[default]
     Auto,
     /// Approximate minimum degree.
