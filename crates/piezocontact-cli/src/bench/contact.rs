@@ -7,6 +7,7 @@ use crate::say;
 use anyhow::{Result, anyhow};
 use piezocontact::case::Case;
 use std::path::Path;
+use std::time::Instant;
 
 /// The default sizes of the contact benchmark.
 pub const CONTACT_SIZES: [&str; 4] = ["96x16", "192x32", "384x64", "768x128"];
@@ -67,16 +68,20 @@ pub fn contact(targets: &[String]) -> Result<()> {
         .map(|t| Ok(contact_problems(t)?.into_iter().map(|(name, _)| name).collect()))
         .collect::<Result<_>>()?;
     say!(
-        "{:>10} {:>9} {:>11} {:>11} {:>7} {:>12} {:>9} {:>14} {:>8} {:>9} {:>15} {:>9}",
+        "{:>10} {:>9} {:>11} {:>11} {:>7} {:>12} {:>8} {:>8} {:>8} {:>8} {:>15} {:>7} {:>7} {:>8} {:>16} {:>9}",
         "mesh",
         "DOFs",
         "problem",
         "condensed",
         "newton",
         "kkt_residual",
-        "wall_s",
+        "run_s",
+        "total_s",
+        "solve_s",
+        "files_s",
         "factorisation_s",
         "ratio",
+        "solve_r",
         "peak_MB",
         "factorisation_MB",
         "mem_ratio"
@@ -87,18 +92,24 @@ pub fn contact(targets: &[String]) -> Result<()> {
         let size =
             Path::new(target).file_name().map_or(target.clone(), |n| n.to_string_lossy().into());
         for (k, name) in names.into_iter().enumerate() {
+            let start = Instant::now();
             let run = in_child(&format!("contact{k},{target}"), false)?;
+            let wall = start.elapsed().as_secs_f64();
             let (seconds, mb) = (run.get("seconds")?, run.get("peak_mb")?);
             say!(
-                "{:>10} {:>9} {:>11} {:>11} {:>7} {:>12.3e} {:>9.3} {:>14.3} {:>8.2} {:>9.0} {:>15.0} {:>9.2}",
+                "{:>10} {:>9} {:>11} {:>11} {:>7} {:>12.3e} {:>8.3} {:>8.3} {:>8.3} {:>8.3} {:>15.3} {:>7.2} {:>7.2} {:>8.0} {:>16.0} {:>9.2}",
                 size,
                 run.get("dofs")?,
                 name,
                 format!("{}/{}", run.get("condensed")?, run.get("gamma3")?),
                 run.get("newton")?,
                 run.get("kkt")?,
+                wall,
+                run.get("total")?,
                 seconds,
+                run.get("files")?,
                 plain_s,
+                wall / plain_s,
                 seconds / plain_s,
                 mb,
                 plain_mb,
@@ -107,12 +118,17 @@ pub fn contact(targets: &[String]) -> Result<()> {
         }
     }
     say!(
-        "condensed: Γ3 nodes in the exact solver's dense problem / all Γ3 nodes; wall_s: \
-         solve_contact with solver.method = \"newton\" (pattern, ordering, factorisations, \
-         Schur complement, Newton, two solves per factorisation, KKT residual); factorisation_s: one plain \
-         pattern + assembly + symbolic + numeric LDLᵀ of the same mesh, the floor; both with \
-         solver.ordering = \"auto\" (nested dissection in 3D) on {} \
-         threads in 3D (one in 2D); peak_MB: the process's peak resident memory; ratios: contact / factorisation",
+        "condensed: Γ3 nodes in the exact solver's dense problem / all Γ3 nodes; run_s: the wall \
+         time of a process that runs the case as `piezocontact run` does with solver.method = \
+         \"newton\" — the case's mesh and checks, the solve, its assessment and its files \
+         (written to a temporary directory, the .vtu in binary) —, measured outside it; \
+         total_s: its summary.json's total (from its start to summary.json); solve_s: the solve within it (pattern, ordering, factorisations, Schur complement, \
+         Newton, solves, KKT residual, the Γ3 table); files_s: the writing of its files; \
+         factorisation_s: one plain pattern + assembly + symbolic + numeric LDLᵀ of the same \
+         mesh in a process of its own, the floor; both with solver.ordering = \"auto\" on {} \
+         threads in 3D (one in 2D); ratio: run_s / factorisation_s; solve_r: solve_s / \
+         factorisation_s; peak_MB: the process's peak resident memory; mem_ratio: contact / \
+         factorisation",
         rayon::current_num_threads()
     );
     Ok(())
