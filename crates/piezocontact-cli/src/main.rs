@@ -10,7 +10,7 @@ use piezocontact::mesh::gmsh;
 use piezocontact::output::files as output;
 use piezocontact::output::vtu::Encoding;
 use piezocontact::report::summary::refusal_summary;
-use piezocontact::run::Run;
+use piezocontact::run::{Run, StepFiles};
 use piezocontact_cli::progress::Reporter;
 use piezocontact_cli::{bench, print, processes, reproduce, sweep};
 use piezocontact_cli::{say, say_err};
@@ -486,7 +486,11 @@ fn run_case(
     let built = Built { started, ..case.build()? };
     let reporter = Reporter::new(built.method_name(), interval);
     let progress = |event| reporter.event(event);
-    let solved = built.linear_solver().and_then(|solver| Run::solve(&built, solver, &progress));
+    // A path's steps are written while the next one solves, by the process that writes.
+    let files = processes::is_root().then_some(StepFiles { dir: out, vtu });
+    let solved = built
+        .linear_solver()
+        .and_then(|solver| Run::solve_writing(&built, (solver, &progress), files));
     drop(reporter);
     let run = solved.map_err(|e| refused(&built, out, e))?;
     let summary = processes::is_root().then(|| run.write(&built, out, vtu)).transpose()?;

@@ -304,6 +304,10 @@ pub fn timings(summary: &serde_json::Value) {
     for (name, s) in t["files"].as_object().into_iter().flatten() {
         line(&format!("writing {name}"), s.as_f64().unwrap_or(0.0));
     }
+    for (name, s) in t["files_meanwhile"].as_object().into_iter().flatten() {
+        let s = s.as_f64().unwrap_or(0.0);
+        say!("    {:<28} {s:>9.3} s (while the solve went on)", format!("writing {name}"));
+    }
     line("other", seconds("other"));
     line("total", total);
 }

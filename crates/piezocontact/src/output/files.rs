@@ -191,6 +191,8 @@ pub struct Outputs<'a> {
     /// The encoding of the .vtu files.
     pub vtu: Encoding,
     seconds: Vec<(String, f64)>,
+    /// Files written on a thread of their own while the solve went on, and their time.
+    meanwhile: Vec<(String, f64)>,
 }
 
 impl<'a> Outputs<'a> {
@@ -198,7 +200,7 @@ impl<'a> Outputs<'a> {
     pub fn new(dir: &'a Path, vtu: Encoding) -> Result<Self> {
         std::fs::create_dir_all(dir)
             .map_err(io(format!("cannot create the output directory {}", dir.display())))?;
-        Ok(Self { dir, vtu, seconds: Vec::new() })
+        Ok(Self { dir, vtu, seconds: Vec::new(), meanwhile: Vec::new() })
     }
 
     /// Writes DIR/`name` with the bytes `make` returns.
@@ -218,10 +220,16 @@ impl<'a> Outputs<'a> {
         Ok(())
     }
 
+    /// Records the files `key` names, written on a thread of their own while the solve went
+    /// on, in `seconds` of that thread's time.
+    pub fn written_meanwhile(&mut self, key: &str, seconds: f64) {
+        self.meanwhile.push((key.to_string(), seconds));
+    }
+
     /// Writes summary.json last: the solve's `summary` of a run of `built` with the run's
     /// timings closed by the files written ([`close_timings`]); returns it.
     pub fn finish(mut self, built: &Built, mut summary: Value) -> Result<Value> {
-        close_timings(&mut summary, built, &self.seconds);
+        close_timings(&mut summary, built, &self.seconds, &self.meanwhile);
         self.file("summary.json", || summary_json(&summary))?;
         Ok(summary)
     }
@@ -238,17 +246,29 @@ impl<'a> Outputs<'a> {
     }
 
     /// The series of a loading path: solution-NNNN.vtu for each of its `steps` (`make(k)`
-    /// the VTU bytes of step k, from 0; files numbered from 1) and solution.pvd, which
-    /// ParaView opens as one animation.
-    pub fn series(&mut self, steps: usize, make: impl Fn(usize) -> Result<Vec<u8>>) -> Result<()> {
+    /// the VTU bytes of step k, from 0; files numbered from 1; without `make`, written
+    /// already) and solution.pvd, which ParaView opens as one animation.
+    pub fn series(
+        &mut self,
+        steps: usize,
+        make: Option<&dyn Fn(usize) -> Result<Vec<u8>>>,
+    ) -> Result<()> {
         let mut collection = Vec::new();
         for k in 0..steps {
-            let name = format!("solution-{:04}.vtu", k + 1);
-            self.timed("solution-NNNN.vtu", |dir| write_atomic(&dir.join(&name), &make(k)?))?;
+            let name = step_name(k);
+            if let Some(make) = make {
+                self.timed("solution-NNNN.vtu", |dir| write_atomic(&dir.join(&name), &make(k)?))?;
+            }
             collection.push((k + 1, name));
         }
         self.file("solution.pvd", || Ok(pvd(&collection).into_bytes()))
     }
+}
+
+/// The name of the .vtu file of step k (from 0) of a loading path: solution-NNNN.vtu,
+/// numbered from 1.
+pub fn step_name(k: usize) -> String {
+    format!("solution-{:04}.vtu", k + 1)
 }
 
 /// Writes DIR/summary.json.

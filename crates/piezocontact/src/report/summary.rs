@@ -188,15 +188,25 @@ pub fn memory(t: &Timings) -> Value {
 }
 
 /// Completes the `timings_seconds` of a run of `built`: `files`, each file's (or series')
-/// wall time as `written` lists them (empty before the files are written), `total`, the wall
-/// time since the run began (`built.started`), and `other`, the part of it no phase holds:
-/// total − case − solver − files \[s\].
-pub fn close_timings(summary: &mut Value, built: &Built, written: &[(String, f64)]) {
+/// wall time as `written` lists them (empty before the files are written); `files_meanwhile`,
+/// those written on a thread of their own while the solve went on, in that thread's time
+/// (outside the sum below); `total`, the wall time since the run began (`built.started`);
+/// and `other`, the part of it no phase holds: total − case − solver − files \[s\].
+pub fn close_timings(
+    summary: &mut Value,
+    built: &Built,
+    written: &[(String, f64)],
+    meanwhile: &[(String, f64)],
+) {
     let total = built.started.elapsed().as_secs_f64();
     let t = &mut summary["timings_seconds"];
+    let object = |list: &[(String, f64)]| {
+        Value::Object(list.iter().map(|(k, s)| (k.clone(), json!(s))).collect())
+    };
+    t["files_meanwhile"] = object(meanwhile);
     let phases: f64 = ["case", "solver"].iter().filter_map(|k| t[*k].as_f64()).sum();
     let files: f64 = written.iter().map(|(_, s)| s).sum();
-    t["files"] = Value::Object(written.iter().map(|(k, s)| (k.clone(), json!(s))).collect());
+    t["files"] = object(written);
     t["total"] = json!(total);
     t["other"] = json!(total - phases - files);
 }

@@ -11,7 +11,7 @@ pub mod static_path_run;
 pub mod static_run;
 
 pub use contact_run::ContactRun;
-pub use path_run::PathRun;
+pub use path_run::{PathRun, StepFiles};
 pub use static_path_run::StaticPathRun;
 pub use static_run::StaticRun;
 
@@ -48,9 +48,19 @@ impl Run {
         solver: Box<dyn LinearSolver>,
         progress: &(dyn Fn(Progress) + Sync),
     ) -> Result<Self> {
+        Self::solve_writing(built, (solver, progress), None)
+    }
+
+    /// [`Run::solve`], a contact path writing each step's solution-NNNN.vtu into `files` while
+    /// the next step solves (what [`Run::write`] into the same directory then keeps).
+    pub fn solve_writing(
+        built: &Built,
+        (solver, progress): (Box<dyn LinearSolver>, &(dyn Fn(Progress) + Sync)),
+        files: Option<StepFiles>,
+    ) -> Result<Self> {
         match (&built.model, &built.loading) {
             (Some(model), Some(loading)) => {
-                PathRun::solve(built, (model, loading), solver, progress).map(Self::Path)
+                PathRun::solve(built, (model, loading), (solver, progress), files).map(Self::Path)
             }
             (Some(model), None) => {
                 ContactRun::solve(built, model, solver, progress).map(Self::Contact)
@@ -74,7 +84,7 @@ impl Run {
     /// The summary.json document, its timings up to now (before the files are written).
     pub fn summary(&self, built: &Built) -> Value {
         let mut summary = self.solve_summary(built);
-        close_timings(&mut summary, built, &[]);
+        close_timings(&mut summary, built, &[], &[]);
         summary
     }
 

@@ -6,15 +6,21 @@
 use super::contact_run::ContactRun;
 use crate::algorithm::{ContactSolution, ContactSolver, Progress};
 use crate::case::Built;
+use crate::contact::ContactSurface;
 use crate::contact::{ContactModel, LoadStep, Loading};
+use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::LinearSolver;
 use crate::output::fields::ContactFields;
 use crate::output::files::{self, Outputs};
 use crate::output::plot::{self, LinePlot, PALETTE, Series};
+use crate::output::vtu::Encoding;
+use crate::problem::Problem;
 use crate::report::{self, Column, CurveRow, Row, columns_csv, curve_columns};
 use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, Sender, channel};
 use std::time::Instant;
 
 /// A loading path solved step after step.
@@ -28,17 +34,79 @@ pub struct PathRun {
     pub last: ContactRun,
     /// Why the path stopped before its end: the step and the reason.
     pub failure: Option<String>,
+    /// The steps' solution-NNNN.vtu written while the path went on, where it was asked to.
+    written: Option<Box<Written>>,
+}
+
+/// Where a path writes each step's solution-NNNN.vtu as soon as it is solved, on a thread of
+/// its own while the next step solves: the output directory and the encoding.
+#[derive(Clone, Copy, Debug)]
+pub struct StepFiles<'a> {
+    /// The output directory (created before the solve).
+    pub dir: &'a Path,
+    /// The encoding of the .vtu files.
+    pub vtu: Encoding,
+}
+
+/// What the steps' writer did: where, how many steps, the time it spent \[s\], or why it
+/// stopped.
+struct Written {
+    dir: PathBuf,
+    vtu: Encoding,
+    steps: Result<usize>,
+    seconds: f64,
+}
+
+/// One solved step for the writer: its number (from 0), x, its Γ3 rows, its DOF map and Γ3.
+type Step = (usize, Vec<f64>, Vec<Row>, DofMap, ContactSurface);
+
+/// Writes each step received into `files` until the path closes the channel: what it did.
+fn write_steps(problem: &Problem, files: StepFiles, steps: Receiver<Step>) -> Written {
+    let (mut count, mut seconds) = (0, 0.0);
+    let mut write = |(k, x, rows, dofs, surface): Step| -> Result<()> {
+        let start = Instant::now();
+        let fields = ContactFields::new(&problem.mesh, &surface, &rows);
+        let bytes = files::solution_vtu(problem, &dofs, &x, &fields.fields(), files.vtu)?;
+        files::write_atomic(&files.dir.join(files::step_name(k)), &bytes)?;
+        (count, seconds) = (count + 1, seconds + start.elapsed().as_secs_f64());
+        Ok(())
+    };
+    let steps = steps.into_iter().try_for_each(&mut write).map(|_| count);
+    Written { dir: files.dir.to_path_buf(), vtu: files.vtu, steps, seconds }
 }
 
 impl PathRun {
     /// Solves the steps of `loading` in order with the caller's `solver`, each from the last;
     /// stops at the first step that does not converge (kept, marked) or fails (the steps
-    /// before it kept). An error when the first step fails.
+    /// before it kept). An error when the first step fails. With `files`, each step's
+    /// solution-NNNN.vtu is written while the next one solves.
     pub(super) fn solve(
         built: &Built,
         (model, loading): (&ContactModel, &Loading),
-        solver: Box<dyn LinearSolver>,
-        progress: &(dyn Fn(Progress) + Sync),
+        (solver, progress): (Box<dyn LinearSolver>, &(dyn Fn(Progress) + Sync)),
+        files: Option<StepFiles>,
+    ) -> Result<Self> {
+        let Some(files) = files else {
+            return Self::solve_steps(built, (model, loading), (solver, progress), None);
+        };
+        std::thread::scope(|scope| {
+            let (send, receive) = channel();
+            let writer = scope.spawn(move || write_steps(&built.problem, files, receive));
+            let path = Self::solve_steps(built, (model, loading), (solver, progress), Some(send));
+            let written = writer.join().map_err(|_| Error::Io {
+                what: format!("the steps' files in {}", files.dir.display()),
+                cause: "their writer stopped".into(),
+            });
+            Ok(Self { written: Some(Box::new(written?)), ..path? })
+        })
+    }
+
+    /// [`PathRun::solve`]: each step solved sent to `steps` where given.
+    fn solve_steps(
+        built: &Built,
+        (model, loading): (&ContactModel, &Loading),
+        (solver, progress): (Box<dyn LinearSolver>, &(dyn Fn(Progress) + Sync)),
+        steps: Option<Sender<Step>>,
     ) -> Result<Self> {
         let start = Instant::now();
         let problem = &built.problem;
@@ -62,6 +130,11 @@ impl PathRun {
             };
             let rows = report::rows(problem, &step_model, &solution);
             curve.push(CurveRow::new(k + 1, load, &solution, &rows));
+            if let Some(steps) = &steps {
+                let (dofs, surface) = (solution.dofs.clone(), solution.surface.clone());
+                // A writer that stopped has said why: the steps are written again at the end.
+                let _ = steps.send((k, solution.x.clone(), rows.clone(), dofs, surface));
+            }
             states.push((solution.x.clone(), rows));
             let stop = solution.failure.as_ref().map(|e| format!("{what} did not converge: {e}"));
             last = Some((step_model, solution));
@@ -73,7 +146,7 @@ impl PathRun {
         let (model, solution) =
             last.ok_or_else(|| Error::Input("a loading path without steps".into()))?;
         let last = ContactRun::new(built, model, solution, start);
-        Ok(Self { curve, states, last, failure })
+        Ok(Self { curve, states, last, failure, written: None })
     }
 
     /// The Γ3 rows of step k (from 0) of the steps solved.
@@ -140,13 +213,25 @@ impl PathRun {
         parts.extend(Self::driven_electrodes(built));
         let csv = || Ok(columns_csv(&self.columns(built), self.curve.len()).into_bytes());
         outputs.file("curve.csv", csv)?;
-        let (solution, vtu) = (&self.last.solution, outputs.vtu);
-        let step = |k: usize| {
-            let (x, rows) = &self.states[k];
-            let fields = ContactFields::new(&problem.mesh, &solution.surface, rows);
-            files::solution_vtu(problem, &solution.dofs, x, &fields.fields(), vtu)
-        };
-        outputs.series(self.states.len(), step)?;
+        let (solution, vtu, steps) = (&self.last.solution, outputs.vtu, self.states.len());
+        match &self.written {
+            Some(w)
+                if w.dir == outputs.dir
+                    && w.vtu == vtu
+                    && w.steps.as_ref().ok() == Some(&steps) =>
+            {
+                outputs.written_meanwhile("solution-NNNN.vtu", w.seconds);
+                outputs.series(steps, None)?;
+            }
+            _ => {
+                let step = |k: usize| {
+                    let (x, rows) = &self.states[k];
+                    let fields = ContactFields::new(&problem.mesh, &solution.surface, rows);
+                    files::solution_vtu(problem, &solution.dofs, x, &fields.fields(), vtu)
+                };
+                outputs.series(steps, Some(&step))?;
+            }
+        }
         let figures = self.figures((built, loading), &parts);
         outputs.timed("curve", |dir| plot::panels(&figures, &dir.join("curve")))
     }

@@ -119,7 +119,7 @@ impl StaticPathRun {
         outputs.file("curve.csv", csv)?;
         let (dofs, vtu) = (&self.last.solution.dofs, outputs.vtu);
         let step = |k: usize| files::solution_vtu(problem, dofs, &self.states[k], &[], vtu);
-        outputs.series(self.states.len(), step)?;
+        outputs.series(self.states.len(), Some(&step))?;
         outputs.timed("curve", |dir| plot::panels(&self.figures(built), &dir.join("curve")))
     }
 

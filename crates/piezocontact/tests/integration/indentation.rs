@@ -17,7 +17,7 @@ use piezocontact::oracles;
 use piezocontact::problem::{BodyLoads, Boundary, Problem};
 use piezocontact::report::CurveRow;
 use piezocontact::run::ContactRun;
-use piezocontact::run::{PathRun, Run};
+use piezocontact::run::{PathRun, Run, StepFiles};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -555,4 +555,36 @@ fn a_path_of_load_factors_scales_the_loads() {
         );
     }
     assert!((path.curve[2].force[1] / path.curve[0].force[1] - 1.0).abs() > 0.1);
+}
+
+/// A path that writes each step's solution-NNNN.vtu while the next step solves (as the
+/// command line does) writes the bytes that a path writing them at the end writes; its run's
+/// files, written into the same directory, keep them (not written again), and summary.json
+/// reports the writer's time apart (`files_meanwhile`), outside the sum that makes `total`.
+#[test]
+fn the_steps_written_during_a_path_are_those_written_after_it() {
+    let built = curve_case(&["loading.depths=[0.004, 0.008, 0.012]"]).build().unwrap();
+    let root = std::env::temp_dir().join(format!("piezocontact-steps-{}", std::process::id()));
+    let (during, after) = (root.join("during"), root.join("after"));
+    std::fs::create_dir_all(&during).unwrap();
+    let files = StepFiles { dir: &during, vtu: Default::default() };
+    let run = Run::solve_writing(&built, (default_solver(), &|_| {}), Some(files)).unwrap();
+    let names: Vec<String> = (1..=3).map(|k| format!("solution-{k:04}.vtu")).collect();
+    let read = |dir: &Path| -> Vec<Vec<u8>> {
+        names.iter().map(|n| std::fs::read(dir.join(n)).unwrap()).collect()
+    };
+    let modified = |dir: &Path| -> Vec<std::time::SystemTime> {
+        names.iter().map(|n| std::fs::metadata(dir.join(n)).unwrap().modified().unwrap()).collect()
+    };
+    let (written, times) = (read(&during), modified(&during));
+    let summary = run.write(&built, &during, Default::default()).unwrap();
+    assert_eq!(modified(&during), times);
+    let at_the_end = Run::solve(&built, default_solver(), &|_| {}).unwrap();
+    at_the_end.write(&built, &after, Default::default()).unwrap();
+    assert!(read(&after) == written, "the steps' files differ");
+    let t = &summary["timings_seconds"];
+    assert!(t["files_meanwhile"]["solution-NNNN.vtu"].as_f64().unwrap() > 0.0, "{t}");
+    assert!(t["files"].get("solution-NNNN.vtu").is_none(), "{t}");
+    assert!(t["files"]["solution.pvd"].as_f64().is_some(), "{t}");
+    std::fs::remove_dir_all(&root).unwrap();
 }
