@@ -40,9 +40,8 @@ pub struct LdltSolver {
     /// The ordering of the next analysis.
     ordering: Ordering,
     /// The threads of the numeric factorisation and the solves; `None`: the run's
-    /// [`super::parallelism`] on a 3D pattern, one thread on others (where the supernodes are
-    /// thin, two threads were slower than one: 0.65–0.75 s against 0.37–0.39 s on the paper's
-    /// bar at 768 × 128).
+    /// [`super::parallelism`] on a 3D pattern, and for the numeric factorisation of a 2D
+    /// pattern with a trailing block kept; one thread on others ([`LdltSolver::par`]).
     threads: Option<usize>,
     /// Whether the analysed pattern is a 3D mesh's ([`ordering::three_dimensional`]).
     three_dimensional: bool,
@@ -68,12 +67,26 @@ impl LdltSolver {
         Self { threads: Some(threads.max(1)), ..self }
     }
 
-    /// faer's parallelism with the solver's threads.
+    /// faer's parallelism of the solves with the solver's threads. A 2D mesh's supernodes
+    /// are thin: its solves run on one thread (two took 0.079–0.090 s against 0.072–0.077 s
+    /// on the paper's bar at 768 × 128, AMD).
     fn par(&self) -> Par {
         match self.threads {
             Some(threads) if threads > 1 => Par::rayon(threads),
             None if self.three_dimensional => parallelism(),
             _ => Par::Seq,
+        }
+    }
+
+    /// faer's parallelism of the numeric factorisation: as the solves', but on every thread
+    /// also for a 2D pattern whose trailing unknowns are kept for a Schur complement, whose
+    /// last supernode is then dense and wide (the exact solver on the paper's bar at 768 × 128:
+    /// 0.79–0.81 s on two threads against 0.96–0.97 s on one; without a trailing block 0.68–0.74
+    /// against 0.73–0.87 s, within the spread of runs).
+    fn numeric_par(&self) -> Par {
+        match self.threads {
+            None if self.last > 0 => parallelism(),
+            _ => self.par(),
         }
     }
 
@@ -129,6 +142,7 @@ impl LdltSolver {
         check_length("pivot signs", n, signs.len())?;
         let t = Instant::now();
         (self.symbolic, self.l_values, self.factorized) = (None, Vec::new(), false);
+        self.last = last.len();
         let (symbolic, name) = self.ordered_symbolic(pattern, last)?;
         self.three_dimensional = ordering::three_dimensional(pattern);
         let bytes = self.predicted_bytes(&symbolic, pattern);
@@ -204,7 +218,7 @@ impl LdltSolver {
         pattern: &SymmetricPattern,
     ) -> f64 {
         let scratch = symbolic
-            .factorize_numeric_ldlt_scratch::<f64>(self.par(), Default::default())
+            .factorize_numeric_ldlt_scratch::<f64>(self.numeric_par(), Default::default())
             .size_bytes();
         8.0 * symbolic.len_val() as f64 + scratch as f64 + 16.0 * pattern.nnz() as f64
     }
@@ -241,7 +255,6 @@ impl LinearSolver for LdltSolver {
     }
 
     fn analyze(&mut self, pattern: &SymmetricPattern, signs: &[i8]) -> Result<()> {
-        self.last = 0;
         self.analyze_ordered(pattern, signs, &[])
     }
 
@@ -266,7 +279,7 @@ impl LinearSolver for LdltSolver {
                 }
             }
         }
-        let (params, par) = (Default::default(), self.par());
+        let (params, par) = (Default::default(), self.numeric_par());
         let symbolic = self.symbolic.take().ok_or_else(|| {
             Error::LinearAlgebra("factorisation before the symbolic analysis".into())
         })?;
@@ -359,10 +372,7 @@ impl SchurComplement for LdltSolver {
         signs: &[i8],
         last: &[usize],
     ) -> Result<()> {
-        self.last = 0;
-        self.analyze_ordered(pattern, signs, last)?;
-        self.last = last.len();
-        Ok(())
+        self.analyze_ordered(pattern, signs, last)
     }
 
     /// Reads L22 and D2 of the trailing block of P S A S Pᵀ = L D Lᵀ (S the diagonal scaling)
