@@ -75,6 +75,25 @@ fn write_steps(problem: &Problem, files: StepFiles, steps: Receiver<Step>) -> Wr
     Written { dir: files.dir.to_path_buf(), vtu: files.vtu, steps, seconds }
 }
 
+/// [`write_steps`] on a pool of one thread of its own: on the run's pool its parallel loops
+/// could wait for a thread that waits for the writer (the run on one thread, as under
+/// mpirun on as many processes as cores, deadlocked so). A pool that cannot be had: the
+/// steps are written at the end.
+fn on_a_pool_of_its_own(problem: &Problem, files: StepFiles, steps: Receiver<Step>) -> Written {
+    match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+        Ok(pool) => pool.install(|| write_steps(problem, files, steps)),
+        Err(e) => Written {
+            dir: files.dir.to_path_buf(),
+            vtu: files.vtu,
+            steps: Err(Error::Io {
+                what: format!("the steps' files in {}", files.dir.display()),
+                cause: format!("no thread for their writer: {e}"),
+            }),
+            seconds: 0.0,
+        },
+    }
+}
+
 impl PathRun {
     /// Solves the steps of `loading` in order with the caller's `solver`, each from the last;
     /// stops at the first step that does not converge (kept, marked) or fails (the steps
@@ -91,7 +110,7 @@ impl PathRun {
         };
         std::thread::scope(|scope| {
             let (send, receive) = channel();
-            let writer = scope.spawn(move || write_steps(&built.problem, files, receive));
+            let writer = scope.spawn(move || on_a_pool_of_its_own(&built.problem, files, receive));
             let path = Self::solve_steps(built, (model, loading), (solver, progress), Some(send));
             let written = writer.join().map_err(|_| Error::Io {
                 what: format!("the steps' files in {}", files.dir.display()),

@@ -588,3 +588,38 @@ fn the_steps_written_during_a_path_are_those_written_after_it() {
     assert!(t["files"]["solution.pvd"].as_f64().is_some(), "{t}");
     std::fs::remove_dir_all(&root).unwrap();
 }
+
+/// A path that writes its steps while it solves with every thread of the run's pool taken
+/// (as `--threads 1`, or each process under mpirun on as many processes as cores, where the
+/// run is the pool's one thread): the writer's parallel loops do not wait for a thread that
+/// waits for the writer (they did: the run hung at its last step).
+#[test]
+fn a_path_writing_its_steps_runs_on_a_pool_with_no_thread_free() {
+    let dir = std::env::temp_dir().join(format!("piezocontact-no-thread-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (done, finished) = std::sync::mpsc::channel();
+    let steps = dir.clone();
+    // A thread of its own, so that a hang fails the test instead of holding it.
+    std::thread::spawn(move || {
+        let built = curve_case(&["loading.depths=[0.004, 0.008]"]).build().unwrap();
+        let solved = std::sync::atomic::AtomicBool::new(false);
+        rayon::scope(|scope| {
+            // Every other thread of the pool held until the path is solved.
+            for _ in 1..rayon::current_num_threads() {
+                scope.spawn(|_| {
+                    while !solved.load(std::sync::atomic::Ordering::Acquire) {
+                        std::thread::sleep(std::time::Duration::from_millis(1));
+                    }
+                });
+            }
+            let files = StepFiles { dir: &steps, vtu: Default::default() };
+            let run = Run::solve_writing(&built, (default_solver(), &|_| {}), Some(files));
+            solved.store(true, std::sync::atomic::Ordering::Release);
+            let _ = done.send(run.is_ok());
+        });
+    });
+    let ok = finished.recv_timeout(std::time::Duration::from_secs(120));
+    assert_eq!(ok, Ok(true), "the path did not finish in 120 s");
+    assert!(dir.join("solution-0002.vtu").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
