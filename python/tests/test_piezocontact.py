@@ -329,6 +329,39 @@ def test_write_writes_the_files_of_run(tmp_path):
     assert not isinstance(error.value, ValueError)
 
 
+def test_meshio_reads_the_binary_vtu_as_the_ascii_one_bit_for_bit(tmp_path):
+    """ParaView's binary encoding (appended raw data) read by another reader, meshio: the same
+    points, cells and arrays as the ascii file, to the last bit, and u and ϕ those the solve
+    returns; on a 3D indentation with contact, so that the contact arrays are in it."""
+    meshio = pytest.importorskip("meshio")
+    case = ROOT / "cases" / "indentation-3d.toml"
+    solution = piezocontact.solve(case, {"mesh.file": "../meshes/indent-3d-h0.05.msh"})
+    solution.write(tmp_path / "binary")
+    solution.write(tmp_path / "ascii", vtu="ascii")
+    binary = meshio.read(tmp_path / "binary" / "solution.vtu")
+    text = meshio.read(tmp_path / "ascii" / "solution.vtu")
+
+    def same_bits(a, b):
+        a, b = np.asarray(a), np.asarray(b)
+        return a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
+
+    assert same_bits(binary.points, text.points)
+    assert same_bits(binary.points, solution.points)
+    assert [c.type for c in binary.cells] == [c.type for c in text.cells] == ["tetra"]
+    assert all(same_bits(b.data, t.data) for b, t in zip(binary.cells, text.cells))
+    assert sorted(binary.point_data) == sorted(text.point_data)
+    assert {"u", "phi", "contact_pressure"} <= set(binary.point_data)
+    for name, values in binary.point_data.items():
+        assert same_bits(values, text.point_data[name]), name
+    assert sorted(binary.cell_data) == sorted(text.cell_data)
+    assert {"sigma", "D"} <= set(binary.cell_data)
+    for name, blocks in binary.cell_data.items():
+        assert all(same_bits(b, t) for b, t in zip(blocks, text.cell_data[name])), name
+    assert same_bits(binary.point_data["u"], solution.u)
+    # meshio gives a one-component array as a column.
+    assert same_bits(binary.point_data["phi"].ravel(), solution.phi)
+
+
 def test_3d_solutions_write_the_contact_map(tmp_path):
     solution = piezocontact.solve(
         ROOT / "cases" / "indentation-3d.toml", {"mesh.file": "../meshes/indent-3d-h0.05.msh"}

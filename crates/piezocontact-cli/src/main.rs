@@ -143,7 +143,8 @@ struct BenchArgs {
     #[arg(long)]
     lu: bool,
     /// The fill-reducing orderings to measure, comma separated: amd, nd (METIS's nested
-    /// dissection), auto (nested dissection in 3D, else the smaller factor of both). Each runs on 1 thread and on all.
+    /// dissection), auto (nested dissection in 3D; in 2D AMD, or nested dissection from 100k
+    /// unknowns on a numbering without locality). Each runs on 1 thread and on all.
     #[arg(long, value_delimiter = ',', default_value = "amd,nd", value_parser = bench::factorisation::parse_ordering, conflicts_with = "contact")]
     ordering: Vec<piezocontact::linalg::Ordering>,
     /// Time the exact contact solver (newton) on PV1 and PV2 (µ = k_e = 0.2, 0.6) of the

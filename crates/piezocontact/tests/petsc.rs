@@ -279,3 +279,55 @@ fn floating_electrodes_are_faers_on_every_process_count() {
         }
     });
 }
+
+/// The iterative route of `solver.linear = "iterative"` at the default tolerance.
+fn krylov_solver() -> Box<dyn LinearSolver> {
+    Box::new(PetscSolver::iterative(petsc::KRYLOV_RTOL, petsc::KRYLOV_MAX_ITERATIONS).unwrap())
+}
+
+/// GMRES with the field split over u and ϕ and GAMG on each: the coupled system's solution
+/// to 1e−8 of faer's, in 2D (Hencky's law by secant steps, a solve each) and in 3D (the bar
+/// of cases/bar-3d.toml under its pressure, without contact).
+#[test]
+fn the_krylov_route_solves_the_coupled_system_as_faer_does() {
+    on_processes("the_krylov_route_solves_the_coupled_system_as_faer_does", || {
+        for name in ["paper-7.2.toml", "bar-3d.toml"] {
+            let problem = case(name, &[]).problem().unwrap();
+            let faer = solve_without_contact(&problem, Box::new(LdltSolver::new())).unwrap();
+            let krylov = solve_without_contact(&problem, krylov_solver()).unwrap();
+            let difference = relative_difference(&krylov.x, &faer.x);
+            assert!(difference < 1e-8, "{name}: ‖x_krylov − x_faer‖/‖x_faer‖ = {difference:e}");
+            assert!(krylov.timings.solver.solve_count >= 1);
+        }
+    });
+}
+
+/// Uzawa's method on the iterative route: Example 7.2's solution as with faer's LDLᵀ (to the
+/// Krylov tolerance carried through Uzawa's iterations).
+#[test]
+fn uzawa_on_the_krylov_route_is_faers() {
+    on_processes("uzawa_on_the_krylov_route_is_faers", || {
+        let built = case("paper-7.2.toml", &[]).build().unwrap();
+        let run = |solver| match Run::solve(&built, solver, &|_| {}).unwrap() {
+            Run::Contact(run) => run,
+            _ => panic!("not one contact run"),
+        };
+        let (faer, krylov) = (run(Box::new(LdltSolver::new())), run(krylov_solver()));
+        assert!(faer.solution.converged() && krylov.solution.converged());
+        let distance = krylov.distance_to(&built, &faer).unwrap();
+        assert!(distance < 1e-7, "‖x − x_faer‖_X/‖x_faer‖_X = {distance:e}");
+    });
+}
+
+/// A Krylov solve that stops short of its tolerance is an error that names its iterations
+/// and the options that change them.
+#[test]
+fn a_krylov_solve_short_of_its_tolerance_says_so() {
+    on_processes("a_krylov_solve_short_of_its_tolerance_says_so", || {
+        let problem = case("paper-7.2.toml", &[]).problem().unwrap();
+        let solver = Box::new(PetscSolver::iterative(1e-12, 2).unwrap());
+        let error = solve_without_contact(&problem, solver).unwrap_err().to_string();
+        assert!(error.contains("stopped after 2 iterations"), "{error}");
+        assert!(error.contains("-ksp_max_it"), "{error}");
+    });
+}

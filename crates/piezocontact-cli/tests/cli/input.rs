@@ -216,6 +216,30 @@ fn the_petsc_backend_is_refused_by_a_build_without_it() {
     }
 }
 
+/// solver.linear = "iterative" runs on PETSc and not under the exact solver: refused
+/// elsewhere, before any work, naming the key and what to set instead (in any build).
+#[test]
+fn the_iterative_route_is_refused_where_it_cannot_run() {
+    let iterative = ["--set", "solver.linear=\"iterative\""];
+    let petsc = ["--set", "solver.backend=\"petsc\""];
+    let newton = ["--set", "solver.method=\"newton\""];
+    let check = ["check", "cases/paper-7.2.toml"];
+    let cases: [(Vec<&str>, &str); 3] = [
+        ([&check[..], &iterative].concat(), "set solver.backend = \"petsc\" too"),
+        ([&check[..], &iterative, &petsc, &newton].concat(), "use solver.method = \"uzawa\""),
+        ([&check[..], &["--set", "solver.linear=\"krylov\""]].concat(), "iterative"),
+    ];
+    for (args, expected) in cases {
+        let output = piezocontact(&args);
+        let stderr = text(&output);
+        assert_eq!(output.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("solver.linear") && stderr.contains(expected),
+            "{args:?}: {stderr}"
+        );
+    }
+}
+
 /// solver.ordering is faer's: with the PETSc backend the case is warned that MUMPS orders
 /// the matrix itself.
 #[test]

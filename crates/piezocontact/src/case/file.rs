@@ -2,7 +2,7 @@
 //! the keys that messages name, and the choices of backend and method that it names.
 
 use super::overrides::{apply_override, key_line};
-use super::schema::{BackendKey, CaseFile, DEFAULTS, MethodKey, OrderingKey};
+use super::schema::{BackendKey, CaseFile, DEFAULTS, LinearKey, MethodKey, OrderingKey};
 use crate::error::{Error, Result};
 use crate::linalg::{LdltSolver, LinearSolver, Ordering};
 use std::path::{Path, PathBuf};
@@ -121,7 +121,9 @@ impl Case {
             OrderingKey::Nd => Ordering::NestedDissection,
             OrderingKey::Amd => Ordering::Amd,
         };
-        Linear { backend: self.file.solver.backend.unwrap_or(DEFAULTS.backend), ordering }
+        let backend = self.file.solver.backend.unwrap_or(DEFAULTS.backend);
+        let iterative = self.file.solver.linear == Some(LinearKey::Iterative);
+        Linear { backend, ordering, iterative }
     }
 
     /// The linear solver the case asks for ([`Case::linear`]), refused with the command that
@@ -132,8 +134,9 @@ impl Case {
     }
 
     /// Refuses `solver.backend = "petsc"` in a build without the PETSc backend, with the
-    /// command that builds it.
+    /// command that builds it, and `solver.linear = "iterative"` where it cannot run.
     pub(super) fn check_backend(&self) -> Result<()> {
+        self.check_linear()?;
         if cfg!(feature = "petsc") || self.file.solver.backend != Some(BackendKey::Petsc) {
             return Ok(());
         }
@@ -141,6 +144,28 @@ impl Case {
             "{}: solver.backend = \"petsc\" needs piezocontact built with the PETSc backend: install petsc-dev and openmpi-bin (Debian), then cargo build --release --features petsc; or use solver.backend = \"faer\"",
             self.locate("solver.backend")
         )))
+    }
+
+    /// `solver.linear = "iterative"` runs on PETSc, and not under the exact solver, which
+    /// reads a Schur complement off a factorisation.
+    fn check_linear(&self) -> Result<()> {
+        let s = &self.file.solver;
+        if s.linear != Some(LinearKey::Iterative) {
+            return Ok(());
+        }
+        if s.backend != Some(BackendKey::Petsc) {
+            return Err(Error::Input(format!(
+                "{}: solver.linear = \"iterative\" runs on PETSc's Krylov solvers: set solver.backend = \"petsc\" too, or use solver.linear = \"direct\"",
+                self.locate("solver.linear")
+            )));
+        }
+        if self.file.contact.is_some() && self.method_name() == "newton" {
+            return Err(Error::Input(format!(
+                "{}: the exact solver (solver.method = \"newton\") reads a Schur complement off a factorisation, which solver.linear = \"iterative\" does not make: use solver.method = \"uzawa\" with it, or solver.linear = \"direct\"",
+                self.locate("solver.linear")
+            )));
+        }
+        Ok(())
     }
 
     /// The name of the inner method the case chooses (`solver.method`).
@@ -159,6 +184,8 @@ pub struct Linear {
     pub backend: BackendKey,
     /// The fill-reducing ordering of faer's LDLᵀ.
     pub ordering: Ordering,
+    /// PETSc's Krylov solver instead of a factorisation (`solver.linear = "iterative"`).
+    pub iterative: bool,
 }
 
 impl Linear {
@@ -167,7 +194,7 @@ impl Linear {
     pub fn solver(&self) -> Result<Box<dyn LinearSolver>> {
         match self.backend {
             BackendKey::Faer => Ok(Box::new(LdltSolver::with_ordering(self.ordering.clone()))),
-            BackendKey::Petsc => petsc_solver(),
+            BackendKey::Petsc => petsc_solver(self.iterative),
         }
     }
 
@@ -180,13 +207,19 @@ impl Linear {
     }
 }
 
+/// PETSc + MUMPS, or PETSc's Krylov solver where `iterative`.
 #[cfg(feature = "petsc")]
-fn petsc_solver() -> Result<Box<dyn LinearSolver>> {
-    Ok(Box::new(crate::linalg::PetscSolver::new()?))
+fn petsc_solver(iterative: bool) -> Result<Box<dyn LinearSolver>> {
+    use crate::linalg::PetscSolver;
+    use crate::linalg::petsc::{KRYLOV_MAX_ITERATIONS, KRYLOV_RTOL};
+    Ok(Box::new(match iterative {
+        true => PetscSolver::iterative(KRYLOV_RTOL, KRYLOV_MAX_ITERATIONS)?,
+        false => PetscSolver::new()?,
+    }))
 }
 
 #[cfg(not(feature = "petsc"))]
-fn petsc_solver() -> Result<Box<dyn LinearSolver>> {
+fn petsc_solver(_iterative: bool) -> Result<Box<dyn LinearSolver>> {
     Err(Error::Input(
         "solver.backend = \"petsc\" needs piezocontact built with the PETSc backend (cargo build --features petsc)".into(),
     ))

@@ -642,8 +642,8 @@ pub enum MethodKey {
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum OrderingKey {
-    /// Nested dissection on a 3D mesh, else both symbolic analyses and the smaller factor
-    /// (the default).
+    /// The default: one analysis with the ordering the pattern calls for
+    /// ([`crate::linalg::Ordering::Auto`]).
     #[default]
     Auto,
     /// METIS's nested dissection of the mesh nodes.
@@ -662,6 +662,18 @@ pub enum BackendKey {
     /// PETSc's distributed matrix and MUMPS's LDLᵀ, on the processes of `mpirun` (a build
     /// with the cargo feature `petsc`).
     Petsc,
+}
+
+/// How the linear systems are solved, in the case file.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum LinearKey {
+    /// A sparse factorisation (the default).
+    #[default]
+    Direct,
+    /// PETSc's Krylov solvers with a field-split multigrid preconditioner
+    /// (`solver.backend = "petsc"`; Uzawa's method or a run without contact).
+    Iterative,
 }
 
 /// `[solver]`: the algorithms' parameters (model §7). Defaults: [`DEFAULTS`].
@@ -688,12 +700,17 @@ pub struct SolverSection {
     /// default: no cap but memory, from a first set of at most 2000 nodes.
     pub max_condensed: Option<usize>,
     /// The fill-reducing ordering of the factorisation: "auto" (default: nested dissection
-    /// on a 3D mesh, else AMD and nested dissection both analysed and the smaller factor
-    /// kept), "nd" or "amd".
+    /// on a 3D mesh; in 2D AMD, or nested dissection from 100k unknowns on a numbering
+    /// without locality: one analysis, model §13), "nd" or "amd".
     pub ordering: Option<OrderingKey>,
     /// The linear-solver backend: "faer" (default) or "petsc" (PETSc + MUMPS under
     /// mpirun; a build with the feature `petsc`).
     pub backend: Option<BackendKey>,
+    /// How the linear systems are solved: "direct" (default: a factorisation) or
+    /// "iterative" (PETSc's GMRES with a field split over u and ϕ and algebraic multigrid on
+    /// each; with solver.backend = "petsc", and solver.method = "uzawa" where there is
+    /// contact).
+    pub linear: Option<LinearKey>,
 }
 
 /// A whole case file.

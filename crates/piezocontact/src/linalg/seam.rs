@@ -102,6 +102,9 @@ pub trait Distributed {
     ) -> Result<Option<Vec<bool>>>;
     /// The sum of `value` over the processes.
     fn sum(&self, value: f64) -> Result<f64>;
+    /// The mesh nodes' coordinates, `dim` per node (given before the analysis), from which an
+    /// iterative backend makes the rigid-body modes of the elastic block; ignored by others.
+    fn node_coordinates(&mut self, _dim: usize, _coordinates: &[f64]) {}
 }
 
 /// What a backend that can condense does: eliminate every unknown but a given list, and give

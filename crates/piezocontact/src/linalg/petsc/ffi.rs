@@ -160,6 +160,41 @@ unsafe extern "C" {
     fn ISDestroy(is: *mut Handle) -> Code;
 }
 
+// Krylov solvers, preconditioners and the options database.
+unsafe extern "C" {
+    fn KSPCreate(comm: MpiHandle, ksp: *mut Handle) -> Code;
+    fn KSPSetOperators(ksp: Handle, a: Handle, p: Handle) -> Code;
+    fn KSPSetType(ksp: Handle, kind: *const c_char) -> Code;
+    fn KSPGetPC(ksp: Handle, pc: *mut Handle) -> Code;
+    fn KSPSetPCSide(ksp: Handle, side: c_int) -> Code;
+    fn KSPGMRESSetRestart(ksp: Handle, restart: PetscInt) -> Code;
+    fn KSPSetTolerances(ksp: Handle, rtol: f64, atol: f64, dtol: f64, its: PetscInt) -> Code;
+    fn KSPSetFromOptions(ksp: Handle) -> Code;
+    fn KSPSetUp(ksp: Handle) -> Code;
+    fn KSPSolve(ksp: Handle, b: Handle, x: Handle) -> Code;
+    fn KSPGetIterationNumber(ksp: Handle, its: *mut PetscInt) -> Code;
+    fn KSPGetConvergedReason(ksp: Handle, reason: *mut c_int) -> Code;
+    fn KSPGetResidualNorm(ksp: Handle, norm: *mut f64) -> Code;
+    fn KSPGetType(ksp: Handle, kind: *mut *const c_char) -> Code;
+    fn KSPDestroy(ksp: *mut Handle) -> Code;
+    fn PCSetType(pc: Handle, kind: *const c_char) -> Code;
+    fn VecCreateMPI(comm: MpiHandle, local: PetscInt, n: PetscInt, v: *mut Handle) -> Code;
+    fn VecSetBlockSize(v: Handle, bs: PetscInt) -> Code;
+    fn ISSetBlockSize(is: Handle, bs: PetscInt) -> Code;
+    fn MatNullSpaceCreateRigidBody(coordinates: Handle, space: *mut Handle) -> Code;
+    fn MatNullSpaceDestroy(space: *mut Handle) -> Code;
+    fn PetscObjectCompose(object: Handle, name: *const c_char, other: Handle) -> Code;
+    fn PCGetType(pc: Handle, kind: *mut *const c_char) -> Code;
+    fn PCFieldSplitSetIS(pc: Handle, name: *const c_char, is: Handle) -> Code;
+    fn PetscOptionsHasName(
+        options: Handle,
+        prefix: *const c_char,
+        name: *const c_char,
+        set: *mut c_int,
+    ) -> Code;
+    fn PetscOptionsSetValue(options: Handle, name: *const c_char, value: *const c_char) -> Code;
+}
+
 const PETSC_TRUE: c_int = 1;
 const INSERT_VALUES: c_int = 1;
 const MAT_FINAL_ASSEMBLY: c_int = 0;
@@ -168,6 +203,11 @@ const MAT_NEW_NONZERO_ALLOCATION_ERR: c_int = 19;
 const MAT_FACTOR_CHOLESKY: c_int = 2;
 const PETSC_COPY_VALUES: c_int = 0;
 const SCATTER_FORWARD: c_int = 0;
+const PC_RIGHT: c_int = 1;
+/// GMRES's restart: 30 (PETSc's default) stagnated on the 3D block without contact.
+const GMRES_RESTART: PetscInt = 100;
+/// PETSC_DEFAULT as a real argument: keep PETSc's value.
+const PETSC_DEFAULT: f64 = -2.0;
 
 /// The library's error for a PETSc error code, with PETSc's text and message.
 fn check(code: Code, what: &str) -> Result<()> {
@@ -358,13 +398,13 @@ impl Matrix {
         check(code, "MatSetValues")
     }
 
-    /// Final assembly after the values are set; marks the matrix symmetric.
-    pub fn assemble(&mut self) -> Result<()> {
+    /// Final assembly after the values are set; marks the matrix symmetric if it is.
+    pub fn assemble(&mut self, symmetric: bool) -> Result<()> {
         // SAFETY: a valid matrix; collective on every process.
         unsafe {
             check(MatAssemblyBegin(self.0, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin")?;
             check(MatAssemblyEnd(self.0, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd")?;
-            check(MatSetOption(self.0, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption")
+            check(MatSetOption(self.0, MAT_SYMMETRIC, c_int::from(symmetric)), "MatSetOption")
         }
     }
 
@@ -532,6 +572,172 @@ impl Drop for Factor {
         // SAFETY: made by MatGetFactor, destroyed once.
         unsafe { MatDestroy(&mut self.0) };
     }
+}
+
+/// What one Krylov solve did.
+#[derive(Clone, Copy, Debug)]
+pub struct KrylovSolve {
+    /// The iterations it took.
+    pub iterations: usize,
+    /// PETSc's KSPConvergedReason: positive when it converged, negative when it stopped
+    /// without.
+    pub reason: i32,
+    /// The norm of the residual at the end, as the method measures it.
+    pub residual: f64,
+}
+
+/// One field of a field split: its name, this process's rows of it (PETSc's numbering) and,
+/// for an elastic field whose rows come `dim` per node, the nodes' coordinates (`dim` per
+/// node, in the rows' order) for its rigid-body modes.
+#[derive(Debug)]
+pub struct Field {
+    pub name: &'static CStr,
+    pub rows: Vec<PetscInt>,
+    pub rigid: Option<(usize, Vec<f64>)>,
+}
+
+/// Composes the rigid-body modes of the nodes at `coordinates` onto the index set `is` as its
+/// near null space ("nearnullspace", which the field split hands to the field's multigrid),
+/// with the block size `dim`.
+///
+/// # Safety
+/// `is` is a valid index set of `coordinates.len()` local rows.
+unsafe fn near_null_space(is: Handle, dim: usize, coordinates: &[f64]) -> Result<()> {
+    let (bs, n) = (index(dim)?, index(coordinates.len())?);
+    let (mut v, mut space) = (null_mut(), null_mut());
+    // SAFETY: the vector has the local size of `coordinates`; the space keeps its own
+    // reference to the vector and the index set to the space.
+    unsafe {
+        check(ISSetBlockSize(is, bs), "ISSetBlockSize")?;
+        check(VecCreateMPI(world(), n, -1, &mut v), "VecCreateMPI")?;
+        let mut v = Vector(v);
+        check(VecSetBlockSize(v.0, bs), "VecSetBlockSize")?;
+        v.with_local(|local| local.copy_from_slice(coordinates))?;
+        check(MatNullSpaceCreateRigidBody(v.0, &mut space), "MatNullSpaceCreateRigidBody")?;
+        let code = PetscObjectCompose(is, c"nearnullspace".as_ptr(), space);
+        MatNullSpaceDestroy(&mut space);
+        check(code, "PetscObjectCompose")
+    }
+}
+
+/// A Krylov solver of a [`Matrix`] (PETSc's KSP) with a field-split preconditioner.
+#[derive(Debug)]
+pub struct Krylov(Handle);
+
+// SAFETY: as for Matrix.
+unsafe impl Send for Krylov {}
+
+impl Krylov {
+    /// GMRES(100), preconditioned on the right (so that it measures the true residual), to the
+    /// relative tolerance `rtol` in at most `max_iterations`, preconditioned by PCFIELDSPLIT
+    /// over `fields` (each a name and this process's rows of it, in PETSc's numbering) with
+    /// algebraic multigrid (GAMG) on each field. Every choice is a default that the options
+    /// database overrides: -ksp_type, -ksp_rtol, -pc_type, -pc_fieldsplit_type,
+    /// -fieldsplit_NAME_pc_type, ...
+    pub fn new(
+        matrix: &Matrix,
+        fields: &[Field],
+        rtol: f64,
+        max_iterations: usize,
+    ) -> Result<Self> {
+        for field in fields {
+            let name = field.name.to_string_lossy();
+            default_option(&format!("-fieldsplit_{name}_pc_type"), "gamg")?;
+        }
+        let max_iterations = index(max_iterations)?;
+        let mut ksp = null_mut();
+        // SAFETY: a valid assembled matrix; the index sets copy their indices, and the
+        // field split keeps its own reference to each.
+        unsafe {
+            check(KSPCreate(world(), &mut ksp), "KSPCreate")?;
+            let this = Self(ksp);
+            check(KSPSetOperators(ksp, matrix.0, matrix.0), "KSPSetOperators")?;
+            check(KSPSetType(ksp, c"gmres".as_ptr()), "KSPSetType")?;
+            check(KSPSetPCSide(ksp, PC_RIGHT), "KSPSetPCSide")?;
+            check(KSPGMRESSetRestart(ksp, GMRES_RESTART), "KSPGMRESSetRestart")?;
+            let code = KSPSetTolerances(ksp, rtol, PETSC_DEFAULT, PETSC_DEFAULT, max_iterations);
+            check(code, "KSPSetTolerances")?;
+            let mut pc = null_mut();
+            check(KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
+            check(PCSetType(pc, c"fieldsplit".as_ptr()), "PCSetType")?;
+            for field in fields {
+                let (mut is, n) = (null_mut(), index(field.rows.len())?);
+                let rows = field.rows.as_ptr();
+                check(ISCreateGeneral(world(), n, rows, PETSC_COPY_VALUES, &mut is), "IS")?;
+                let code = match &field.rigid {
+                    Some((dim, coordinates)) => near_null_space(is, *dim, coordinates),
+                    None => Ok(()),
+                }
+                .and_then(|()| check(PCFieldSplitSetIS(pc, field.name.as_ptr(), is), "split"));
+                ISDestroy(&mut is);
+                code?;
+            }
+            check(KSPSetFromOptions(ksp), "KSPSetFromOptions")?;
+            Ok(this)
+        }
+    }
+
+    /// Sets the preconditioner up for the matrix's current values (GAMG's hierarchy).
+    pub fn set_up(&mut self, matrix: &Matrix) -> Result<()> {
+        // SAFETY: the matrix this solver was made with, refilled; collective.
+        unsafe {
+            check(KSPSetOperators(self.0, matrix.0, matrix.0), "KSPSetOperators")?;
+            check(KSPSetUp(self.0), "KSPSetUp (the preconditioner's setup)")
+        }
+    }
+
+    /// x = A⁻¹ b to the tolerance, from x = 0; what the solve did, converged or not.
+    pub fn solve(&self, b: &Vector, x: &mut Vector) -> Result<KrylovSolve> {
+        let (mut iterations, mut reason, mut residual) = (0, 0, 0.0);
+        // SAFETY: vectors of the matrix's layout; the outputs are plain numbers.
+        unsafe {
+            check(KSPSolve(self.0, b.0, x.0), "KSPSolve")?;
+            check(KSPGetIterationNumber(self.0, &mut iterations), "KSPGetIterationNumber")?;
+            check(KSPGetConvergedReason(self.0, &mut reason), "KSPGetConvergedReason")?;
+            check(KSPGetResidualNorm(self.0, &mut residual), "KSPGetResidualNorm")?;
+        }
+        Ok(KrylovSolve { iterations: iterations.max(0) as usize, reason, residual })
+    }
+
+    /// The Krylov method's and the preconditioner's names, as the options left them.
+    pub fn kinds(&self) -> Result<[String; 2]> {
+        let (mut krylov, mut pc, mut preconditioner) =
+            (std::ptr::null(), null_mut(), std::ptr::null());
+        // SAFETY: the names are static strings owned by PETSc.
+        unsafe {
+            check(KSPGetType(self.0, &mut krylov), "KSPGetType")?;
+            check(KSPGetPC(self.0, &mut pc), "KSPGetPC")?;
+            check(PCGetType(pc, &mut preconditioner), "PCGetType")?;
+            Ok([krylov, preconditioner].map(|p| CStr::from_ptr(p).to_string_lossy().into_owned()))
+        }
+    }
+}
+
+impl Drop for Krylov {
+    fn drop(&mut self) {
+        // SAFETY: made by KSPCreate, destroyed once.
+        unsafe { KSPDestroy(&mut self.0) };
+    }
+}
+
+/// Puts `name value` into PETSc's options database unless the run's options set `name`.
+fn default_option(name: &str, value: &str) -> Result<()> {
+    let (name, value) = (CString::new(name), CString::new(value));
+    let (Ok(name), Ok(value)) = (name, value) else {
+        return Err(Error::LinearAlgebra("a PETSc option with a NUL character".into()));
+    };
+    let mut set = 0;
+    // SAFETY: NUL-terminated strings; the global options database.
+    unsafe {
+        check(
+            PetscOptionsHasName(null_mut(), std::ptr::null(), name.as_ptr(), &mut set),
+            "options",
+        )?;
+        if set == 0 {
+            check(PetscOptionsSetValue(null_mut(), name.as_ptr(), value.as_ptr()), "options")?;
+        }
+    }
+    Ok(())
 }
 
 /// A distributed vector.
