@@ -291,14 +291,11 @@ pub fn timings(summary: &serde_json::Value) {
     };
     say!("  the run's wall time by phase:");
     line("case (mesh, checks)", seconds("case"));
-    for key in ["pattern", "assembly", "symbolic", "numeric", "solve", "dense", "assessment"] {
+    let phases = ["pattern", "assembly", "symbolic", "numeric", "solve", "dense", "assessment"];
+    for key in phases {
         line(&format!("  {key}"), seconds(key));
     }
-    let counted: f64 =
-        ["pattern", "assembly", "symbolic", "numeric", "solve", "dense", "assessment"]
-            .iter()
-            .map(|k| seconds(k))
-            .sum();
+    let counted: f64 = phases.iter().map(|k| seconds(k)).sum();
     line("  (rest of the solver)", seconds("solver") - counted);
     line("solver in all", seconds("solver"));
     for (name, s) in t["files"].as_object().into_iter().flatten() {

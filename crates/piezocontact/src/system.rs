@@ -109,10 +109,7 @@ impl CoupledSystem {
         let t = Instant::now();
         let owned = match solver.distributed() {
             Some(d) => {
-                let (mesh, dim) = (&problem.mesh, problem.mesh.dim());
-                let coordinates: Vec<f64> =
-                    (0..mesh.n_nodes()).flat_map(|a| mesh.node(a)[..dim].to_vec()).collect();
-                d.node_coordinates(dim, &coordinates);
+                d.node_coordinates(problem.mesh.dim(), problem.mesh.coordinates());
                 let (ptr, neighbours) = node_neighbours(&problem.mesh);
                 d.owned_nodes(&dofs.free_per_node(), (&ptr, &neighbours))?
             }

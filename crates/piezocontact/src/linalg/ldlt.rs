@@ -81,7 +81,7 @@ impl LdltSolver {
     /// faer's parallelism of the numeric factorisation: as the solves', but on every thread
     /// also for a 2D pattern whose trailing unknowns are kept for a Schur complement, whose
     /// last supernode is then dense and wide (the exact solver on the paper's bar at 768 × 128:
-    /// 0.79–0.81 s on two threads against 0.96–0.97 s on one; without a trailing block 0.68–0.74
+    /// 0.79–0.87 s on two threads against 0.96–0.97 s on one; without a trailing block 0.68–0.74
     /// against 0.73–0.87 s, within the spread of runs).
     fn numeric_par(&self) -> Par {
         match self.threads {

@@ -146,6 +146,11 @@ impl Mesh {
         &self.coords[i * self.dim..(i + 1) * self.dim]
     }
 
+    /// Every node's coordinates, `dim` per node, node after node.
+    pub fn coordinates(&self) -> &[f64] {
+        &self.coords
+    }
+
     /// Node indices of cell `c`.
     pub fn cell(&self, c: usize) -> &[usize] {
         let n = self.dim + 1;
@@ -510,12 +515,11 @@ impl Mesh {
         for c in 0..self.n_cells() {
             let cell = self.cell(c);
             for opposite in 0..n {
-                let mut key = [usize::MAX; 3];
-                for (slot, a) in key.iter_mut().zip((0..n).filter(|&a| a != opposite)) {
+                let mut facet = [0; 3];
+                for (slot, a) in facet.iter_mut().zip((0..n).filter(|&a| a != opposite)) {
                     *slot = cell[a];
                 }
-                key[..n - 1].sort_unstable();
-                all.push((key, c, opposite));
+                all.push((facet_key(&facet[..n - 1]), c, opposite));
             }
         }
         all.sort_unstable();

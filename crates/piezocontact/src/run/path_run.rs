@@ -65,14 +65,24 @@ fn write_steps(problem: &Problem, files: StepFiles, steps: Receiver<Step>) -> Wr
     let (mut count, mut seconds) = (0, 0.0);
     let mut write = |(k, x, rows, dofs, surface): Step| -> Result<()> {
         let start = Instant::now();
-        let fields = ContactFields::new(&problem.mesh, &surface, &rows);
-        let bytes = files::solution_vtu(problem, &dofs, &x, &fields.fields(), files.vtu)?;
+        let bytes = step_vtu(problem, (&dofs, &surface), (&x, &rows), files.vtu)?;
         files::write_atomic(&files.dir.join(files::step_name(k)), &bytes)?;
         (count, seconds) = (count + 1, seconds + start.elapsed().as_secs_f64());
         Ok(())
     };
     let steps = steps.into_iter().try_for_each(&mut write).map(|_| count);
     Written { dir: files.dir.to_path_buf(), vtu: files.vtu, steps, seconds }
+}
+
+/// The solution-NNNN.vtu bytes of a step: its state `x` with its Γ3 `rows` as point fields.
+fn step_vtu(
+    problem: &Problem,
+    (dofs, surface): (&DofMap, &ContactSurface),
+    (x, rows): (&[f64], &[Row]),
+    vtu: Encoding,
+) -> Result<Vec<u8>> {
+    let fields = ContactFields::new(&problem.mesh, surface, rows);
+    files::solution_vtu(problem, dofs, x, &fields.fields(), vtu)
 }
 
 /// [`write_steps`] on a pool of one thread of its own: on the run's pool its parallel loops
@@ -245,8 +255,7 @@ impl PathRun {
             _ => {
                 let step = |k: usize| {
                     let (x, rows) = &self.states[k];
-                    let fields = ContactFields::new(&problem.mesh, &solution.surface, rows);
-                    files::solution_vtu(problem, &solution.dofs, x, &fields.fields(), vtu)
+                    step_vtu(problem, (&solution.dofs, &solution.surface), (x, rows), vtu)
                 };
                 outputs.series(steps, Some(&step))?;
             }

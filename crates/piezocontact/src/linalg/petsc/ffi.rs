@@ -176,6 +176,13 @@ unsafe extern "C" {
     fn KSPGetConvergedReason(ksp: Handle, reason: *mut c_int) -> Code;
     fn KSPGetResidualNorm(ksp: Handle, norm: *mut f64) -> Code;
     fn KSPGetType(ksp: Handle, kind: *mut *const c_char) -> Code;
+    fn KSPGetTolerances(
+        ksp: Handle,
+        rtol: *mut f64,
+        atol: *mut f64,
+        dtol: *mut f64,
+        its: *mut PetscInt,
+    ) -> Code;
     fn KSPDestroy(ksp: *mut Handle) -> Code;
     fn PCSetType(pc: Handle, kind: *const c_char) -> Code;
     fn VecCreateMPI(comm: MpiHandle, local: PetscInt, n: PetscInt, v: *mut Handle) -> Code;
@@ -697,6 +704,15 @@ impl Krylov {
             check(KSPGetResidualNorm(self.0, &mut residual), "KSPGetResidualNorm")?;
         }
         Ok(KrylovSolve { iterations: iterations.max(0) as usize, reason, residual })
+    }
+
+    /// The relative tolerance and the most iterations of a solve, as the options left them.
+    pub fn tolerances(&self) -> Result<(f64, usize)> {
+        let (mut rtol, mut atol, mut dtol, mut its) = (0.0, 0.0, 0.0, 0);
+        // SAFETY: a valid solver; the outputs are plain numbers.
+        let code = unsafe { KSPGetTolerances(self.0, &mut rtol, &mut atol, &mut dtol, &mut its) };
+        check(code, "KSPGetTolerances")?;
+        Ok((rtol, its.max(0) as usize))
     }
 
     /// The Krylov method's and the preconditioner's names, as the options left them.

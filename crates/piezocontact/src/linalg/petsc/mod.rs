@@ -19,6 +19,12 @@
 //! rank 0, which broadcasts it; a solve is then the interior with the Schur unknowns at zero
 //! (MUMPS's ICNTL(26) = 0), so a whole solve is two of them around a dense solve with S:
 //! y = K_ii⁻¹ b_i, x_c = S⁻¹ (b_c − K_ci y), x_i = K_ii⁻¹ (b_i − K_ic x_c).
+//!
+//! On the iterative route ([`PetscSolver::iterative`]) the same distributed matrix is solved
+//! by PETSc's GMRES with a field split over the u and ϕ rows and algebraic multigrid on each
+//! (docs/distributed.md): its ϕ rows negated (both diagonal blocks then positive definite),
+//! each field scaled by one constant instead of row by row (the rigid-body modes of the
+//! elastic field, its multigrid's near null space, stay those of the unscaled matrix).
 
 mod ffi;
 
@@ -144,22 +150,20 @@ pub struct PetscSolver {
     stats: SolverStats,
     /// The process of each mesh node, from [`Distributed::owned_nodes`].
     partition: Option<Vec<usize>>,
-    /// The iterative route ([`PetscSolver::iterative`]): the Krylov solver's settings and
-    /// the iterations of each solve so far; `None`: MUMPS.
+    /// The iterative route ([`PetscSolver::iterative`]): the Krylov solver's settings;
+    /// `None`: MUMPS.
     iterative: Option<Iterative>,
     /// The mesh nodes' dimension and coordinates, from [`Distributed::node_coordinates`].
     coordinates: Option<(usize, Vec<f64>)>,
 }
 
-/// The iterative route's settings and counts.
-#[derive(Debug, Default)]
+/// The iterative route's settings (defaults that PETSc's options override).
+#[derive(Clone, Copy, Debug, Default)]
 struct Iterative {
     /// The relative tolerance on the residual of the scaled system.
     rtol: f64,
     /// The most iterations of one solve.
     max_iterations: usize,
-    /// The iterations of each solve, in order.
-    iterations: Vec<usize>,
 }
 
 /// The Krylov solver's relative tolerance by default: the direct route's answers to about
@@ -181,13 +185,7 @@ impl PetscSolver {
     /// relative tolerance `rtol` in at most `max_iterations` per solve; no Schur complement.
     pub fn iterative(rtol: f64, max_iterations: usize) -> Result<Self> {
         initialize("")?;
-        let iterative = Some(Iterative { rtol, max_iterations, iterations: Vec::new() });
-        Ok(Self { iterative, ..Self::default() })
-    }
-
-    /// The iterations of each Krylov solve so far, in order (empty on the direct route).
-    pub fn krylov_iterations(&self) -> &[usize] {
-        self.iterative.as_ref().map_or(&[], |i| &i.iterations)
+        Ok(Self { iterative: Some(Iterative { rtol, max_iterations }), ..Self::default() })
     }
 
     /// The unknowns whose rows this process owns, after an analysis.
@@ -317,10 +315,8 @@ impl PetscSolver {
         let krylov = d.krylov.as_ref().expect("set up");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
         let solve = krylov.solve(&d.b, &mut d.x)?;
-        let iterative = self.iterative.as_mut().expect("the iterative route");
-        iterative.iterations.push(solve.iterations);
         if solve.reason <= 0 {
-            return Err(not_converged(krylov, &solve, iterative));
+            return Err(not_converged(krylov, &solve));
         }
         let mut gathered = vec![0.0; rows.n];
         d.gather.run(&d.x, &mut gathered)?;
@@ -600,13 +596,15 @@ fn row_sign(iterative: bool, sign: i8) -> f64 {
     if iterative && sign < 0 { -1.0 } else { 1.0 }
 }
 
-/// The error of a Krylov solve that stopped short of its tolerance.
-fn not_converged(krylov: &Krylov, solve: &KrylovSolve, iterative: &Iterative) -> Error {
+/// The error of a Krylov solve that stopped short of its tolerance (the solver's own, the
+/// options applied).
+fn not_converged(krylov: &Krylov, solve: &KrylovSolve) -> Error {
     let [method, preconditioner] = krylov
         .kinds()
         .unwrap_or_else(|_| ["the Krylov method".into(), "its preconditioner".into()]);
+    let (rtol, most) = krylov.tolerances().unwrap_or((f64::NAN, 0));
     Error::LinearAlgebra(format!(
         "the Krylov solve ({method}, preconditioner {preconditioner}) stopped after {} iterations with PETSc's reason {} and a residual of {:.3e} (relative tolerance {:e}, at most {} iterations): give it more iterations or another tolerance with --petsc-options \"-ksp_max_it N -ksp_rtol R\", another preconditioner (-fieldsplit_u_pc_type, -fieldsplit_phi_pc_type), or use solver.linear = \"direct\"",
-        solve.iterations, solve.reason, solve.residual, iterative.rtol, iterative.max_iterations
+        solve.iterations, solve.reason, solve.residual, rtol, most
     ))
 }
