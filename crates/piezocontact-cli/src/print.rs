@@ -26,7 +26,7 @@ fn contact_run(run: &ContactRun, built: &Built, out: &Path) {
     let mesh = &built.problem.mesh;
     let (sigma_nu, sigma_tau) = run.peaks();
     let (c, st, sl) = run.zones();
-    let t = solution.timings;
+    let t = &solution.timings;
     say!(
         "{}: {}, {} nodes, {} elements",
         built.origin.path.display(),
@@ -246,7 +246,7 @@ fn plane_note(built: &Built) {
 
 /// Prints a run without contact.
 fn static_run(run: &StaticRun, built: &Built, out: &Path) {
-    let (units, problem, t) = (&built.units, &built.problem, run.solution.timings);
+    let (units, problem, t) = (&built.units, &built.problem, &run.solution.timings);
     say!(
         "{}: {} nodes, {} elements, {} free DOFs (no contact)",
         built.origin.path.display(),

@@ -175,3 +175,72 @@ fn the_quarter_model_under_mpirun_is_the_serial_run() {
 fn the_axisymmetric_path_under_mpirun_is_the_serial_run() {
     same_as_serial("cases/indentation-axisym.toml", &[], "axisym", &[2]);
 }
+
+/// Uzawa's method on the iterative route (GMRES, field split, GAMG) under mpirun -n 1 and 2:
+/// Example 7.2's Γ3 table as the serial run on faer's factor to 1e−7 of each column's
+/// largest value (the Krylov tolerance carried through Uzawa's iterations), and summary.json's
+/// `linear` naming the route with one Krylov count per linear solve.
+#[test]
+fn the_iterative_route_under_mpirun_is_the_serial_run() {
+    let serial = out_dir("iterative-faer");
+    let faer = run(0, &["run", "cases/paper-7.2.toml", "-q", "--out", serial.to_str().unwrap()]);
+    assert!(faer.status.success(), "{}", String::from_utf8_lossy(&faer.stderr));
+    let direct = &summary(&serial)["linear"];
+    assert_eq!(direct["kind"], "direct");
+    assert_eq!((&direct["krylov"], &direct["preconditioner"]), (&"none".into(), &"none".into()));
+    assert_eq!(direct["krylov_iterations"], serde_json::json!([]));
+    for n in [1, 2] {
+        let out = out_dir(&format!("iterative-{n}"));
+        let args = [
+            "run",
+            "cases/paper-7.2.toml",
+            "-q",
+            "--set",
+            "solver.backend=\"petsc\"",
+            "--set",
+            "solver.linear=\"iterative\"",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let result = run(n, &args);
+        assert!(result.status.success(), "-n {n}: {}", String::from_utf8_lossy(&result.stderr));
+        assert_same_csv(&out.join("contact.csv"), &serial.join("contact.csv"), 1e-7);
+        let s = summary(&out);
+        let linear = &s["linear"];
+        assert_eq!(linear["kind"], "iterative");
+        assert_eq!(linear["krylov"], "gmres");
+        assert_eq!(linear["preconditioner"], "fieldsplit (u: gamg, phi: gamg)");
+        let counts = linear["krylov_iterations"].as_array().unwrap();
+        assert_eq!(counts.len() as u64, s["timings_seconds"]["solve_count"].as_u64().unwrap());
+        assert!(counts.iter().all(|k| k.as_u64().unwrap() > 0), "{counts:?}");
+        let _ = std::fs::remove_dir_all(&out);
+    }
+    let _ = std::fs::remove_dir_all(&serial);
+}
+
+/// A Krylov solve capped below what it needs ends the run with exit 4, the reason on stderr
+/// and an unconverged summary.json that lists the iterations made (the last at the cap).
+#[test]
+fn a_krylov_solve_short_of_its_tolerance_ends_the_run_unconverged() {
+    let out = out_dir("krylov-short");
+    let args = [
+        "run",
+        "cases/paper-7.2.toml",
+        "--set",
+        "solver.backend=\"petsc\"",
+        "--set",
+        "solver.linear=\"iterative\"",
+        "--petsc-options",
+        "-ksp_max_it 3",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let result = run(2, &args);
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(4), "{stderr}");
+    assert_eq!(stderr.matches("stopped after 3 iterations").count(), 1, "one message: {stderr}");
+    let s = summary(&out);
+    assert_eq!(s["converged"], false);
+    assert!(s["failure"].as_str().unwrap().contains("-ksp_max_it"), "{s}");
+    let _ = std::fs::remove_dir_all(&out);
+}

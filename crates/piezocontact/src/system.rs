@@ -7,12 +7,14 @@ use crate::assembly::secant_moduli;
 use crate::assembly::{Assembler, Linearisation, NodalBlock, load_vector, node_neighbours};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
-use crate::linalg::{DenseMatrix, LinearSolver, SchurComplement, SolverStats, SymmetricMatrix};
+use crate::linalg::{
+    DenseMatrix, LinearRoute, LinearSolver, SchurComplement, SolverStats, SymmetricMatrix,
+};
 use crate::problem::{Factors, Problem};
 use std::time::Instant;
 
 /// Wall-clock seconds spent in each phase, and what the linear solver counted.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Timings {
     /// The sparsity pattern and its gather plan, once per run \[s\].
     pub pattern: f64,
@@ -32,6 +34,9 @@ pub struct Timings {
     /// The process's peak resident memory when these timings were taken \[bytes\] (`None`
     /// where the system does not say).
     pub peak_resident_bytes: Option<f64>,
+    /// How the linear systems were solved: direct or iterative, with the Krylov iterations
+    /// of each solve.
+    pub linear: LinearRoute,
 }
 
 impl Timings {
@@ -335,6 +340,7 @@ impl CoupledSystem {
             assessment: 0.0,
             dense_bytes: 0.0,
             peak_resident_bytes: crate::limits::peak_resident_bytes(),
+            linear: self.solver.route(),
         }
     }
 

@@ -8,7 +8,7 @@ use piezocontact::assembly::Assembler;
 use piezocontact::case::Case;
 use piezocontact::dofs::DofMap;
 use piezocontact::linalg::petsc::{self, PetscSolver};
-use piezocontact::linalg::{LdltSolver, LinearSolver, SymmetricMatrix};
+use piezocontact::linalg::{LdltSolver, LinearRoute, LinearSolver, SymmetricMatrix};
 use piezocontact::run::{ContactRun, Run};
 use piezocontact::system::{CoupledSystem, solve_without_contact};
 use std::path::PathBuf;
@@ -308,7 +308,16 @@ fn the_krylov_route_solves_the_coupled_system_as_faer_does() {
             let krylov = solve_without_contact(&problem, krylov_solver()).unwrap();
             let difference = relative_difference(&krylov.x, &faer.x);
             assert!(difference < 1e-8, "{name}: ‖x_krylov − x_faer‖/‖x_faer‖ = {difference:e}");
-            assert!(krylov.timings.solver.solve_count >= 1);
+            assert_eq!(faer.timings.linear, LinearRoute::default(), "{name}: faer is direct");
+            let route = &krylov.timings.linear;
+            assert_eq!(route.kind, "iterative");
+            assert_eq!(route.krylov.as_deref(), Some("gmres"));
+            assert_eq!(route.preconditioner.as_deref(), Some("fieldsplit (u: gamg, phi: gamg)"));
+            let solves = krylov.timings.solver.solve_count;
+            assert!(solves >= 1);
+            assert_eq!(route.krylov_iterations.len(), solves, "{name}: one count per solve");
+            let most = petsc::KRYLOV_MAX_ITERATIONS;
+            assert!(route.krylov_iterations.iter().all(|&k| (1..most).contains(&k)), "{route:?}");
         }
     });
 }

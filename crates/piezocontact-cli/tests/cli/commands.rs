@@ -72,6 +72,10 @@ fn run_writes_a_summary_a_contact_table_and_a_vtu_that_a_reader_accepts() {
     }
     // Building the case (the rectangle's mesh, the checks) takes time, outside the solve's.
     assert!(summary["timings_seconds"]["case"].as_f64().unwrap() > 0.0);
+    let direct = serde_json::json!({
+        "kind": "direct", "krylov": "none", "preconditioner": "none", "krylov_iterations": [],
+    });
+    assert_eq!(summary["linear"], direct, "a factorisation, no Krylov solves");
     // contact.csv: the fixed header, one row per free Γ3 node (x = 2.5 … 9.5), ordered in x.
     let csv = std::fs::read_to_string(out.join("contact.csv")).unwrap();
     let mut lines = csv.lines();

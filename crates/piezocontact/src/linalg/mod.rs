@@ -60,7 +60,7 @@ pub use dense::{DenseMatrix, TransposedLu, max_distance, max_norm, null_space, s
 pub use ldlt::LdltSolver;
 #[cfg(feature = "petsc")]
 pub use petsc::PetscSolver;
-pub use seam::{Distributed, LinearSolver, Ordering, SchurComplement, SolverStats};
+pub use seam::{Distributed, LinearRoute, LinearSolver, Ordering, SchurComplement, SolverStats};
 pub use sparse::{SymmetricMatrix, SymmetricPattern};
 pub use vectors::parallelism;
 

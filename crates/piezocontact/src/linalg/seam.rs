@@ -53,6 +53,27 @@ pub struct SolverStats {
     pub factor_flops: f64,
 }
 
+/// How a backend solves its linear systems, for summary.json's `linear`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinearRoute {
+    /// "direct" (a factorisation, solved by substitution) or "iterative" (a Krylov method).
+    pub kind: &'static str,
+    /// The Krylov method's name (PETSc's, after the options), `None` on the direct route.
+    pub krylov: Option<String>,
+    /// The preconditioner's name (with each field's, for a field split), `None` on the direct
+    /// route.
+    pub preconditioner: Option<String>,
+    /// The Krylov iterations of each linear solve, in order (empty on the direct route).
+    pub krylov_iterations: Vec<usize>,
+}
+
+impl Default for LinearRoute {
+    /// The direct route.
+    fn default() -> Self {
+        Self { kind: "direct", krylov: None, preconditioner: None, krylov_iterations: Vec::new() }
+    }
+}
+
 /// What every backend does: analyse the pattern once, factorise whenever the values change,
 /// solve as often as needed.
 pub trait LinearSolver: std::fmt::Debug + Send {
@@ -77,6 +98,11 @@ pub trait LinearSolver: std::fmt::Debug + Send {
     }
     /// Counts and timings so far.
     fn stats(&self) -> SolverStats;
+    /// How the systems are solved, with the Krylov iterations of every solve so far: by
+    /// default the direct route.
+    fn route(&self) -> LinearRoute {
+        LinearRoute::default()
+    }
     /// The Schur-complement capability, for backends that have it.
     fn schur(&mut self) -> Option<&mut dyn SchurComplement> {
         None

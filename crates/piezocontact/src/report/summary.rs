@@ -7,6 +7,7 @@ use crate::case::Built;
 use crate::contact::ContactModel;
 use crate::dofs::DofMap;
 use crate::error::Error;
+use crate::linalg::LinearRoute;
 use crate::material::plane::Plane;
 use crate::system::Timings;
 use serde_json::{Value, json};
@@ -137,7 +138,7 @@ pub fn hencky_tangent(solution: &ContactSolution, lags: bool) -> String {
 pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &[Row]) -> Value {
     let max_abs = |f: &dyn Fn(&Row) -> f64| rows.iter().map(|r| f(r).abs()).fold(0.0, f64::max);
     let (contact, stick, slip) = zone_measures(solution, rows);
-    let (t, kkt, balance) = (solution.timings, &solution.kkt, &solution.balance);
+    let (t, kkt, balance) = (&solution.timings, &solution.kkt, &solution.balance);
     json!({
         "problem": model.name(),
         "converged": solution.converged(),
@@ -169,8 +170,9 @@ pub fn contact_summary(model: &ContactModel, solution: &ContactSolution, rows: &
             "stick_measure": stick,
             "slip_measure": slip,
         },
-        "timings_seconds": timings(&t),
-        "memory": memory(&t),
+        "timings_seconds": timings(t),
+        "memory": memory(t),
+        "linear": linear(&t.linear),
         "non_finite": non_finite(solution, rows),
     })
 }
@@ -209,6 +211,19 @@ pub fn close_timings(
     t["files"] = object(written);
     t["total"] = json!(total);
     t["other"] = json!(total - phases - files);
+}
+
+/// summary.json's `linear`: `kind` ("direct" or "iterative"), the Krylov method and the
+/// preconditioner ("none" on the direct route: a null in summary.json is a number that was
+/// not finite), and `krylov_iterations`, one count per linear solve in order (empty on the
+/// direct route).
+pub fn linear(route: &LinearRoute) -> Value {
+    json!({
+        "kind": route.kind,
+        "krylov": route.krylov.as_deref().unwrap_or("none"),
+        "preconditioner": route.preconditioner.as_deref().unwrap_or("none"),
+        "krylov_iterations": route.krylov_iterations,
+    })
 }
 
 /// The `timings_seconds` object of a solve in summary.json (without the run's phases).

@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::linalg::LinearSolver;
 use crate::output::files::Outputs;
 use crate::report::summary::{
-    common_summary, electrodes_json, memory, merge, reactions_json, timings,
+    common_summary, electrodes_json, linear, memory, merge, reactions_json, timings,
 };
 use crate::system::{StaticSolution, solve_without_contact};
 use serde_json::{Value, json};
@@ -62,7 +62,7 @@ impl StaticRun {
 
     /// The summary.json document.
     pub fn summary(&self, built: &Built) -> Value {
-        let (solution, t) = (&self.solution, self.solution.timings);
+        let (solution, t) = (&self.solution, &self.solution.timings);
         let mut summary = common_summary(built, &solution.dofs);
         merge(
             &mut summary,
@@ -79,8 +79,9 @@ impl StaticRun {
                 "reactions": reactions_json(&built.problem.support_names(), &self.reactions.supports),
                 "charges": self.reactions.charges,
                 "electrodes": electrodes_json(built, &solution.dofs, &solution.x, &self.reactions.charges),
-                "timings_seconds": timings(&t),
-                "memory": memory(&t),
+                "timings_seconds": timings(t),
+                "memory": memory(t),
+                "linear": linear(&t.linear),
             }),
         );
         summary["timings_seconds"]["solver"] = json!(self.seconds);

@@ -228,7 +228,7 @@ fn the_hencky_law_converges_to_the_true_nonlinear_equations() {
             })
             .fold(0.0, f64::max);
         assert!(t_max < std::f64::consts::E * t0, "t = {t_max} leaves the range of (h1)(b)");
-        let t = solution.timings;
+        let t = &solution.timings;
         println!(
             "{}: {softened} softened elements, t_max/t0 = {:.2}, {} outer steps, {} factorisations",
             model.name(),

@@ -200,6 +200,14 @@ unsafe extern "C" {
         set: *mut c_int,
     ) -> Code;
     fn PetscOptionsSetValue(options: Handle, name: *const c_char, value: *const c_char) -> Code;
+    fn PetscOptionsGetString(
+        options: Handle,
+        prefix: *const c_char,
+        name: *const c_char,
+        value: *mut c_char,
+        len: usize,
+        set: *mut c_int,
+    ) -> Code;
 }
 
 const PETSC_TRUE: c_int = 1;
@@ -627,9 +635,10 @@ unsafe fn near_null_space(is: Handle, dim: usize, coordinates: &[f64]) -> Result
     }
 }
 
-/// A Krylov solver of a [`Matrix`] (PETSc's KSP) with a field-split preconditioner.
+/// A Krylov solver of a [`Matrix`] (PETSc's KSP) with a field-split preconditioner over the
+/// named fields.
 #[derive(Debug)]
-pub struct Krylov(Handle);
+pub struct Krylov(Handle, Vec<&'static CStr>);
 
 // SAFETY: as for Matrix.
 unsafe impl Send for Krylov {}
@@ -657,7 +666,7 @@ impl Krylov {
         // field split keeps its own reference to each.
         unsafe {
             check(KSPCreate(world(), &mut ksp), "KSPCreate")?;
-            let this = Self(ksp);
+            let this = Self(ksp, fields.iter().map(|f| f.name).collect());
             check(KSPSetOperators(ksp, matrix.0, matrix.0), "KSPSetOperators")?;
             check(KSPSetType(ksp, c"gmres".as_ptr()), "KSPSetType")?;
             check(KSPSetPCSide(ksp, PC_RIGHT), "KSPSetPCSide")?;
@@ -715,17 +724,28 @@ impl Krylov {
         Ok((rtol, its.max(0) as usize))
     }
 
-    /// The Krylov method's and the preconditioner's names, as the options left them.
+    /// The Krylov method's and the preconditioner's names, as the options left them; a field
+    /// split's with each field's preconditioner ("fieldsplit (u: gamg, phi: gamg)").
     pub fn kinds(&self) -> Result<[String; 2]> {
         let (mut krylov, mut pc, mut preconditioner) =
             (std::ptr::null(), null_mut(), std::ptr::null());
         // SAFETY: the names are static strings owned by PETSc.
-        unsafe {
+        let [krylov, preconditioner] = unsafe {
             check(KSPGetType(self.0, &mut krylov), "KSPGetType")?;
             check(KSPGetPC(self.0, &mut pc), "KSPGetPC")?;
             check(PCGetType(pc, &mut preconditioner), "PCGetType")?;
-            Ok([krylov, preconditioner].map(|p| CStr::from_ptr(p).to_string_lossy().into_owned()))
+            [krylov, preconditioner].map(|p| CStr::from_ptr(p).to_string_lossy().into_owned())
+        };
+        if preconditioner != "fieldsplit" {
+            return Ok([krylov, preconditioner]);
         }
+        let split = self.1.iter().map(|name| {
+            let name = name.to_string_lossy();
+            let kind = option(&format!("-fieldsplit_{name}_pc_type"))?;
+            Ok(format!("{name}: {}", kind.as_deref().unwrap_or("PETSc's default")))
+        });
+        let split = split.collect::<Result<Vec<_>>>()?.join(", ");
+        Ok([krylov, format!("{preconditioner} ({split})")])
     }
 }
 
@@ -754,6 +774,26 @@ fn default_option(name: &str, value: &str) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The value of `name` in PETSc's options database (`None` where it is not set).
+fn option(name: &str) -> Result<Option<String>> {
+    let name = CString::new(name)
+        .map_err(|_| Error::LinearAlgebra("a PETSc option with a NUL character".into()))?;
+    let (mut value, mut set) = ([0 as c_char; 256], 0);
+    // SAFETY: a NUL-terminated name; PETSc writes at most `value.len()` bytes, NUL-terminated.
+    unsafe {
+        let code = PetscOptionsGetString(
+            null_mut(),
+            std::ptr::null(),
+            name.as_ptr(),
+            value.as_mut_ptr(),
+            value.len(),
+            &mut set,
+        );
+        check(code, "PetscOptionsGetString")?;
+        Ok((set != 0).then(|| CStr::from_ptr(value.as_ptr()).to_string_lossy().into_owned()))
+    }
 }
 
 /// A distributed vector.

@@ -31,7 +31,7 @@ mod ffi;
 pub use ffi::{abort, gather, initialize, rank_and_size, sum_over_processes};
 
 use super::dense::DenseMatrix;
-use super::seam::{Distributed, LinearSolver, SchurComplement, SolverStats};
+use super::seam::{Distributed, LinearRoute, LinearSolver, SchurComplement, SolverStats};
 use super::sparse::{SymmetricMatrix, SymmetricPattern};
 use super::vectors::check_length;
 use crate::error::{Error, Result};
@@ -155,6 +155,8 @@ pub struct PetscSolver {
     iterative: Option<Iterative>,
     /// The mesh nodes' dimension and coordinates, from [`Distributed::node_coordinates`].
     coordinates: Option<(usize, Vec<f64>)>,
+    /// The Krylov iterations of each solve on the iterative route, in order.
+    krylov_iterations: Vec<usize>,
 }
 
 /// The iterative route's settings (defaults that PETSc's options override).
@@ -315,6 +317,7 @@ impl PetscSolver {
         let krylov = d.krylov.as_ref().expect("set up");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
         let solve = krylov.solve(&d.b, &mut d.x)?;
+        self.krylov_iterations.push(solve.iterations);
         if solve.reason <= 0 {
             return Err(not_converged(krylov, &solve));
         }
@@ -494,6 +497,23 @@ impl LinearSolver for PetscSolver {
 
     fn stats(&self) -> SolverStats {
         self.stats
+    }
+
+    fn route(&self) -> LinearRoute {
+        if self.iterative.is_none() {
+            return LinearRoute::default();
+        }
+        let krylov = self.distributed.as_ref().and_then(|d| d.krylov.as_ref());
+        let [method, preconditioner] = match krylov.map(Krylov::kinds) {
+            Some(Ok(kinds)) => kinds.map(Some),
+            _ => [None, None],
+        };
+        LinearRoute {
+            kind: "iterative",
+            krylov: method,
+            preconditioner,
+            krylov_iterations: self.krylov_iterations.clone(),
+        }
     }
 
     fn schur(&mut self) -> Option<&mut dyn SchurComplement> {
