@@ -267,6 +267,17 @@ impl DofMap {
         }
     }
 
+    /// The component of each free unknown: i for u_i (in the node's frame, where it has one),
+    /// d for ϕ.
+    pub fn free_components(&self) -> Vec<u8> {
+        let mut components = vec![0; self.n_free()];
+        let u_end = self.n_nodes * self.dim;
+        for (g, &k) in self.free.iter().enumerate().filter(|(_, k)| **k != CONSTRAINED) {
+            components[k] = if g < u_end { g % self.dim } else { self.dim } as u8;
+        }
+        components
+    }
+
     /// The free unknowns of each node (u components and ϕ).
     pub fn free_per_node(&self) -> Vec<usize> {
         let mut count = vec![0; self.n_nodes];

@@ -114,7 +114,8 @@ impl CoupledSystem {
         let t = Instant::now();
         let owned = match solver.distributed() {
             Some(d) => {
-                d.node_coordinates(problem.mesh.dim(), problem.mesh.coordinates());
+                let (dim, coordinates) = (problem.mesh.dim(), problem.mesh.coordinates());
+                d.node_layout(dim, coordinates, &dofs.free_components());
                 let (ptr, neighbours) = node_neighbours(&problem.mesh);
                 d.owned_nodes(&dofs.free_per_node(), (&ptr, &neighbours))?
             }

@@ -128,9 +128,11 @@ pub trait Distributed {
     ) -> Result<Option<Vec<bool>>>;
     /// The sum of `value` over the processes.
     fn sum(&self, value: f64) -> Result<f64>;
-    /// The mesh nodes' coordinates, `dim` per node (given before the analysis), from which an
-    /// iterative backend makes the rigid-body modes of the elastic block; ignored by others.
-    fn node_coordinates(&mut self, _dim: usize, _coordinates: &[f64]) {}
+    /// The mesh nodes' coordinates, `dim` per node, and the component of each unknown (`i`
+    /// for u_i, `dim` for ϕ), given before the analysis: an iterative backend makes from them
+    /// the rigid-body modes of the elastic block, and gives a node's constrained components
+    /// identity rows so that each node keeps `dim` elastic rows; ignored by others.
+    fn node_layout(&mut self, _dim: usize, _coordinates: &[f64], _components: &[u8]) {}
 }
 
 /// What a backend that can condense does: eliminate every unknown but a given list, and give

@@ -39,49 +39,74 @@ use ffi::{Factor, Field, Gather, Krylov, KrylovSolve, Matrix, PetscInt, Vector};
 use std::time::Instant;
 
 /// The rows of the matrix this process owns and where their entries come from. PETSc numbers
-/// the unknowns process by process and node by node (a node's u and ϕ together), so that each
-/// process's block of PETSc rows is the unknowns of its nodes.
+/// the unknowns process by process and node by node (a node's u and ϕ together, in the order
+/// of their components), so that each process's block of PETSc rows is the unknowns of its
+/// nodes. On the iterative route a node with some but not all of its elastic components free
+/// also gets a [`HELD`] row for each constrained one: an identity row, with 0 on the right and
+/// in the solution, so that every node with elastic rows has `dim` of them, as the multigrid's
+/// block size and the rigid-body modes want.
 #[derive(Debug)]
 struct Rows {
-    /// Order of the matrix.
+    /// Order of the seam's matrix.
     n: usize,
+    /// Order of PETSc's matrix: `n` and the held rows.
+    total: usize,
     /// This process's PETSc rows: `start..end`.
     start: usize,
     end: usize,
-    /// The unknown at each PETSc row.
+    /// The unknown at each PETSc row ([`HELD`] at a held row).
     order: Vec<usize>,
     /// The PETSc row of each unknown.
     petsc: Vec<usize>,
     /// The mesh node of each owned PETSc row.
     nodes: Vec<usize>,
     /// Per owned PETSc row: its PETSc columns (increasing) and, for each, the index of the
-    /// entry in the lower-triangle values of the seam's matrix.
+    /// entry in the lower-triangle values of the seam's matrix ([`HELD`] at a held row's
+    /// diagonal).
     columns: Vec<Vec<(PetscInt, usize)>>,
 }
+
+/// The unknown of a held row (a constrained elastic component kept as an identity row), and
+/// the entry of its diagonal.
+const HELD: usize = usize::MAX;
 
 impl Rows {
     /// PETSc's numbering of the unknowns of `pattern` (whose groups are the mesh nodes) with
     /// `partition` (the process of each node, from [`Distributed::owned_nodes`]; needed on
     /// more than one process), this process's block of it, and the full symmetric rows of
-    /// that block.
-    fn new(pattern: &SymmetricPattern, partition: Option<&[usize]>) -> Result<Self> {
+    /// that block; with `held` (the dimension and the component of each unknown, `dim` for
+    /// ϕ), the held rows too.
+    fn new(
+        pattern: &SymmetricPattern,
+        partition: Option<&[usize]>,
+        held: Option<(usize, &[u8])>,
+    ) -> Result<Self> {
         let n = pattern.n();
-        ffi::index(n)?;
         let (rank, size) = rank_and_size();
-        let process = |k: usize| partition.map_or(Some(0), |p| p.get(pattern.group(k)).copied());
-        if size > 1 && (0..n).any(|k| process(k).is_none()) {
+        let process = |node: usize| partition.map_or(Some(0), |p| p.get(node).copied());
+        if size > 1 && (0..n).any(|k| process(pattern.group(k)).is_none()) {
             return Err(Error::LinearAlgebra(
                 "PETSc backend: on several processes, owned_nodes must partition the mesh before the analysis".into(),
             ));
         }
-        let process = |k: usize| process(k).unwrap_or(0);
-        let mut order: Vec<usize> = (0..n).collect();
-        order.sort_by_key(|&k| (process(k), pattern.group(k), k));
+        let process = |node: usize| process(node).unwrap_or(0);
+        let component = |k: usize| held.map_or(0, |(_, c)| c[k] as usize);
+        // (process, node, component, unknown) of each PETSc row, in PETSc's order.
+        let mut keys: Vec<[usize; 4]> = (0..n)
+            .map(|k| [process(pattern.group(k)), pattern.group(k), component(k), k])
+            .collect();
+        if let Some((dim, components)) = held {
+            let nodes = held_components(pattern, dim, components);
+            keys.extend(nodes.into_iter().map(|(node, i)| [process(node), node, i, HELD]));
+        }
+        keys.sort_unstable();
+        let total = keys.len();
+        ffi::index(total)?;
+        let order: Vec<usize> = keys.iter().map(|key| key[3]).collect();
         let mut petsc = vec![0; n];
-        order.iter().enumerate().for_each(|(p, &k)| petsc[k] = p);
-        let of = |p: usize| process(order[p]);
-        let start = (0..n).find(|&p| of(p) >= rank).unwrap_or(n);
-        let end = (start..n).find(|&p| of(p) > rank).unwrap_or(n);
+        order.iter().enumerate().filter(|(_, k)| **k != HELD).for_each(|(p, &k)| petsc[k] = p);
+        let start = keys.partition_point(|key| key[0] < rank);
+        let end = keys.partition_point(|key| key[0] <= rank);
         let mut columns = vec![Vec::new(); end - start];
         let symbolic = pattern.symbolic();
         for j in 0..n {
@@ -96,9 +121,12 @@ impl Rows {
                 }
             }
         }
+        for p in (start..end).filter(|&p| order[p] == HELD) {
+            columns[p - start].push((p as PetscInt, HELD));
+        }
         columns.iter_mut().for_each(|c| c.sort_unstable());
-        let nodes = order[start..end].iter().map(|&k| pattern.group(k)).collect();
-        Ok(Self { n, start, end, order, petsc, nodes, columns })
+        let nodes = keys[start..end].iter().map(|key| key[1]).collect();
+        Ok(Self { n, total, start, end, order, petsc, nodes, columns })
     }
 
     /// PETSc's preallocation: per owned row, entries in the owned columns and outside.
@@ -111,10 +139,18 @@ impl Rows {
         (diagonal, off)
     }
 
-    /// Copies the owned rows of `whole` (the seam's numbering) into `local` (PETSc's).
+    /// Copies the owned rows of `whole` (the seam's numbering) into `local` (PETSc's), 0 at
+    /// the held rows.
     fn scatter(&self, whole: &[f64], local: &mut [f64]) {
         let owned = &self.order[self.start..self.end];
-        local.iter_mut().zip(owned).for_each(|(l, &k)| *l = whole[k]);
+        local.iter_mut().zip(owned).for_each(|(l, &k)| *l = whole.get(k).map_or(0.0, |w| *w));
+    }
+
+    /// This process's PETSc rows that hold the unknowns of pivot sign `sign` (+1 for u, with
+    /// the held rows; −1 for ϕ).
+    fn field(&self, signs: &[i8], sign: i8) -> Vec<usize> {
+        let sign_of = |p: usize| signs.get(self.order[p]).copied().unwrap_or(1);
+        (self.start..self.end).filter(|&p| sign_of(p) == sign).collect()
     }
 
     /// Puts `gathered` (PETSc's numbering) into `whole` (the seam's).
@@ -153,8 +189,9 @@ pub struct PetscSolver {
     /// The iterative route ([`PetscSolver::iterative`]): the Krylov solver's settings;
     /// `None`: MUMPS.
     iterative: Option<Iterative>,
-    /// The mesh nodes' dimension and coordinates, from [`Distributed::node_coordinates`].
-    coordinates: Option<(usize, Vec<f64>)>,
+    /// The mesh nodes' dimension and coordinates and the component of each unknown, from
+    /// [`Distributed::node_layout`].
+    layout: Option<(usize, Vec<f64>, Vec<u8>)>,
     /// The Krylov iterations of each solve on the iterative route, in order.
     krylov_iterations: Vec<usize>,
 }
@@ -192,7 +229,8 @@ impl PetscSolver {
 
     /// The unknowns whose rows this process owns, after an analysis.
     pub fn owned_unknowns(&self) -> Vec<usize> {
-        self.rows.as_ref().map_or(Vec::new(), |r| r.order[r.start..r.end].to_vec())
+        let owned = self.rows.as_ref().map(|r| &r.order[r.start..r.end]);
+        owned.into_iter().flatten().copied().filter(|&k| k != HELD).collect()
     }
 
     /// The distributed matrix's owned rows as PETSc stores them: (row, column, value), for
@@ -202,7 +240,7 @@ impl PetscSolver {
             return Ok(Vec::new());
         };
         let mut out = Vec::new();
-        for p in rows.start..rows.end {
+        for p in (rows.start..rows.end).filter(|&p| rows.order[p] != HELD) {
             let i = rows.order[p];
             for (q, v) in d.matrix.row(p as PetscInt)? {
                 let j = rows.order[q];
@@ -225,7 +263,13 @@ impl PetscSolver {
         let t = Instant::now();
         self.distributed = None;
         self.schur = None;
-        self.rows = Some(Rows::new(pattern, self.partition.as_deref())?);
+        let held = match (&self.iterative, &self.layout) {
+            (Some(_), Some((dim, _, components))) if components.len() == pattern.n() => {
+                Some((*dim, &components[..]))
+            }
+            _ => None,
+        };
+        self.rows = Some(Rows::new(pattern, self.partition.as_deref(), held)?);
         self.signs = signs.to_vec();
         self.last = last.to_vec();
         self.stats.symbolic_seconds += t.elapsed().as_secs_f64();
@@ -242,7 +286,7 @@ impl PetscSolver {
         check_length("matrix order", rows.n, matrix.n())?;
         if self.distributed.is_none() {
             let (diagonal, off) = rows.preallocation();
-            let matrix = Matrix::new(rows.end - rows.start, rows.n, &diagonal, &off)?;
+            let matrix = Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?;
             let (b, x) = (matrix.vector()?, matrix.vector()?);
             let gather = Gather::new(&x)?;
             self.distributed = Some(Objects { matrix, factor: None, krylov: None, b, x, gather });
@@ -250,7 +294,7 @@ impl PetscSolver {
         let d = self.distributed.as_mut().expect("made above");
         // The diagonal of the owned rows, gathered whole: each process's matrix holds only
         // its rows, and D must be the same on every process.
-        let (owned, mut gathered) = (matrix.diagonal(), vec![0.0; rows.n]);
+        let (owned, mut gathered) = (matrix.diagonal(), vec![0.0; rows.total]);
         d.b.with_local(|b| rows.scatter(&owned, b))?;
         d.gather.run(&d.b, &mut gathered)?;
         let mut diagonal = vec![0.0; rows.n];
@@ -265,7 +309,12 @@ impl PetscSolver {
         let values = matrix.lower().val();
         let (mut cols, mut vals) = (Vec::new(), Vec::new());
         for (k, row) in rows.columns.iter().enumerate() {
-            let i = rows.order[rows.start + k];
+            let (p, i) = ((rows.start + k) as PetscInt, rows.order[rows.start + k]);
+            if i == HELD {
+                // The scaled elastic diagonal is 1 on average (field_scaling).
+                d.matrix.set_row(p, &[p], &[1.0])?;
+                continue;
+            }
             let s = self.scaling[i] * row_sign(self.iterative.is_some(), self.signs[i]);
             cols.clear();
             vals.clear();
@@ -273,7 +322,7 @@ impl PetscSolver {
                 cols.push(q);
                 vals.push(values[at] * s * self.scaling[rows.order[q as usize]]);
             }
-            d.matrix.set_row((rows.start + k) as PetscInt, &cols, &vals)?;
+            d.matrix.set_row(p, &cols, &vals)?;
         }
         d.matrix.assemble(self.iterative.is_none())
     }
@@ -287,14 +336,11 @@ impl PetscSolver {
             return Err(Error::LinearAlgebra("PETSc backend: set up before the fill".into()));
         };
         if d.krylov.is_none() {
-            let field = |sign: i8| -> Vec<usize> {
-                (rows.start..rows.end).filter(|&p| self.signs[rows.order[p]] == sign).collect()
-            };
-            let (u, phi) = (field(1), field(-1));
+            let (u, phi) = (rows.field(&self.signs, 1), rows.field(&self.signs, -1));
             let rigid = self
-                .coordinates
+                .layout
                 .as_ref()
-                .and_then(|(dim, c)| Some((*dim, rigid(rows, &u, *dim, c)?)));
+                .and_then(|(dim, c, _)| Some((*dim, rigid(rows, &u, *dim, c)?)));
             let petsc = |rows: Vec<usize>| rows.into_iter().map(|p| p as PetscInt).collect();
             let fields = [
                 Field { name: c"u", rows: petsc(u), rigid },
@@ -321,7 +367,7 @@ impl PetscSolver {
         if solve.reason <= 0 {
             return Err(not_converged(krylov, &solve));
         }
-        let mut gathered = vec![0.0; rows.n];
+        let mut gathered = vec![0.0; rows.total];
         d.gather.run(&d.x, &mut gathered)?;
         rows.unpermute(&gathered, rhs);
         Ok(())
@@ -406,7 +452,7 @@ impl PetscSolver {
         let d = self.distributed.as_mut().expect("factorised");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
         d.factor.as_ref().expect("factorised").solve(&d.b, &mut d.x)?;
-        let mut gathered = vec![0.0; rows.n];
+        let mut gathered = vec![0.0; rows.total];
         d.gather.run(&d.x, &mut gathered)?;
         rows.unpermute(&gathered, rhs);
         self.last.iter().for_each(|&c| rhs[c] = 0.0);
@@ -419,7 +465,7 @@ impl PetscSolver {
         let d = self.distributed.as_mut().expect("filled");
         d.b.with_local(|b| rows.scatter(x, b))?;
         d.matrix.mult(&d.b, &mut d.x)?;
-        let (mut gathered, mut y) = (vec![0.0; rows.n], vec![0.0; rows.n]);
+        let (mut gathered, mut y) = (vec![0.0; rows.total], vec![0.0; rows.n]);
         d.gather.run(&d.x, &mut gathered)?;
         rows.unpermute(&gathered, &mut y);
         Ok(y)
@@ -549,8 +595,8 @@ impl Distributed for PetscSolver {
         ffi::sum_over_processes(value)
     }
 
-    fn node_coordinates(&mut self, dim: usize, coordinates: &[f64]) {
-        self.coordinates = Some((dim, coordinates.to_vec()));
+    fn node_layout(&mut self, dim: usize, coordinates: &[f64], components: &[u8]) {
+        self.layout = Some((dim, coordinates.to_vec(), components.to_vec()));
     }
 }
 
@@ -592,11 +638,32 @@ fn field_scaling(diagonal: &[f64], signs: &[i8]) -> Vec<f64> {
     signs.iter().map(|&s| if s < 0 { phi } else { u }).collect()
 }
 
+/// The (node, component) of each constrained elastic component of a node with some but not
+/// all of its `dim` components among the unknowns (`components`: each unknown's, `dim` for
+/// ϕ).
+fn held_components(
+    pattern: &SymmetricPattern,
+    dim: usize,
+    components: &[u8],
+) -> Vec<(usize, usize)> {
+    let mut free: std::collections::BTreeMap<usize, u8> = std::collections::BTreeMap::new();
+    for (k, &i) in components.iter().enumerate().filter(|(_, i)| (**i as usize) < dim) {
+        *free.entry(pattern.group(k)).or_default() |= 1 << i;
+    }
+    let all = (1u8 << dim) - 1;
+    let partial = free.into_iter().filter(|&(_, mask)| mask != all);
+    partial
+        .flat_map(|(node, mask)| {
+            (0..dim).filter(move |i| mask & (1 << i) == 0).map(move |i| (node, i))
+        })
+        .collect()
+}
+
 /// The coordinates of the nodes of the owned elastic rows `u` (PETSc's rows, a node's rows
-/// together), `dim` per node, where every node among them has `dim` of them (no component
-/// held alone); else `None`: then the rigid-body modes would not be those of the rows, and
-/// the multigrid goes without them. (A node in a turned frame gets modes in the mesh's axes:
-/// a poorer preconditioner, the same answer.)
+/// together), `dim` per node, where every node among them has `dim` of them (the held rows
+/// complete a node on rollers); else `None` (no layout given): then the rigid-body modes
+/// would not be those of the rows, and the multigrid goes without them. (A node in a turned
+/// frame gets modes in the mesh's axes: a poorer preconditioner, the same answer.)
 fn rigid(rows: &Rows, u: &[usize], dim: usize, coordinates: &[f64]) -> Option<Vec<f64>> {
     let mut out = Vec::with_capacity(u.len());
     for chunk in u.chunks(dim) {
@@ -627,4 +694,41 @@ fn not_converged(krylov: &Krylov, solve: &KrylovSolve) -> Error {
         "the Krylov solve ({method}, preconditioner {preconditioner}) stopped after {} iterations with PETSc's reason {} and a residual of {:.3e} (relative tolerance {:e}, at most {} iterations): give it more iterations or another tolerance with --petsc-options \"-ksp_max_it N -ksp_rtol R\", another preconditioner (-fieldsplit_u_pc_type, -fieldsplit_phi_pc_type), or use solver.linear = \"direct\"",
         solve.iterations, solve.reason, solve.residual, rtol, most
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Three nodes in 2D: node 0 free (u_x, u_y, ϕ), node 1 on a roller (u_y and ϕ), node 2
+    /// clamped with ϕ free. The roller's u_x gets a held row between its node's rows, node 2
+    /// none (it has no elastic row); the elastic field then comes two rows per node.
+    #[test]
+    fn a_node_on_a_roller_gets_a_held_row_for_its_constrained_component() {
+        let n = 6;
+        let positions: Vec<(usize, usize)> =
+            (0..n).flat_map(|j| (j..n).map(move |i| (i, j))).collect();
+        let pattern = SymmetricPattern::from_positions(n, &positions).unwrap();
+        let pattern = pattern.with_groups(vec![0, 0, 1, 2, 0, 1]).unwrap();
+        let components = [0, 1, 1, 2, 2, 2];
+        let signs = [1, 1, 1, -1, -1, -1];
+        let rows = Rows::new(&pattern, None, Some((2, &components))).unwrap();
+        assert_eq!((rows.n, rows.total), (6, 7));
+        assert_eq!(rows.order, vec![0, 1, 4, HELD, 2, 5, 3]);
+        assert_eq!(rows.nodes, vec![0, 0, 0, 1, 1, 1, 2]);
+        assert_eq!(rows.columns[3], vec![(3, HELD)], "an identity row, alone in its column");
+        assert!(rows.columns.iter().flatten().filter(|c| c.1 != HELD).all(|c| c.0 != 3));
+        let u = rows.field(&signs, 1);
+        assert_eq!(u, vec![0, 1, 3, 4]);
+        // One point per node of the field: nodes 0 and 1.
+        let coordinates = [0.0, 0.0, 1.0, 0.0, 0.0, 1.0];
+        assert_eq!(rigid(&rows, &u, 2, &coordinates), Some(vec![0.0, 0.0, 1.0, 0.0]));
+        let mut local = vec![f64::NAN; 7];
+        rows.scatter(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], &mut local);
+        assert_eq!(local, vec![1.0, 2.0, 5.0, 0.0, 3.0, 6.0, 4.0]);
+        // The direct route has no held rows, and the rigid modes are refused for the roller.
+        let direct = Rows::new(&pattern, None, None).unwrap();
+        assert_eq!((direct.total, direct.order.clone()), (6, vec![0, 1, 4, 2, 5, 3]));
+        assert_eq!(rigid(&direct, &direct.field(&signs, 1), 2, &coordinates), None);
+    }
 }
