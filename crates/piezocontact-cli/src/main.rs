@@ -168,6 +168,12 @@ struct BenchArgs {
     /// feature `petsc`).
     #[arg(long, default_value = "faer", value_parser = ["faer", "petsc"], requires = "mesh", conflicts_with_all = ["contact", "path", "lu"])]
     backend: String,
+    /// With --backend petsc: the routes to time, comma separated: "direct" (MUMPS's LDLᵀ)
+    /// and "iterative" (GMRES with a field split and GAMG, as solver.linear = "iterative";
+    /// on a mesh with the parts of meshes/indent-3d.geo, whose contact patch is pressed
+    /// down).
+    #[arg(long, value_delimiter = ',', default_value = "direct", value_parser = ["direct", "iterative"])]
+    linear: Vec<String>,
     /// Time the assembly of B̌ on --mesh (default meshes/block-100k.msh) with one material
     /// and with four by region (the quadrants of its bounding box), the median of 5
     /// interleaved runs of each.
@@ -311,6 +317,7 @@ fn bench_command(args: BenchArgs) -> Result<Outcome> {
         one,
         ordering,
         backend,
+        linear,
     } = args;
     if let Some(spec) = one {
         return bench::one::measure_one(&spec).map(|_| Outcome::Done);
@@ -330,7 +337,10 @@ fn bench_command(args: BenchArgs) -> Result<Outcome> {
         return bench::quarter::run(&mesh).map(|_| Outcome::Done);
     }
     if backend == "petsc" {
-        return bench_backend(mesh.as_deref()).map(|_| Outcome::Done);
+        return bench_backend(mesh.as_deref(), &linear).map(|_| Outcome::Done);
+    }
+    if linear != ["direct"] {
+        anyhow::bail!("--linear goes with --backend petsc (the routes of the PETSc backend)");
     }
     if path {
         let case = case.unwrap_or_else(|| PathBuf::from("cases/indentation-curve.toml"));
@@ -373,15 +383,15 @@ fn bench_contact(
     bench::contact::contact(&targets)
 }
 
-/// `bench --mesh FILE --backend petsc`.
+/// `bench --mesh FILE --backend petsc [--linear ROUTES]`.
 #[cfg(feature = "petsc")]
-fn bench_backend(mesh: Option<&Path>) -> Result<()> {
+fn bench_backend(mesh: Option<&Path>, linear: &[String]) -> Result<()> {
     let mesh = mesh.ok_or_else(|| anyhow::anyhow!("--backend petsc needs --mesh FILE"))?;
-    bench::petsc::run(mesh)
+    bench::petsc::run(mesh, linear)
 }
 
 #[cfg(not(feature = "petsc"))]
-fn bench_backend(_mesh: Option<&Path>) -> Result<()> {
+fn bench_backend(_mesh: Option<&Path>, _linear: &[String]) -> Result<()> {
     anyhow::bail!(
         "--backend petsc needs piezocontact built with the PETSc backend: cargo build --release --features petsc (Debian packages petsc-dev and openmpi-bin)"
     )

@@ -244,3 +244,36 @@ fn a_krylov_solve_short_of_its_tolerance_ends_the_run_unconverged() {
     assert!(s["failure"].as_str().unwrap().contains("-ksp_max_it"), "{s}");
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// `bench --backend petsc --linear direct,iterative` under mpirun -n 2 on the 3D indentation's
+/// coarse mesh (its patch pressed down): a row per route and faer's, the iterative solve's
+/// GMRES iterations; a mesh without the patch is refused on the iterative route.
+#[test]
+fn the_backend_bench_times_both_routes() {
+    let args = ["bench", "--mesh", "meshes/indent-3d-h0.05.msh", "--backend", "petsc"];
+    let result = run(2, &[&args[..], &["--linear", "direct,iterative"]].concat());
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(result.status.success(), "{stdout}{}", String::from_utf8_lossy(&result.stderr));
+    let row = |name: &str| -> Vec<String> {
+        let line = stdout.lines().find(|l| l.trim_start().starts_with(name));
+        line.unwrap_or_else(|| panic!("no {name} row: {stdout}"))
+            .split_whitespace()
+            .map(String::from)
+            .collect()
+    };
+    let (direct, iterative) = (row("petsc direct"), row("petsc iterative"));
+    assert_eq!(direct[2], "2", "processes");
+    assert_eq!(direct[3], iterative[3], "the same unknowns");
+    let krylov: usize = iterative[10].parse().unwrap();
+    let most = piezocontact::linalg::petsc::KRYLOV_MAX_ITERATIONS;
+    assert!((1..most).contains(&krylov), "{stdout}");
+    assert_eq!(direct[10], "0", "no Krylov iteration on the direct route");
+    assert_eq!(row("faer")[1], "1");
+    assert!(stdout.contains("petsc iterative / petsc direct: all phases"), "{stdout}");
+    let cube =
+        ["bench", "--mesh", "meshes/cube.msh", "--backend", "petsc", "--linear", "iterative"];
+    let refused = run(1, &cube);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success());
+    assert!(stderr.contains("\"bottom\" and \"contact\""), "{stderr}");
+}

@@ -1,7 +1,7 @@
 //! `piezocontact bench --one SPEC`: one measurement in a process of its own, printed as
 //! key=value pairs for the parent benchmark — "plain,TARGET" (one factorisation),
-//! "contactK,TARGET" (the K-th contact problem of the target), "faer,MESH" (faer's phases
-//! beside PETSc's; feature `petsc`).
+//! "contactK,TARGET" (the K-th contact problem of the target), "faer,ROUTES,MESH" (faer's
+//! phases beside PETSc's; feature `petsc`).
 
 use super::contact::contact_problems;
 use super::{peak_mb, print_figures};
@@ -20,7 +20,8 @@ pub fn measure_one(spec: &str) -> Result<()> {
     let (kind, target) = spec.split_once(',').ok_or_else(|| anyhow!("--one {spec}"))?;
     #[cfg(feature = "petsc")]
     if kind == "faer" {
-        return super::petsc::measure_faer(std::path::Path::new(target));
+        let (routes, mesh) = target.split_once(',').ok_or_else(|| anyhow!("--one {spec}"))?;
+        return super::petsc::measure_faer(routes, std::path::Path::new(mesh));
     }
     let mut problems = contact_problems(target)?;
     if kind == "plain" {

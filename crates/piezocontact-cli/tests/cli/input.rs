@@ -238,6 +238,10 @@ fn the_iterative_route_is_refused_where_it_cannot_run() {
             "{args:?}: {stderr}"
         );
     }
+    // bench's routes are the PETSc backend's.
+    let output = piezocontact(&["bench", "--mesh", "meshes/cube.msh", "--linear", "iterative"]);
+    assert_eq!(output.status.code(), Some(1), "{}", text(&output));
+    assert!(text(&output).contains("--linear goes with --backend petsc"), "{}", text(&output));
 }
 
 /// solver.ordering is faer's: with the PETSc backend the case is warned that MUMPS orders
