@@ -171,7 +171,7 @@ struct BenchArgs {
     /// With --backend petsc: the routes to time, comma separated: "direct" (MUMPS's LDLᵀ)
     /// and "iterative" (GMRES with a field split and GAMG, as solver.linear = "iterative";
     /// on a mesh with the parts of meshes/indent-3d.geo, whose contact patch is pressed
-    /// down).
+    /// down). faer's row goes with "direct".
     #[arg(long, value_delimiter = ',', default_value = "direct", value_parser = ["direct", "iterative"])]
     linear: Vec<String>,
     /// Time the assembly of B̌ on --mesh (default meshes/block-100k.msh) with one material

@@ -272,6 +272,11 @@ fn the_backend_bench_times_both_routes() {
     assert!(stdout.contains("petsc iterative / petsc direct: all phases"), "{stdout}");
     let cube =
         ["bench", "--mesh", "meshes/cube.msh", "--backend", "petsc", "--linear", "iterative"];
+    // The iterative route alone: no faer row.
+    let alone = run(1, &[&args[..], &["--linear", "iterative"]].concat());
+    let stdout = String::from_utf8_lossy(&alone.stdout);
+    assert!(alone.status.success() && stdout.contains("petsc iterative"), "{stdout}");
+    assert!(!stdout.lines().any(|l| l.trim_start().starts_with("faer")), "{stdout}");
     let refused = run(1, &cube);
     let stderr = String::from_utf8_lossy(&refused.stderr);
     assert!(!refused.status.success());
