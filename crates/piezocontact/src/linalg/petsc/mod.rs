@@ -60,15 +60,21 @@ struct Rows {
     petsc: Vec<usize>,
     /// The mesh node of each owned PETSc row.
     nodes: Vec<usize>,
-    /// Per owned PETSc row: its PETSc columns (increasing) and, for each, the index of the
-    /// entry in the lower-triangle values of the seam's matrix ([`HELD`] at a held row's
-    /// diagonal).
-    columns: Vec<Vec<(PetscInt, usize)>>,
+    /// Owned PETSc row k's entries are `entries[offsets[k]..offsets[k + 1]]`: its PETSc
+    /// columns (increasing) and, for each, the index of the entry in the lower-triangle values
+    /// of the seam's matrix ([`HELD_ENTRY`] at a held row's diagonal). 8 bytes an entry.
+    offsets: Vec<usize>,
+    entries: Vec<Entry>,
 }
 
-/// The unknown of a held row (a constrained elastic component kept as an identity row), and
-/// the entry of its diagonal.
+/// A PETSc column and the index of its value in the seam's lower triangle.
+type Entry = (PetscInt, u32);
+
+/// The unknown of a held row (a constrained elastic component kept as an identity row).
 const HELD: usize = usize::MAX;
+
+/// The entry of a held row's diagonal.
+const HELD_ENTRY: u32 = u32::MAX;
 
 impl Rows {
     /// PETSc's numbering of the unknowns of `pattern` (whose groups are the mesh nodes) with
@@ -107,35 +113,27 @@ impl Rows {
         order.iter().enumerate().filter(|(_, k)| **k != HELD).for_each(|(p, &k)| petsc[k] = p);
         let start = keys.partition_point(|key| key[0] < rank);
         let end = keys.partition_point(|key| key[0] <= rank);
-        let mut columns = vec![Vec::new(); end - start];
-        let symbolic = pattern.symbolic();
-        for j in 0..n {
-            let range = symbolic.col_range(j);
-            for (at, &i) in range.clone().zip(&symbolic.row_idx()[range]) {
-                let (pi, pj) = (petsc[i], petsc[j]);
-                if (start..end).contains(&pi) {
-                    columns[pi - start].push((pj as PetscInt, at));
-                }
-                if i != j && (start..end).contains(&pj) {
-                    columns[pj - start].push((pi as PetscInt, at));
-                }
-            }
-        }
-        for p in (start..end).filter(|&p| order[p] == HELD) {
-            columns[p - start].push((p as PetscInt, HELD));
-        }
-        columns.iter_mut().for_each(|c| c.sort_unstable());
+        let (offsets, entries) = owned_entries(pattern, (&order, &petsc), start..end)?;
         let nodes = keys[start..end].iter().map(|key| key[1]).collect();
-        Ok(Self { n, total, start, end, order, petsc, nodes, columns })
+        Ok(Self { n, total, start, end, order, petsc, nodes, offsets, entries })
+    }
+
+    /// The entries of owned PETSc row `start + k`.
+    fn row(&self, k: usize) -> &[Entry] {
+        &self.entries[self.offsets[k]..self.offsets[k + 1]]
+    }
+
+    /// The entries of every owned PETSc row, in order.
+    fn owned_rows(&self) -> impl Iterator<Item = &[Entry]> {
+        (0..self.end - self.start).map(|k| self.row(k))
     }
 
     /// PETSc's preallocation: per owned row, entries in the owned columns and outside.
     fn preallocation(&self) -> (Vec<PetscInt>, Vec<PetscInt>) {
-        let owned = |c: &&(PetscInt, usize)| (self.start..self.end).contains(&(c.0 as usize));
+        let owned = |c: &&Entry| (self.start..self.end).contains(&(c.0 as usize));
         let diagonal: Vec<PetscInt> =
-            self.columns.iter().map(|c| c.iter().filter(owned).count() as PetscInt).collect();
-        let off =
-            self.columns.iter().zip(&diagonal).map(|(c, d)| c.len() as PetscInt - d).collect();
+            self.owned_rows().map(|c| c.iter().filter(owned).count() as PetscInt).collect();
+        let off = self.owned_rows().zip(&diagonal).map(|(c, d)| c.len() as PetscInt - d).collect();
         (diagonal, off)
     }
 
@@ -308,7 +306,7 @@ impl PetscSolver {
         };
         let values = matrix.lower().val();
         let (mut cols, mut vals) = (Vec::new(), Vec::new());
-        for (k, row) in rows.columns.iter().enumerate() {
+        for (k, row) in rows.owned_rows().enumerate() {
             let (p, i) = ((rows.start + k) as PetscInt, rows.order[rows.start + k]);
             if i == HELD {
                 // The scaled elastic diagonal is 1 on average (field_scaling).
@@ -320,7 +318,7 @@ impl PetscSolver {
             vals.clear();
             for &(q, at) in row {
                 cols.push(q);
-                vals.push(values[at] * s * self.scaling[rows.order[q as usize]]);
+                vals.push(values[at as usize] * s * self.scaling[rows.order[q as usize]]);
             }
             d.matrix.set_row(p, &cols, &vals)?;
         }
@@ -638,6 +636,55 @@ fn field_scaling(diagonal: &[f64], signs: &[i8]) -> Vec<f64> {
     signs.iter().map(|&s| if s < 0 { phi } else { u }).collect()
 }
 
+/// The full symmetric rows `owned` (PETSc's numbering; `order` and `petsc` map it to the
+/// unknowns of `pattern` and back), each row's columns increasing with the index of their
+/// entry in `pattern`'s lower triangle, a held row ([`HELD`]) its diagonal alone: the row
+/// offsets and the entries ([`Rows`]).
+fn owned_entries(
+    pattern: &SymmetricPattern,
+    (order, petsc): (&[usize], &[usize]),
+    owned: std::ops::Range<usize>,
+) -> Result<(Vec<usize>, Vec<Entry>)> {
+    let symbolic = pattern.symbolic();
+    if symbolic.row_idx().len() >= HELD_ENTRY as usize {
+        return Err(Error::LinearAlgebra(format!(
+            "PETSc backend: {} stored entries, more than the {} its row map holds",
+            symbolic.row_idx().len(),
+            HELD_ENTRY
+        )));
+    }
+    // Each stored entry (i, j) of the lower triangle, in the rows it belongs to: i's, and j's
+    // when it is off the diagonal; `visit` is told (owned row, column, entry).
+    let each = |visit: &mut dyn FnMut(usize, usize, u32)| {
+        for j in 0..pattern.n() {
+            let range = symbolic.col_range(j);
+            for (at, &i) in range.clone().zip(&symbolic.row_idx()[range]) {
+                let (pi, pj) = (petsc[i], petsc[j]);
+                if owned.contains(&pi) {
+                    visit(pi - owned.start, pj, at as u32);
+                }
+                if i != j && owned.contains(&pj) {
+                    visit(pj - owned.start, pi, at as u32);
+                }
+            }
+        }
+        for p in owned.clone().filter(|&p| order[p] == HELD) {
+            visit(p - owned.start, p, HELD_ENTRY);
+        }
+    };
+    let mut offsets = vec![0; owned.len() + 1];
+    each(&mut |k, _, _| offsets[k + 1] += 1);
+    (0..owned.len()).for_each(|k| offsets[k + 1] += offsets[k]);
+    let mut next = offsets.clone();
+    let mut entries = vec![(0, 0); offsets[owned.len()]];
+    each(&mut |k, column, at| {
+        entries[next[k]] = (column as PetscInt, at);
+        next[k] += 1;
+    });
+    offsets.windows(2).for_each(|w| entries[w[0]..w[1]].sort_unstable());
+    Ok((offsets, entries))
+}
+
 /// The (node, component) of each constrained elastic component of a node with some but not
 /// all of its `dim` components among the unknowns (`components`: each unknown's, `dim` for
 /// ϕ).
@@ -716,8 +763,12 @@ mod tests {
         assert_eq!((rows.n, rows.total), (6, 7));
         assert_eq!(rows.order, vec![0, 1, 4, HELD, 2, 5, 3]);
         assert_eq!(rows.nodes, vec![0, 0, 0, 1, 1, 1, 2]);
-        assert_eq!(rows.columns[3], vec![(3, HELD)], "an identity row, alone in its column");
-        assert!(rows.columns.iter().flatten().filter(|c| c.1 != HELD).all(|c| c.0 != 3));
+        assert_eq!(rows.row(3), [(3, HELD_ENTRY)], "an identity row, alone in its column");
+        let others: Vec<_> = rows.owned_rows().flatten().filter(|c| c.1 != HELD_ENTRY).collect();
+        assert!(others.iter().all(|c| c.0 != 3));
+        // Every other row is full: the 6 × 6 pattern's 21 stored entries give 36.
+        assert_eq!(others.len(), 36);
+        assert!(rows.owned_rows().all(|r| r.windows(2).all(|w| w[0].0 < w[1].0)), "increasing");
         let u = rows.field(&signs, 1);
         assert_eq!(u, vec![0, 1, 3, 4]);
         // One point per node of the field: nodes 0 and 1.
