@@ -239,9 +239,11 @@ fn a_krylov_solve_short_of_its_tolerance_ends_the_run_unconverged() {
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert_eq!(result.status.code(), Some(4), "{stderr}");
     assert_eq!(stderr.matches("stopped after 3 iterations").count(), 1, "one message: {stderr}");
+    assert!(!stderr.contains("solver.r"), "no advice on Uzawa's r for the solver's failure");
     let s = summary(&out);
     assert_eq!(s["converged"], false);
     assert!(s["failure"].as_str().unwrap().contains("-ksp_max_it"), "{s}");
+    assert_eq!(s["linear"]["krylov_iterations"], serde_json::json!([3]), "{s}");
     let _ = std::fs::remove_dir_all(&out);
 }
 

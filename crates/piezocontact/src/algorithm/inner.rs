@@ -85,11 +85,25 @@ pub enum Stop {
     Diverged,
     /// A solve produced NaN or infinity, or a criterion was not finite.
     NotFinite(String),
+    /// The linear solver failed for a reason of its own (memory, a Krylov solve short of its
+    /// tolerance), which its message says how to change: the method's advice does not apply.
+    Backend(String),
     /// The run was asked to stop ([`crate::interrupt`]), by this signal.
     Interrupted(i32),
     /// The iterates came back to where they were this many steps before, a whole period
     /// over, and would go round again.
     Cycle(usize),
+}
+
+impl Stop {
+    /// The stop of a loop whose solve failed with `error`: [`Stop::Backend`] for the linear
+    /// solver's own failure, else [`Stop::NotFinite`].
+    pub fn of_failed_solve(error: Error) -> Self {
+        match error {
+            Error::LinearAlgebra(cause) => Stop::Backend(cause),
+            other => Stop::NotFinite(other.to_string()),
+        }
+    }
 }
 
 /// How an inner method's stops read in errors.

@@ -657,7 +657,7 @@ impl<'a> Local<'a> {
                     (delta, alpha)
                 }
                 Err(e) => {
-                    (stop, iterations) = (Stop::NotFinite(e.to_string()), k + 1);
+                    (stop, iterations) = (Stop::of_failed_solve(e), k + 1);
                     break;
                 }
             };

@@ -446,6 +446,21 @@ mod tests {
         }
     }
 
+    /// The linear solver's own failure keeps its message, without the method's advice (which
+    /// is for the method's numbers, not the backend's).
+    #[test]
+    fn a_backend_failure_keeps_its_words_without_the_method_s_hint() {
+        let stop = Stop::of_failed_solve(Error::LinearAlgebra("out of Krylov iterations".into()));
+        let solution = run(Stub::new(true, stop, false), 10);
+        let failure = solution.failure.unwrap();
+        assert!(matches!(failure, Error::LinearAlgebra(_)), "{failure:?}");
+        let text = failure.to_string();
+        assert!(text.contains("the stub of outer step 1 failed at iteration"), "{text}");
+        assert!(text.contains("out of Krylov iterations") && !text.contains("hint"), "{text}");
+        let other = Stop::of_failed_solve(Error::NonFinite { what: "x".into() });
+        assert!(matches!(other, Stop::NotFinite(_)));
+    }
+
     /// A cap reached by a cycle or a stall says that more iterations would not help; one
     /// reached while the criterion still falls keeps the cap hint.
     #[test]

@@ -104,6 +104,9 @@ pub(super) fn inner_failure(context: &StopContext, inner: &InnerResult) -> Optio
         Stop::NotFinite(cause) => {
             Some(Error::NumericalFailure { what, iteration, cause: cause.clone(), hint })
         }
+        Stop::Backend(cause) => {
+            Some(Error::LinearAlgebra(format!("{what} failed at iteration {iteration}: {cause}")))
+        }
         Stop::Interrupted(signal) => Some(Error::Interrupted { signal: *signal }),
     }
 }

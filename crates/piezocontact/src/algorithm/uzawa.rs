@@ -167,7 +167,7 @@ impl Loop<'_> {
             let x_new = match system.solve(Some(&rhs)) {
                 Ok(x_new) => x_new,
                 Err(e) => {
-                    return Ok(done(x, state, k + 1, history, Stop::NotFinite(e.to_string())));
+                    return Ok(done(x, state, k + 1, history, Stop::of_failed_solve(e)));
                 }
             };
             let dofs = system.dofs();
