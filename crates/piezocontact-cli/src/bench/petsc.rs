@@ -143,7 +143,11 @@ fn measure_petsc(problem: &Problem, route: &str) -> Result<(Phases, usize)> {
         "iterative" => PetscSolver::iterative(petsc::KRYLOV_RTOL, petsc::KRYLOV_MAX_ITERATIONS)?,
         _ => PetscSolver::new()?,
     };
-    piezocontact::limits::reset_peak_resident();
+    if !piezocontact::limits::reset_peak_resident() && processes::is_root() {
+        crate::say_err!(
+            "note: the peak memory could not be reset (/proc/self/clear_refs): the {route} route's peak includes the routes' before it"
+        );
+    }
     let (mut phases, dofs) = measure(problem, Box::new(solver))?;
     phases.peak_mb = petsc::gather(phases.peak_mb[0])?;
     Ok((phases, dofs))
