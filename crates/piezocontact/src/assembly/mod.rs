@@ -486,19 +486,54 @@ fn cell_slots_into<const D: usize, const N: usize>(
     c: usize,
     (out, partial): (&mut [u32], bool),
 ) -> Result<()> {
-    let global = local_dofs::<D, N>(dofs, problem.mesh.cell(c));
-    for (slot, (_, _, r, col)) in out.iter_mut().zip(local_pairs(dofs, global, N * (D + 1))) {
+    let (global, m) = (local_dofs::<D, N>(dofs, problem.mesh.cell(c)), N * (D + 1));
+    let table = cell_positions(dofs, pattern, &global[..m]);
+    for (slot, (p, q, r, col)) in out.iter_mut().zip(local_pairs(dofs, global, m)) {
         *slot = if col == CONSTRAINED {
             (pattern.nnz() + r) as u32
         } else {
-            match pattern.position(r, col) {
-                Some(s) => s as u32,
-                None if partial => SKIPPED,
-                None => return Err(missing(r, col)()),
+            match table[p][q] {
+                SKIPPED if partial => SKIPPED,
+                SKIPPED => return Err(missing(r, col)()),
+                s => s,
             }
         };
     }
     Ok(())
+}
+
+/// The position in `pattern`'s values of each pair (p, q) of the element's DOFs `global`
+/// whose free row is at or below its free column ([`SKIPPED`] elsewhere, and where the
+/// pattern lacks it): for each column, one walk down its stored rows beside the element's
+/// rows in increasing order, instead of a search per pair.
+fn cell_positions(
+    dofs: &DofMap,
+    pattern: &SymmetricPattern,
+    global: &[usize],
+) -> [[u32; kernel::M_MAX]; kernel::M_MAX] {
+    let mut table = [[SKIPPED; kernel::M_MAX]; kernel::M_MAX];
+    let (mut free, mut order, mut count) = ([CONSTRAINED; kernel::M_MAX], [0; kernel::M_MAX], 0);
+    for (p, &g) in global.iter().enumerate() {
+        free[p] = dofs.free_index(g);
+        if free[p] != CONSTRAINED {
+            (order[count], count) = (p, count + 1);
+        }
+    }
+    let rows = &mut order[..count];
+    rows.sort_unstable_by_key(|&p| free[p]);
+    for &q in rows.iter() {
+        let (start, stored) = pattern.column(free[q]);
+        let mut at = 0;
+        for &p in rows.iter().filter(|&&p| free[p] >= free[q]) {
+            while at < stored.len() && stored[at] < free[p] {
+                at += 1;
+            }
+            if at < stored.len() && stored[at] == free[p] {
+                table[p][q] = (start + at) as u32;
+            }
+        }
+    }
+    table
 }
 
 /// What [`add_cell`] adds for one cell: its index, its secant modulus g_e [stress] and the

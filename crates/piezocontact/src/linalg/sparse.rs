@@ -88,6 +88,13 @@ impl SymmetricPattern {
         self.symbolic.row_idx().len()
     }
 
+    /// Column `col`'s stored rows (increasing, from the diagonal down) and the index of the
+    /// first of them in the matrix's values.
+    pub fn column(&self, col: usize) -> (usize, &[usize]) {
+        let range = self.symbolic.col_range(col);
+        (range.start, &self.symbolic.row_idx()[range])
+    }
+
     /// The index of entry (row, column) in the matrix's values, if the pattern has it.
     pub fn position(&self, row: usize, col: usize) -> Option<usize> {
         if col >= self.n() {
