@@ -62,20 +62,31 @@ beta33_rel = 830
 /// A case around a Gmsh mesh: every boundary part clamped and grounded, the paper's
 /// material: the matrix has the structure of every run on that mesh.
 pub fn mesh_case(path: &Path) -> Result<Case> {
+    let parts = mesh_parts(path)?;
+    mesh_case_with(path, &format!("clamped = {parts:?}\ngrounded = {parts:?}\n"))
+}
+
+/// The names of the boundary parts of the Gmsh mesh at `path` (an error where it has none).
+pub fn mesh_parts(path: &Path) -> Result<Vec<String>> {
     let bytes = std::fs::read(path).map_err(|e| anyhow!("cannot read {}: {e}", path.display()))?;
     let mesh =
         piezocontact::mesh::gmsh::read(&bytes).map_err(|e| anyhow!("{}: {e}", path.display()))?;
-    let parts: Vec<String> = mesh.parts().iter().map(|p| format!("{:?}", p.name)).collect();
+    let parts: Vec<String> = mesh.parts().iter().map(|p| p.name.clone()).collect();
     if parts.is_empty() {
         bail!(
             "{}: the mesh has no boundary parts (physical groups of dimension d − 1)",
             path.display()
         );
     }
-    let parts = parts.join(", ");
+    Ok(parts)
+}
+
+/// A case on the Gmsh mesh at `path` with the paper's material and the `[boundary]` table's
+/// lines `boundary`.
+pub fn mesh_case_with(path: &Path, boundary: &str) -> Result<Case> {
     let file = std::fs::canonicalize(path).map_err(|e| anyhow!("{}: {e}", path.display()))?;
     let text = format!(
-        "[mesh]\nfile = {:?}\n{MATERIAL}[boundary]\nclamped = [{parts}]\ngrounded = [{parts}]\n",
+        "[mesh]\nfile = {:?}\n{MATERIAL}[boundary]\n{boundary}",
         file.display().to_string()
     );
     Ok(Case::from_text(Path::new("bench.toml"), &text, &[])?)

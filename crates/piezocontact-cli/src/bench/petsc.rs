@@ -5,9 +5,11 @@
 //! in a process of its own started by process 0 after PETSc's part, so that the two do not
 //! share the cores.
 
-use super::{MATERIAL, factorised_once, in_child, mesh_case, peak_mb, print_figures};
+use super::{
+    factorised_once, in_child, mesh_case, mesh_case_with, mesh_parts, peak_mb, print_figures,
+};
 use crate::{processes, say};
-use anyhow::{Result, anyhow, bail};
+use anyhow::{Result, bail};
 use piezocontact::case::Case;
 use piezocontact::linalg::petsc::{self, PetscSolver};
 use piezocontact::linalg::{LdltSolver, LinearSolver, Ordering};
@@ -116,8 +118,7 @@ fn max(values: &[f64]) -> f64 {
 /// else every boundary part clamped and grounded, which leaves no load and is refused on the
 /// iterative route (its solve would take no iteration).
 fn bench_case(mesh: &Path, linear: &[String]) -> Result<Case> {
-    let case = mesh_case(mesh)?;
-    let parts = case.problem()?.mesh.parts().iter().map(|p| p.name.clone()).collect::<Vec<_>>();
+    let parts = mesh_parts(mesh)?;
     if !["bottom", "contact"].iter().all(|name| parts.iter().any(|p| p == name)) {
         if linear.iter().any(|r| r == "iterative") {
             bail!(
@@ -125,14 +126,11 @@ fn bench_case(mesh: &Path, linear: &[String]) -> Result<Case> {
                 mesh.display()
             );
         }
-        return Ok(case);
+        return mesh_case(mesh);
     }
-    let file = std::fs::canonicalize(mesh).map_err(|e| anyhow!("{}: {e}", mesh.display()))?;
-    let text = format!(
-        "[mesh]\nfile = {:?}\n{MATERIAL}[boundary]\nclamped = [\"bottom\"]\ngrounded = [\"bottom\"]\n[[boundary.support]]\nparts = [\"contact\"]\nfix = [\"z\"]\ndisplacement = [-0.02]\n",
-        file.display().to_string()
-    );
-    Ok(Case::from_text(Path::new("bench.toml"), &text, &[])?)
+    let pressed =
+        "[[boundary.support]]\nparts = [\"contact\"]\nfix = [\"z\"]\ndisplacement = [-0.02]\n";
+    mesh_case_with(mesh, &format!("clamped = [\"bottom\"]\ngrounded = [\"bottom\"]\n{pressed}"))
 }
 
 /// The PETSc backend's phases on `route` ("direct": MUMPS; "iterative": the Krylov route),
