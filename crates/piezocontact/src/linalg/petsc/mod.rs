@@ -354,8 +354,7 @@ impl PetscSolver {
     /// solution out; a solve that does not converge is an error with its numbers and the
     /// options to change.
     fn krylov_solve(&mut self, rhs: &mut [f64]) -> Result<()> {
-        let iterative = self.iterative.is_some();
-        rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(iterative, sign));
+        rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(true, sign));
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("set up");
         let krylov = d.krylov.as_ref().expect("set up");
@@ -547,15 +546,18 @@ impl LinearSolver for PetscSolver {
         if self.iterative.is_none() {
             return LinearRoute::default();
         }
+        // Before the first factorisation there is no solver to name; an unreadable name says
+        // why rather than pass for the direct route's "none".
         let krylov = self.distributed.as_ref().and_then(|d| d.krylov.as_ref());
         let [method, preconditioner] = match krylov.map(Krylov::kinds) {
-            Some(Ok(kinds)) => kinds.map(Some),
-            _ => [None, None],
+            Some(Ok(kinds)) => kinds,
+            Some(Err(e)) => [(); 2].map(|()| format!("unknown ({e})")),
+            None => [(); 2].map(|()| "not set up (no factorisation yet)".to_string()),
         };
         LinearRoute {
             kind: "iterative",
-            krylov: method,
-            preconditioner,
+            krylov: Some(method),
+            preconditioner: Some(preconditioner),
             krylov_iterations: self.krylov_iterations.clone(),
         }
     }
@@ -693,12 +695,13 @@ fn held_components(
     dim: usize,
     components: &[u8],
 ) -> Vec<(usize, usize)> {
-    let mut free: std::collections::BTreeMap<usize, u8> = std::collections::BTreeMap::new();
+    let nodes = (0..components.len()).map(|k| pattern.group(k) + 1).max().unwrap_or(0);
+    let mut free = vec![0u8; nodes];
     for (k, &i) in components.iter().enumerate().filter(|(_, i)| (**i as usize) < dim) {
-        *free.entry(pattern.group(k)).or_default() |= 1 << i;
+        free[pattern.group(k)] |= 1 << i;
     }
     let all = (1u8 << dim) - 1;
-    let partial = free.into_iter().filter(|&(_, mask)| mask != all);
+    let partial = free.into_iter().enumerate().filter(|&(_, mask)| mask != 0 && mask != all);
     partial
         .flat_map(|(node, mask)| {
             (0..dim).filter(move |i| mask & (1 << i) == 0).map(move |i| (node, i))
