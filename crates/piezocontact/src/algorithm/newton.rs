@@ -61,6 +61,16 @@ const LONGEST_CYCLE: usize = 8;
 /// of its steps (the strong-conduction cube of model §11).
 const CYCLE_TOLERANCE: f64 = 1e-5;
 
+/// One term of a row of the Jacobian: ∂E_k is the sum of factor · ∂F_j (F_j = row j of the
+/// operator times y, less the load) and of factor · ∂y_j.
+#[derive(Clone, Copy, Debug)]
+enum Term {
+    /// factor · ∂F_j.
+    Force(usize, f64),
+    /// factor · ∂y_j.
+    Unknown(usize, f64),
+}
+
 /// The condensed problem in local coordinates.
 struct Local<'a> {
     semismooth: &'a Semismooth<'a>,
@@ -973,7 +983,7 @@ impl<'a> Local<'a> {
         // right-hand side −E_k less the fixed unknowns' part.
         let row = |k: usize, out: Option<&mut [f64]>| -> f64 {
             let mut gradient = vec![0.0; m];
-            self.gradient(y, eval, node_of[k], k, &mut gradient);
+            self.dense_gradient(y, eval, node_of[k], k, &mut gradient);
             if let Some(out) = out {
                 free.iter().zip(out.iter_mut()).for_each(|(&v, o)| *o = gradient[v]);
             }
@@ -996,8 +1006,23 @@ impl<'a> Local<'a> {
         Ok((delta, lu))
     }
 
-    /// The gradient of the equation of unknown k (node i) with respect to y, added to `out`.
-    fn gradient(&self, y: &[f64], eval: &Evaluation, i: usize, k: usize, out: &mut [f64]) {
+    /// Row k of the Jacobian (the equation of unknown k, node i), dense, added to `out`.
+    fn dense_gradient(&self, y: &[f64], eval: &Evaluation, i: usize, k: usize, out: &mut [f64]) {
+        let mut terms = Vec::new();
+        self.gradient(y, eval, i, k, &mut terms);
+        for term in terms {
+            match term {
+                Term::Force(j, factor) => {
+                    out.iter_mut().zip(self.schur.col(j)).for_each(|(o, s)| *o += factor * s)
+                }
+                Term::Unknown(j, factor) => out[j] += factor,
+            }
+        }
+    }
+
+    /// The gradient of the equation of unknown k (node i) with respect to y, as terms
+    /// pushed onto `terms` in the order they are summed.
+    fn gradient(&self, y: &[f64], eval: &Evaluation, i: usize, k: usize, terms: &mut Vec<Term>) {
         let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
         let surface = step.surface;
         let (w, u, c, dim) = (surface.weight[i], cond.u[i], self.c[i], cond.slots(i).0.len());
@@ -1006,13 +1031,10 @@ impl<'a> Local<'a> {
             Phi::Unknown(p) => Some(p),
             _ => None,
         };
-        let add = |out: &mut [f64], column: usize, factor: f64| {
-            out.iter_mut().zip(self.schur.col(column)).for_each(|(o, s)| *o += factor * s);
-        };
         if Some(k) == phi_position {
-            add(out, k, 1.0);
+            terms.push(Term::Force(k, 1.0));
             if step.model.conduction.is_some() {
-                self.flux_gradient(y, k, out);
+                self.flux_gradient(y, k, terms);
             }
             return;
         }
@@ -1020,17 +1042,17 @@ impl<'a> Local<'a> {
             // Not in contact: E_n = λ_c = −σ_ν − q.
             let derivative = |phi| step.model.pressure_derivative(u_nu, phi, surface.gap[i]);
             let (dq_du, dq_dphi) = phi.map_or((0.0, 0.0), derivative);
-            add(out, u[0], -1.0 / w);
-            out[u[0]] -= dq_du;
+            terms.push(Term::Force(u[0], -1.0 / w));
+            terms.push(Term::Unknown(u[0], -dq_du));
             if let Some(p) = phi_position {
-                out[p] -= dq_dphi;
+                terms.push(Term::Unknown(p, -dq_dphi));
             }
             return;
         }
         // A tangential equation, component a = k's place among the tangents.
         let a = (1..dim).find(|&a| u[a] == k).unwrap_or(1);
         let Some(friction) = step.friction else {
-            add(out, k, -1.0 / w); // E_t = λ_f = −r_τ / w.
+            terms.push(Term::Force(k, -1.0 / w)); // E_t = λ_f = −r_τ / w.
             return;
         };
         // Slip: E_t = λ_f − s ẑ, ∂E_t = ∂λ_f − (s/‖z‖)(I − λ̃ẑᵀ)(∂λ_f + c ∂u_τ) − ẑ ∂s.
@@ -1048,23 +1070,23 @@ impl<'a> Local<'a> {
             let identity = if a == b { 1.0 } else { 0.0 };
             let coefficient = ratio * (identity - lambda_f[a - 1] / bound * z_hat[b - 1]);
             // ∂λ_f,b = −S_{τb,·} / w.
-            add(out, u[b], -(identity - coefficient) / w);
-            out[u[b]] -= coefficient * c;
+            terms.push(Term::Force(u[b], -(identity - coefficient) / w));
+            terms.push(Term::Unknown(u[b], -coefficient * c));
         }
         if s > 0.0 {
             let sign = friction.mu[i] * eval.r_sigma[i].signum() * z_hat[a - 1];
             for (j, weight) in friction.mollifier.row(i).into_iter().filter(|(j, _)| cond.kept[*j])
             {
                 // ∂σ_ν,j = S_{ν_j,·} / w_j.
-                add(out, cond.u[j][0], -sign * weight / surface.weight[j]);
+                terms.push(Term::Force(cond.u[j][0], -sign * weight / surface.weight[j]));
             }
         }
     }
 
     /// The gradient of the conduction fluxes that the ϕ row `p` subtracts: those of every
-    /// node whose ϕ is the unknown p (one node, or a floating electrode's nodes), added to
-    /// `out`.
-    fn flux_gradient(&self, y: &[f64], p: usize, out: &mut [f64]) {
+    /// node whose ϕ is the unknown p (one node, or a floating electrode's nodes), pushed onto
+    /// `terms`.
+    fn flux_gradient(&self, y: &[f64], p: usize, terms: &mut Vec<Term>) {
         let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
         let surface = step.surface;
         let reading =
@@ -1072,8 +1094,8 @@ impl<'a> Local<'a> {
         for j in reading.filter(|&j| cond.kept[j]) {
             let (w, u_nu) = (surface.weight[j], y[cond.u[j][0]]);
             let (d_u, d_phi) = step.model.flux_derivative(u_nu, y[p], surface.gap[j]);
-            out[cond.u[j][0]] -= w * self.conduction * d_u;
-            out[p] -= w * self.conduction * d_phi;
+            terms.push(Term::Unknown(cond.u[j][0], -w * self.conduction * d_u));
+            terms.push(Term::Unknown(p, -w * self.conduction * d_phi));
         }
     }
 
@@ -1159,7 +1181,7 @@ mod tests {
         let mut checked = 0;
         for k in (0..m).filter(|&k| !(eval.fixed[k] || skip_slip && slip_row[k])) {
             let mut gradient = vec![0.0; m];
-            local.gradient(y, &eval, node_of[k], k, &mut gradient);
+            local.dense_gradient(y, &eval, node_of[k], k, &mut gradient);
             let scale = gradient.iter().zip(y).map(|(g, _)| g.abs()).fold(0.0, f64::max);
             for j in 0..m {
                 let h = 1e-7 * size(j);
