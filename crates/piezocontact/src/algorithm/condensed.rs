@@ -191,6 +191,46 @@ impl Condensed {
         this
     }
 
+    /// The whole system as the "condensed" unknowns, at their free indices (position k is
+    /// free unknown k), for the semismooth Newton method on the whole system (model §11):
+    /// every Γ3 node that can touch the foundation (a finite gap) is kept with each of its free
+    /// u components, and its ϕ as for [`Condensed::new`] with `with_phi`; the other unknowns
+    /// are the interior's.
+    pub fn whole(dofs: &DofMap, surface: &ContactSurface, with_phi: bool) -> Self {
+        let dim = surface.dim();
+        let mut global = vec![0; dofs.n_free()];
+        for g in (0..dofs.n_total()).filter(|&g| dofs.free_index(g) != CONSTRAINED) {
+            global[dofs.free_index(g)] = g;
+        }
+        let mut this = Self {
+            free: (0..dofs.n_free()).collect(),
+            global,
+            u: Vec::new(),
+            axes: Vec::new(),
+            phi: Vec::new(),
+            kept: surface.gap.iter().map(|g| g.is_finite()).collect(),
+            with_phi,
+            n_free: dofs.n_free(),
+            frictionless: false,
+        };
+        for (i, &node) in surface.nodes.iter().enumerate() {
+            let axes = free_axes(dofs, node, dim);
+            let mut u = [usize::MAX; 3];
+            for (slot, &k) in u.iter_mut().zip(&axes.1[..axes.0]) {
+                *slot = dofs.free_index(dofs.u(node, k));
+            }
+            let dof = dofs.phi(node);
+            this.phi.push(match dofs.free_index(dof) {
+                _ if !with_phi || !this.kept[i] => Phi::Interior,
+                CONSTRAINED => Phi::Prescribed(dof),
+                k => Phi::Unknown(k),
+            });
+            this.u.push(if this.kept[i] { u } else { [usize::MAX; 3] });
+            this.axes.push(if this.kept[i] { axes } else { (0, [0; 3]) });
+        }
+        this
+    }
+
     /// The active-set check of the nodes left out (model §11): at the solution `x` of the
     /// condensed problem, a left-out node carries no contact force, which is its law only
     /// while u_ν ≤ g_a and its friction bound `bound` (s = µ|Rσ_ν| per Γ3 node, which a

@@ -29,9 +29,12 @@ use crate::contact::law::{coulomb, stop_complementarity};
 use crate::contact::{ContactState, ContactSurface, NodeStatus};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
-use crate::linalg::{DenseMatrix, LinearSolver, TransposedLu, max_distance, max_norm};
+use crate::linalg::{
+    DenseMatrix, LinearSolver, RowLu, RowMatrix, TransposedLu, max_distance, max_norm,
+};
 use crate::system::CoupledSystem;
 use rayon::prelude::*;
+use std::sync::Mutex;
 
 /// A relative Newton step below this, with unchanged sets, is round-off.
 pub const STEP_TOLERANCE: f64 = 1e-12;
@@ -71,11 +74,53 @@ enum Term {
     Unknown(usize, f64),
 }
 
+/// The operator A of F = A y − b, in local coordinates.
+enum Operator {
+    /// Q S Qᵀ, S the Schur complement of the condensed unknowns.
+    Dense(DenseMatrix),
+    /// T K Tᵀ, K the whole system's matrix, T turning each kept Γ3 node's u to its local
+    /// frame; with the sparse LU of the Newton steps.
+    Sparse(RowMatrix, Mutex<RowLu>),
+}
+
+impl Operator {
+    /// A y.
+    fn mul(&self, y: &[f64]) -> Vec<f64> {
+        match self {
+            Operator::Dense(schur) => schur.mul(y),
+            Operator::Sparse(matrix, _) => matrix.mul(y),
+        }
+    }
+
+    /// A_kk.
+    fn diagonal(&self, k: usize) -> f64 {
+        match self {
+            Operator::Dense(schur) => schur.get(k, k),
+            Operator::Sparse(matrix, _) => matrix.diagonal(k),
+        }
+    }
+
+    /// out += factor · (row j of A) (A is symmetric: its column j).
+    fn add_row(&self, j: usize, factor: f64, out: &mut [f64]) {
+        match self {
+            Operator::Dense(schur) => {
+                out.iter_mut().zip(schur.col(j)).for_each(|(o, s)| *o += factor * s)
+            }
+            Operator::Sparse(matrix, _) => {
+                let (columns, values) = matrix.row(j);
+                columns.iter().zip(values).for_each(|(&c, v)| out[c] += factor * v);
+            }
+        }
+    }
+}
+
 /// The condensed problem in local coordinates.
 struct Local<'a> {
     semismooth: &'a Semismooth<'a>,
-    /// Q S Qᵀ.
-    schur: DenseMatrix,
+    /// A.
+    operator: Operator,
+    /// Per position, its Γ3 node ([`INTERIOR`] for the whole system's other unknowns).
+    node_of: Vec<usize>,
     /// Q b: the condensed load in local coordinates.
     load: Vec<f64>,
     /// Per node: Q_i (rows ν, τ1, τ2) in the components of its unknowns.
@@ -95,6 +140,23 @@ struct Local<'a> {
     /// continuation ([`Local::continuation`]).
     conduction: f64,
 }
+
+/// values += factor · (the entries of `row` in `columns`), both sorted by column; entries of
+/// `row` outside `columns` are left out.
+fn add_matching(row: (&[usize], &[f64]), factor: f64, columns: &[usize], values: &mut [f64]) {
+    let mut at = 0;
+    for (&c, &v) in row.0.iter().zip(row.1) {
+        while at < columns.len() && columns[at] < c {
+            at += 1;
+        }
+        if at < columns.len() && columns[at] == c {
+            values[at] += factor * v;
+        }
+    }
+}
+
+/// The node of a position of the whole system outside Γ3.
+const INTERIOR: usize = usize::MAX;
 
 /// A Γ3 node in a turned frame: the frame R (rows, mesh components) and the global indices
 /// of u's mesh components there.
@@ -264,6 +326,9 @@ pub struct Newton {
     solved: usize,
     /// Time in the steps outside the system's counted phases: the dense problem \[s\].
     dense_seconds: f64,
+    /// Whether Newton runs on the whole system (a backend without a Schur complement)
+    /// rather than on the problem condensed onto Γ3.
+    whole: bool,
     /// θ ∈ [0, 1): the fraction of k_e the last outer step's iterate solves when its
     /// continuation in k_e stopped short of the whole (`None` otherwise).
     short_of: Option<f64>,
@@ -279,6 +344,7 @@ impl Newton {
             schur: SchurSource::default(),
             solved: 0,
             dense_seconds: 0.0,
+            whole: false,
             short_of: None,
         }
     }
@@ -305,16 +371,27 @@ impl InnerMethod for Newton {
         self.parameters.tol
     }
 
-    fn prepare(&mut self, setup: Setup, solver: Box<dyn LinearSolver>) -> Result<CoupledSystem> {
+    /// On a backend that condenses ([`LinearSolver::schur`]) the problem condensed onto Γ3;
+    /// on one that does not, the whole system's.
+    fn prepare(
+        &mut self,
+        setup: Setup,
+        mut solver: Box<dyn LinearSolver>,
+    ) -> Result<CoupledSystem> {
         let Setup { problem, dofs, surface, model } = setup;
         let with_phi = model.compliance.penetration > 0.0;
+        self.c_factor = self.parameters.r / problem.materials.reference_modulus();
+        self.whole = solver.schur().is_none();
+        if self.whole {
+            self.condensed = Some(Condensed::whole(&dofs, surface, with_phi));
+            return CoupledSystem::new(problem, dofs, &[], solver);
+        }
         let Parameters { max_condensed, guess, .. } = self.parameters;
         let frictionless = model.friction.is_none();
         let guess = guess.at_most(max_condensed);
         let condensed = Condensed::new(&dofs, surface, (with_phi, frictionless), guess);
         condensed.check_memory(crate::limits::available_memory())?;
         let system = CoupledSystem::with_last(problem, dofs, &condensed.free, solver)?;
-        self.c_factor = self.parameters.r / problem.materials.reference_modulus();
         self.schur = SchurSource::new(&condensed.free);
         self.condensed = Some(condensed);
         Ok(system)
@@ -329,6 +406,7 @@ impl InnerMethod for Newton {
     /// by the same solves after every factorisation.
     fn before_factorisation(&mut self, system: &mut CoupledSystem) -> Result<()> {
         if let Some(condensed) = &self.condensed
+            && !self.whole
             && !self.schur.analyses(&condensed.free)
         {
             system.put_last(&condensed.free)?;
@@ -343,7 +421,14 @@ impl InnerMethod for Newton {
         })?;
         let mut schur = std::mem::take(&mut self.schur);
         let (start, counted) = (std::time::Instant::now(), system.timings().counted());
-        let result = self.solve_growing(step, (&mut condensed, &mut schur), system);
+        let result = if self.whole {
+            let start = (self.solved > 0).then_some(step.previous);
+            let (c_factor, max_inner) = (self.c_factor, self.parameters.max_inner);
+            let whole = Semismooth { step, condensed: &condensed, c_factor, max_inner, start };
+            whole.run(system, None)
+        } else {
+            self.solve_growing(step, (&mut condensed, &mut schur), system)
+        };
         let counted = system.timings().counted() - counted;
         self.dense_seconds += (start.elapsed().as_secs_f64() - counted).max(0.0);
         (self.condensed, self.schur) = (Some(condensed), schur);
@@ -413,11 +498,13 @@ impl InnerMethod for Newton {
     }
 
     fn condensed_nodes(&self) -> usize {
-        self.condensed.as_ref().map_or(0, Condensed::node_count)
+        let condensed = self.condensed.as_ref().filter(|_| !self.whole);
+        condensed.map_or(0, Condensed::node_count)
     }
 
     fn dense_bytes(&self) -> f64 {
-        self.condensed.as_ref().map_or(0.0, Condensed::dense_bytes)
+        let condensed = self.condensed.as_ref().filter(|_| !self.whole);
+        condensed.map_or(0.0, Condensed::dense_bytes)
     }
 
     fn dense_seconds(&self) -> f64 {
@@ -443,7 +530,7 @@ impl Newton {
         let c_factor = self.c_factor;
         let start = (self.solved > 0).then_some(step.previous);
         let first = Semismooth { step, condensed, c_factor, max_inner, start };
-        let (mut result, mut short_of) = first.run(system, schur)?;
+        let (mut result, mut short_of) = first.run(system, Some(&mut *schur))?;
         let mut rounds = 1;
         while matches!(result.stop, Stop::Converged)
             && let Some(grown) = condensed.grown(
@@ -471,8 +558,8 @@ impl Newton {
             }
             let start = Some(result.x.as_slice());
             let next;
-            (next, short_of) =
-                Semismooth { step, condensed, c_factor, max_inner, start }.run(system, schur)?;
+            (next, short_of) = Semismooth { step, condensed, c_factor, max_inner, start }
+                .run(system, Some(&mut *schur))?;
             let history = [std::mem::take(&mut result.history), next.history].concat();
             result =
                 InnerResult { iterations: result.iterations + next.iterations, history, ..next };
@@ -506,17 +593,27 @@ struct Semismooth<'a> {
 
 impl Semismooth<'_> {
     /// Solves the condensed problem with the factorised `system` (ordered with the free
-    /// unknowns `schur` was made for last) and recovers the whole solution; with it, when a
-    /// continuation in k_e stopped short of the whole, the fraction θ < 1 of k_e it solves.
+    /// unknowns `schur` was made for last) and recovers the whole solution — or, without
+    /// `schur`, the whole system's problem; with it, when a continuation in k_e stopped short
+    /// of the whole, the fraction θ < 1 of k_e it solves.
     pub fn run(
         &self,
         system: &mut CoupledSystem,
-        schur: &mut SchurSource,
+        schur: Option<&mut SchurSource>,
     ) -> Result<(InnerResult, Option<f64>)> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;
-        let complement = schur.get(system, &cond.free)?;
-        let mut local = Local::new(self, complement, x_hat, system.dofs());
+        let (operator, rhs) = match schur {
+            Some(schur) => (Operator::Dense(schur.get(system, &cond.free)?), None),
+            None => {
+                let matrix = system.matrix().ok_or_else(|| {
+                    Error::LinearAlgebra("the whole system's Newton step before its matrix".into())
+                })?;
+                let sparse = Operator::Sparse(RowMatrix::from_symmetric(matrix), Mutex::default());
+                (sparse, Some(system.rhs().to_vec()))
+            }
+        };
+        let mut local = Local::new(self, operator, (x_hat, rhs.as_deref()), system.dofs())?;
         let from = local
             .zero_if_solution()
             .unwrap_or_else(|| local.gather(self.start.unwrap_or(&local.x_hat)));
@@ -537,11 +634,7 @@ impl Semismooth<'_> {
         }
         let Iteration { y, stop, iterations, history, .. } = newton;
         let eval = local.evaluate(&y);
-        let mut forces = vec![0.0; system.dofs().n_free()];
-        for (k, f) in local.to_global(&eval.forces).into_iter().enumerate() {
-            forces[cond.free[k]] = f;
-        }
-        let x = system.solve(Some(&forces))?;
+        let x = local.whole_solution(&y, &eval, system)?;
         let mut state = eval.multipliers;
         // Off the active set the law is λ_c = 0, held to round-off by the Newton equations.
         for (i, at_stop) in eval.sets.at_stop.iter().enumerate() {
@@ -571,48 +664,84 @@ impl Semismooth<'_> {
     }
 }
 
+/// The operator in local coordinates: Q S Qᵀ, or T K Tᵀ, node block by node block (a node
+/// that condenses u_ν alone has one slot, on the axis of its normal).
+fn turned_operator(
+    operator: Operator,
+    cond: &Condensed,
+    frames: &[[[f64; 3]; 3]],
+) -> Result<Operator> {
+    let kept: Vec<usize> = (0..frames.len()).filter(|&i| cond.kept[i]).collect();
+    // Node i's block: q[a][b], from its free component b to its local component a.
+    let block = |i: usize| -> [[f64; 3]; 3] {
+        let axes = cond.slots(i).1;
+        let mut q = [[0.0; 3]; 3];
+        for (a, row) in q.iter_mut().enumerate().take(axes.len()) {
+            axes.iter().enumerate().for_each(|(b, &axis)| row[b] = frames[i][a][axis]);
+        }
+        q
+    };
+    match operator {
+        Operator::Sparse(mut matrix, lu) => {
+            for &i in &kept {
+                matrix.turn(cond.slots(i).0, &block(i))?;
+            }
+            Ok(Operator::Sparse(matrix, lu))
+        }
+        Operator::Dense(mut schur) => {
+            let rotate = |q: &[[f64; 3]; 3], old: &[f64; 3], n: usize, a: usize| -> f64 {
+                (0..n).map(|b| q[a][b] * old[b]).sum()
+            };
+            // Columns, then rows: every node block of each column, the columns in parallel.
+            for &i in &kept {
+                let (idx, q) = (cond.slots(i).0, block(i));
+                let columns: Vec<Vec<f64>> = idx.iter().map(|&k| schur.col(k).to_vec()).collect();
+                for (a, &k) in idx.iter().enumerate() {
+                    for (r, out) in schur.col_mut(k).iter_mut().enumerate() {
+                        let mut old = [0.0; 3];
+                        columns.iter().zip(&mut old).for_each(|(c, o)| *o = c[r]);
+                        *out = rotate(&q, &old, idx.len(), a);
+                    }
+                }
+            }
+            schur.fill_columns(|_, column| {
+                for &i in &kept {
+                    let (idx, q) = (cond.slots(i).0, block(i));
+                    let mut old = [0.0; 3];
+                    idx.iter().zip(&mut old).for_each(|(&k, o)| *o = column[k]);
+                    idx.iter()
+                        .enumerate()
+                        .for_each(|(a, &k)| column[k] = rotate(&q, &old, idx.len(), a));
+                }
+            });
+            Ok(Operator::Dense(schur))
+        }
+    }
+}
+
 impl<'a> Local<'a> {
-    /// Turns S and the load into local coordinates and sets the constants.
+    /// Turns the operator (S, or the whole system's K with its right-hand side `rhs`, free,
+    /// in the unknowns' frames) and the load into local coordinates and sets the constants.
     fn new(
         semismooth: &'a Semismooth<'a>,
-        mut schur: DenseMatrix,
-        x_hat: Vec<f64>,
+        operator: Operator,
+        (x_hat, rhs): (Vec<f64>, Option<&[f64]>),
         dofs: &DofMap,
-    ) -> Self {
+    ) -> Result<Self> {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
         let (frames, turned) = unknown_frames(surface, dofs);
         let m = cond.len();
-        // S ← Q S Qᵀ, node block by node block: columns, then rows.
-        // A node that condenses u_ν alone has one slot, on the axis of its normal.
-        let rotate = |q: &[[f64; 3]; 3], axes: &[usize], old: &[f64; 3], a: usize| -> f64 {
-            axes.iter().enumerate().map(|(b, &axis)| q[a][axis] * old[b]).sum()
-        };
-        let kept: Vec<usize> = (0..frames.len()).filter(|&i| cond.kept[i]).collect();
-        for &i in &kept {
-            let (idx, axes) = cond.slots(i);
-            let columns: Vec<Vec<f64>> = idx.iter().map(|&k| schur.col(k).to_vec()).collect();
-            for (a, &k) in idx.iter().enumerate() {
-                for (r, out) in schur.col_mut(k).iter_mut().enumerate() {
-                    let mut old = [0.0; 3];
-                    columns.iter().zip(&mut old).for_each(|(c, o)| *o = c[r]);
-                    *out = rotate(&frames[i], axes, &old, a);
-                }
+        let mut node_of = vec![INTERIOR; m];
+        for i in (0..surface.len()).filter(|&i| cond.kept[i]) {
+            cond.slots(i).0.iter().for_each(|&k| node_of[k] = i);
+            if let Phi::Unknown(p) = cond.phi[i] {
+                node_of[p] = i;
             }
         }
-        // Rows: every node block of each column, the columns in parallel.
-        schur.fill_columns(|_, column| {
-            for &i in &kept {
-                let (idx, axes) = cond.slots(i);
-                let mut old = [0.0; 3];
-                idx.iter().zip(&mut old).for_each(|(&k, o)| *o = column[k]);
-                idx.iter()
-                    .enumerate()
-                    .for_each(|(a, &k)| column[k] = rotate(&frames[i], axes, &old, a));
-            }
-        });
         let mut this = Self {
             semismooth,
-            schur,
+            operator: turned_operator(operator, cond, &frames)?,
+            node_of,
             load: Vec::new(),
             frames,
             turned,
@@ -622,7 +751,14 @@ impl<'a> Local<'a> {
             origin: vec![0.0; m],
             conduction: 1.0,
         };
-        this.load = this.schur.mul(&this.gather(&this.x_hat));
+        this.load = match rhs {
+            Some(rhs) => {
+                let mut load = rhs.to_vec();
+                this.to_local(&mut load);
+                load
+            }
+            None => this.operator.mul(&this.gather(&this.x_hat)),
+        };
         if let Some(origin) = semismooth.step.slip_origin {
             this.origin = this.gather(origin);
         }
@@ -632,16 +768,16 @@ impl<'a> Local<'a> {
                 if !cond.kept[i] {
                     return 0.0;
                 }
-                semismooth.c_factor * this.schur.get(k, k).abs() / surface.weight[i]
+                semismooth.c_factor * this.operator.diagonal(k).abs() / surface.weight[i]
             })
             .collect();
         this.scale = (0..m)
-            .map(|k| 1.0 / this.schur.get(k, k).abs().sqrt().max(f64::MIN_POSITIVE))
+            .map(|k| 1.0 / this.operator.diagonal(k).abs().sqrt().max(f64::MIN_POSITIVE))
             .collect();
         for i in (0..surface.len()).filter(|&i| cond.kept[i]) {
             cond.slots(i).0.iter().for_each(|&k| this.scale[k] *= surface.weight[i]);
         }
-        this
+        Ok(this)
     }
 
     /// The semismooth Newton iteration from y, with its line search, until the sets settle
@@ -820,6 +956,13 @@ impl<'a> Local<'a> {
                 y[k] = (0..d).map(|m| rows[axis][m] * x[u[m]]).sum();
             }
         }
+        self.to_local(&mut y);
+        y
+    }
+
+    /// A vector of the positions from the unknowns' frames to local coordinates.
+    fn to_local(&self, y: &mut [f64]) {
+        let cond = self.semismooth.condensed;
         for (i, q) in self.frames.iter().enumerate().filter(|(i, _)| cond.kept[*i]) {
             let (idx, axes) = cond.slots(i);
             let u: Vec<f64> = idx.iter().map(|&k| y[k]).collect();
@@ -827,7 +970,29 @@ impl<'a> Local<'a> {
                 y[k] = axes.iter().zip(&u).map(|(&axis, v)| q[a][axis] * v).sum();
             }
         }
-        y
+    }
+
+    /// The global vector (mesh components) of the solution y with its evaluation: the
+    /// condensed problem's interior by a solve with the contact forces on the Γ3 rows; the
+    /// whole system's y itself.
+    fn whole_solution(
+        &self,
+        y: &[f64],
+        eval: &Evaluation,
+        system: &mut CoupledSystem,
+    ) -> Result<Vec<f64>> {
+        let cond = self.semismooth.condensed;
+        if let Operator::Sparse(..) = self.operator {
+            if let Some(k) = y.iter().position(|v| !v.is_finite()) {
+                return Err(Error::NonFinite { what: format!("solution component {k}") });
+            }
+            return Ok(system.dofs().expand(&self.to_global(y)));
+        }
+        let mut forces = vec![0.0; system.dofs().n_free()];
+        for (k, f) in self.to_global(&eval.forces).into_iter().enumerate() {
+            forces[cond.free[k]] = f;
+        }
+        system.solve(Some(&forces))
     }
 
     /// A condensed vector from local to global coordinates.
@@ -868,14 +1033,15 @@ impl<'a> Local<'a> {
         let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
         let (surface, law) = (step.surface, &step.model.compliance);
         let n3 = surface.len();
-        let mut forces = self.schur.mul(y);
+        let mut forces = self.operator.mul(y);
         forces.iter_mut().zip(&self.load).for_each(|(f, b)| *f -= b);
         let sigma_nu: Vec<f64> = (0..n3)
             .map(|i| if cond.kept[i] { forces[cond.u[i][0]] / surface.weight[i] } else { 0.0 })
             .collect();
         let r_sigma = step.friction.map_or_else(|| sigma_nu.clone(), |f| f.regularised(&sigma_nu));
         let mut eval = Evaluation {
-            residual: vec![0.0; y.len()],
+            // The rows of the interior (of the whole system) and of ϕ: F; the others below.
+            residual: forces.clone(),
             sets: Sets::new(n3, step.friction.is_some()),
             fixed: vec![false; y.len()],
             multipliers: ContactState::cold(n3),
@@ -883,13 +1049,8 @@ impl<'a> Local<'a> {
             sigma_nu,
             r_sigma,
         };
-        // The ϕ rows: the condensed charge balance less the conduction flux of every node
-        // that reads the unknown (a floating electrode's nodes share one).
-        for phi in &cond.phi {
-            if let Phi::Unknown(p) = *phi {
-                eval.residual[p] = eval.forces[p];
-            }
-        }
+        // The ϕ rows are the condensed charge balance less the conduction flux of every node
+        // that reads the unknown (a floating electrode's nodes share one), below.
         for i in (0..n3).filter(|&i| cond.kept[i]) {
             let (w, u, c) = (surface.weight[i], cond.u[i], self.c[i]);
             // The condensed components of the node: d, or the normal alone.
@@ -952,31 +1113,89 @@ impl<'a> Local<'a> {
     }
 
     /// The Newton step δ at y: the fixed unknowns from their own rows, the others from the
-    /// dense system of the remaining rows — factorised here, and returned, or the `frozen`
-    /// factors of an earlier step with the same sets (a chord step).
+    /// system of the remaining rows — the dense one of the condensed unknowns (factorised
+    /// here and returned, or the `frozen` factors of an earlier step with the same sets, a
+    /// chord step), or the whole system's sparse one.
     fn newton_step(
         &self,
         y: &[f64],
         eval: &Evaluation,
         frozen: Option<&TransposedLu>,
     ) -> Result<(Vec<f64>, Option<TransposedLu>)> {
+        match &self.operator {
+            Operator::Dense(_) => self.dense_step(y, eval, frozen),
+            Operator::Sparse(matrix, lu) => Ok((self.sparse_step(y, eval, matrix, lu)?, None)),
+        }
+    }
+
+    /// The steps of the unknowns that their equations fix (−c δ = −E), 0 elsewhere.
+    fn fixed_steps(&self, eval: &Evaluation) -> Vec<f64> {
         let cond = self.semismooth.condensed;
-        let m = y.len();
-        let mut delta = vec![0.0; m];
-        let mut node_of = vec![0; m];
+        let mut delta = vec![0.0; eval.residual.len()];
         for i in (0..cond.u.len()).filter(|&i| cond.kept[i]) {
-            let idx = cond.slots(i).0;
-            idx.iter().for_each(|&k| node_of[k] = i);
-            if let Phi::Unknown(p) = cond.phi[i] {
-                node_of[p] = i;
-            }
-            for &k in idx {
-                if eval.fixed[k] {
-                    // −c δ = −E.
-                    delta[k] = eval.residual[k] / self.c[i];
-                }
+            for &k in cond.slots(i).0.iter().filter(|&&k| eval.fixed[k]) {
+                delta[k] = eval.residual[k] / self.c[i];
             }
         }
+        delta
+    }
+
+    /// The whole system's Newton step δ at y: the Jacobian T K Tᵀ with the Γ3 rows that no
+    /// set fixes replaced by the laws' rows (their terms on the rows of K of the same node;
+    /// terms on other nodes' rows — a nonlocal R's — are left out, so that the pattern stays
+    /// K's), each u row times −w (force units, as the interior's); the fixed unknowns
+    /// eliminated with their steps, their rows and columns zeroed but for K's diagonal.
+    fn sparse_step(
+        &self,
+        y: &[f64],
+        eval: &Evaluation,
+        matrix: &RowMatrix,
+        lu: &Mutex<RowLu>,
+    ) -> Result<Vec<f64>> {
+        let surface = self.semismooth.step.surface;
+        let delta = self.fixed_steps(eval);
+        let mut jacobian = matrix.clone();
+        let mut rhs: Vec<f64> = eval.residual.iter().map(|e| -e).collect();
+        let mut terms = Vec::new();
+        for k in (0..y.len()).filter(|&k| self.node_of[k] != INTERIOR && !eval.fixed[k]) {
+            let i = self.node_of[k];
+            terms.clear();
+            self.gradient(y, eval, i, k, &mut terms);
+            let phi_row = matches!(self.semismooth.condensed.phi[i], Phi::Unknown(p) if p == k);
+            let factor = if phi_row { 1.0 } else { -surface.weight[i] };
+            let (columns, values) = jacobian.row_mut(k);
+            values.iter_mut().for_each(|v| *v = 0.0);
+            for term in &terms {
+                match *term {
+                    Term::Force(j, f) => add_matching(matrix.row(j), factor * f, columns, values),
+                    Term::Unknown(j, f) => {
+                        if let Ok(at) = columns.binary_search(&j) {
+                            values[at] += factor * f;
+                        }
+                    }
+                }
+            }
+            rhs[k] *= factor;
+        }
+        for k in (0..y.len()).filter(|&k| eval.fixed[k]) {
+            jacobian.eliminate(k, delta[k], matrix.diagonal(k).abs(), &mut rhs);
+        }
+        lu.lock()
+            .map_err(|_| Error::LinearAlgebra("the sparse LU was poisoned".into()))?
+            .solve(&jacobian, &mut rhs)?;
+        Ok(rhs)
+    }
+
+    /// The dense Newton step of the condensed problem (see [`Local::newton_step`]).
+    fn dense_step(
+        &self,
+        y: &[f64],
+        eval: &Evaluation,
+        frozen: Option<&TransposedLu>,
+    ) -> Result<(Vec<f64>, Option<TransposedLu>)> {
+        let m = y.len();
+        let mut delta = self.fixed_steps(eval);
+        let node_of = &self.node_of;
         let free: Vec<usize> = (0..m).filter(|&k| !eval.fixed[k]).collect();
         let fixed: Vec<usize> = (0..m).filter(|&v| eval.fixed[v] && delta[v] != 0.0).collect();
         // Row k of the Jacobian into `out` (on the free unknowns, when given); returns the
@@ -1012,9 +1231,7 @@ impl<'a> Local<'a> {
         self.gradient(y, eval, i, k, &mut terms);
         for term in terms {
             match term {
-                Term::Force(j, factor) => {
-                    out.iter_mut().zip(self.schur.col(j)).for_each(|(o, s)| *o += factor * s)
-                }
+                Term::Force(j, factor) => self.operator.add_row(j, factor, out),
                 Term::Unknown(j, factor) => out[j] += factor,
             }
         }
@@ -1158,28 +1375,23 @@ mod tests {
     fn check_gradient(local: &Local, y: &[f64], skip_slip: bool) -> usize {
         let eval = local.evaluate(y);
         let cond = local.semismooth.condensed;
-        let m = y.len();
-        let mut node_of = vec![0; m];
+        let (m, node_of) = (y.len(), &local.node_of);
         let mut slip_row = vec![false; m];
         for i in (0..cond.u.len()).filter(|&i| cond.kept[i]) {
-            let idx = cond.slots(i).0;
-            idx.iter().for_each(|&k| node_of[k] = i);
-            if let Phi::Unknown(p) = cond.phi[i] {
-                node_of[p] = i;
-            }
             let slipping = eval.sets.status[i] == NodeStatus::Slip;
-            idx[1..].iter().for_each(|&k| slip_row[k] = slipping);
+            cond.slots(i).0[1..].iter().for_each(|&k| slip_row[k] = slipping);
         }
-        // Steps relative to the size of each kind of unknown (u and ϕ differ by far).
+        // Steps relative to the size of each kind of unknown (u and ϕ differ by far): the
+        // global ϕ unknowns follow every u.
+        let dim = local.semismooth.step.surface.dim();
+        let is_phi = |k: usize| cond.global[k] >= local.x_hat.len() / (dim + 1) * dim;
         let size = |k: usize| {
-            let same_kind = |j: &usize| {
-                matches!(cond.phi[node_of[*j]], Phi::Unknown(p) if p == *j)
-                    == matches!(cond.phi[node_of[k]], Phi::Unknown(p) if p == k)
-            };
+            let same_kind = |j: &usize| is_phi(*j) == is_phi(k);
             (0..m).filter(same_kind).map(|j| y[j].abs()).fold(0.0, f64::max).max(1e-12)
         };
         let mut checked = 0;
-        for k in (0..m).filter(|&k| !(eval.fixed[k] || skip_slip && slip_row[k])) {
+        let rows = (0..m).filter(|&k| node_of[k] != INTERIOR);
+        for k in rows.filter(|&k| !(eval.fixed[k] || skip_slip && slip_row[k])) {
             let mut gradient = vec![0.0; m];
             local.dense_gradient(y, &eval, node_of[k], k, &mut gradient);
             let scale = gradient.iter().zip(y).map(|(g, _)| g.abs()).fold(0.0, f64::max);
@@ -1207,7 +1419,9 @@ mod tests {
 
     #[test]
     fn the_newton_jacobian_matches_difference_quotients() {
-        for regularization in ["identity", "mollifier"] {
+        for (regularization, whole) in
+            [("identity", false), ("mollifier", false), ("identity", true), ("mollifier", true)]
+        {
             let regularization = format!("friction.regularization=\"{regularization}\"");
             let fixture = Fixture::new(
                 PAPER_72,
@@ -1222,8 +1436,8 @@ mod tests {
                     &regularization,
                 ],
             );
-            let checked = jacobian_case(&fixture);
-            assert!(checked > 20, "{regularization}: {checked} rows checked");
+            let checked = jacobian_case(&fixture, whole);
+            assert!(checked > 20, "{regularization}, whole {whole}: {checked} rows checked");
         }
     }
 
@@ -1258,15 +1472,15 @@ mod tests {
             (shared, unknowns.len())
         });
         assert!(shared > 4 && distinct == 1, "{shared} nodes read {distinct} ϕ unknowns");
-        let checked = jacobian_case(&fixture);
+        let checked = jacobian_case(&fixture, false);
         assert!(checked > 10, "{checked} rows checked");
     }
 
-    /// Prepares the exact solver on the fixture, solves one step, and checks the Jacobian at
-    /// the start (x̂, slip rows left out) and at the solution (every row). Returns the number
-    /// of rows checked.
-    fn jacobian_case(fixture: &Fixture) -> usize {
-        solved_step(fixture, |local, result| {
+    /// Prepares the exact solver on the fixture, solves one step (on the condensed problem,
+    /// or the `whole` system), and checks the Jacobian of the Γ3 rows at the start (x̂, slip
+    /// rows left out) and at the solution (every row). Returns the number of rows checked.
+    fn jacobian_case(fixture: &Fixture, whole: bool) -> usize {
+        solved_step_on(fixture, whole, |local, result| {
             let start = local.gather(&local.x_hat);
             let solution = local.gather(&result.x);
             let contact = local.evaluate(&solution).sets.holding();
@@ -1278,6 +1492,46 @@ mod tests {
     /// Prepares the exact solver on the fixture, solves one step from the solve without
     /// contact, and hands the step's dense problem and its result to `check`.
     fn solved_step<T>(fixture: &Fixture, check: impl FnOnce(&Local, &InnerResult) -> T) -> T {
+        solved_step_on(fixture, false, check)
+    }
+
+    /// faer's LDLᵀ without its Schur complement: the exact solver then runs on the whole
+    /// system.
+    #[derive(Debug)]
+    struct Uncondensing(crate::linalg::LdltSolver);
+
+    impl LinearSolver for Uncondensing {
+        fn name(&self) -> &str {
+            "ldlt without a Schur complement"
+        }
+        fn analyze(
+            &mut self,
+            pattern: &crate::linalg::SymmetricPattern,
+            signs: &[i8],
+        ) -> Result<()> {
+            self.0.analyze(pattern, signs)
+        }
+        fn factorize(&mut self, matrix: &crate::linalg::SymmetricMatrix) -> Result<()> {
+            self.0.factorize(matrix)
+        }
+        fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+            self.0.solve_in_place(rhs)
+        }
+        fn stats(&self) -> crate::linalg::SolverStats {
+            self.0.stats()
+        }
+    }
+
+    fn uncondensing() -> Box<dyn LinearSolver> {
+        Box::new(Uncondensing(crate::linalg::LdltSolver::new()))
+    }
+
+    /// [`solved_step`] on the condensed problem, or on the whole system (`whole`).
+    fn solved_step_on<T>(
+        fixture: &Fixture,
+        whole: bool,
+        check: impl FnOnce(&Local, &InnerResult) -> T,
+    ) -> T {
         let parameters = Parameters {
             r: 14.7,
             tol: 1e-10,
@@ -1286,7 +1540,9 @@ mod tests {
             guess: Guess::Nearest(2000),
         };
         let mut method = Newton::new(parameters);
-        let mut system = method.prepare(fixture.setup(), default_solver()).unwrap();
+        let solver = if whole { uncondensing() } else { default_solver() };
+        let mut system = method.prepare(fixture.setup(), solver).unwrap();
+        assert_eq!(method.whole, whole);
         let zero = vec![0.0; system.dofs().n_total()];
         let moduli = secant_moduli(fixture.problem(), system.dofs(), &zero).unwrap();
         let moduli = Linearisation::secant(moduli);
@@ -1302,12 +1558,18 @@ mod tests {
             max_inner: 100,
             start: None,
         };
-        let (result, _) =
-            semismooth.run(&mut system, &mut SchurSource::new(&condensed.free)).unwrap();
+        let mut schur = SchurSource::new(&condensed.free);
+        let (result, _) = semismooth.run(&mut system, (!whole).then_some(&mut schur)).unwrap();
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
-        let complement = system.schur_complement().unwrap();
-        let local = Local::new(&semismooth, complement, x_hat, system.dofs());
+        let (operator, rhs) = if whole {
+            let matrix = RowMatrix::from_symmetric(system.matrix().unwrap());
+            (Operator::Sparse(matrix, Mutex::default()), Some(system.rhs().to_vec()))
+        } else {
+            (Operator::Dense(system.schur_complement().unwrap()), None)
+        };
+        let local =
+            Local::new(&semismooth, operator, (x_hat, rhs.as_deref()), system.dofs()).unwrap();
         check(&local, &result)
     }
 
@@ -1331,6 +1593,73 @@ mod tests {
         let e = method.accept(&kkt, &[0.0, 0.0]).unwrap().to_string();
         assert!(e.contains("in 2 iterations:"), "{e}");
         assert!(method.accept(&KktResidual { max: 1e-12, ..kkt }, &[0.0]).is_none());
+    }
+
+    /// The largest differences of u and of ϕ between the solutions of the case `text` with
+    /// `overrides` on the condensed problem and on the whole system, each relative to the
+    /// field's largest value; both runs must converge (KKT residual within solver.tol).
+    fn whole_against_condensed(text: &str, overrides: &[&str]) -> (f64, f64) {
+        let built = crate::testing::built(text, overrides);
+        let (problem, model) = (&built.problem, built.model.as_ref().unwrap());
+        let solve = |solver| {
+            let solution =
+                super::super::solve_contact_with(problem, model, &built.settings, solver, &|_| {})
+                    .unwrap();
+            assert!(solution.failure.is_none(), "{overrides:?}: {:?}", solution.failure);
+            solution
+        };
+        let (condensed, whole) = (solve(default_solver()), solve(uncondensing()));
+        let dofs = &condensed.dofs;
+        let n_u = problem.mesh.n_nodes() * problem.mesh.dim();
+        let largest = |range: std::ops::Range<usize>| {
+            let difference = range.clone().map(|g| (condensed.x[g] - whole.x[g]).abs());
+            let size = range.map(|g| condensed.x[g].abs()).fold(0.0, f64::max);
+            assert!(size > 0.0, "{overrides:?}: a field is zero");
+            difference.fold(0.0, f64::max) / size
+        };
+        assert_eq!(dofs.n_total(), condensed.x.len());
+        (largest(0..n_u), largest(n_u..dofs.n_total()))
+    }
+
+    /// The exact solver on the whole system (a backend without a Schur complement) solves
+    /// the problem it solves condensed onto Γ3, to 1e−10 of each field (measured: 3e−14 and
+    /// below): the paper's bar with
+    /// Hencky's law, friction by a mollifier and conduction (the sparse Jacobian leaves out a
+    /// nonlocal R's neighbours, the residual does not); the 3D indentation with friction; the
+    /// quarter model on rollers turned 30° from the axes (Γ3 nodes in turned frames).
+    #[test]
+    fn the_whole_system_s_newton_solves_the_condensed_problem_s_solution() {
+        let mesh = |name: &str| format!("mesh.file={:?}", mesh_path(name));
+        let quarter = include_str!("../../../../cases/indentation-quarter.toml")
+            .replace("fix = [\"x\"]", "fix = [\"normal\"]")
+            .replace("fix = [\"y\"]", "fix = [\"normal\"]");
+        let cases: [(&str, Vec<String>); 3] = [
+            (
+                PAPER_72,
+                [
+                    "mesh.nx=24",
+                    "mesh.ny=4",
+                    "solver.method=\"newton\"",
+                    "contact.penetration=0.05",
+                    "conductivity.ke=0.5",
+                    "friction.radius=1.0",
+                    "friction.regularization=\"mollifier\"",
+                ]
+                .map(String::from)
+                .to_vec(),
+            ),
+            (INDENTATION_3D, vec![mesh("indent-3d-h0.05.msh")]),
+            (&quarter, vec![mesh("indent-quarter-turned-h0.05.msh")]),
+        ];
+        for (text, overrides) in &cases {
+            let overrides: Vec<&str> = overrides.iter().map(String::as_str).collect();
+            let (du, dphi) = whole_against_condensed(text, &overrides);
+            assert!(du < 1e-10 && dphi < 1e-10, "{overrides:?}: u {du:e}, ϕ {dphi:e}");
+        }
+    }
+
+    fn mesh_path(name: &str) -> String {
+        format!("{}/../../meshes/{name}", env!("CARGO_MANIFEST_DIR"))
     }
 
     /// Once the sets have settled, Newton's last steps solve with the last dense

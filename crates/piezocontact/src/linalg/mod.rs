@@ -52,6 +52,7 @@ mod ldlt;
 pub mod ordering;
 #[cfg(feature = "petsc")]
 pub mod petsc;
+mod rows;
 mod seam;
 mod sparse;
 mod vectors;
@@ -60,6 +61,7 @@ pub use dense::{DenseMatrix, TransposedLu, max_distance, max_norm, null_space, s
 pub use ldlt::LdltSolver;
 #[cfg(feature = "petsc")]
 pub use petsc::PetscSolver;
+pub use rows::{RowLu, RowMatrix};
 pub use seam::{Distributed, LinearRoute, LinearSolver, Ordering, SchurComplement, SolverStats};
 pub use sparse::{SymmetricMatrix, SymmetricPattern};
 pub use vectors::parallelism;

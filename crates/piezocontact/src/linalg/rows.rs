@@ -1,0 +1,311 @@
+//! General (unsymmetric) sparse matrices stored by rows, with the full pattern of a symmetric
+//! one: the Jacobian of the semismooth Newton method on the whole system (model §11), whose
+//! Γ3 rows are the contact laws' combinations of the stiffness rows of their node, and its
+//! direct solve by faer's sparse LU.
+
+use super::sparse::SymmetricMatrix;
+use super::vectors::{check_length, column};
+use crate::error::{Error, Result};
+use faer::linalg::solvers::SolveCore;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::{Conj, MatMut};
+use rayon::prelude::*;
+use std::sync::Arc;
+
+/// The pattern of a [`RowMatrix`]: the columns of each row, increasing.
+#[derive(Debug, PartialEq)]
+struct RowPattern {
+    row_ptr: Vec<usize>,
+    columns: Vec<usize>,
+}
+
+/// A square sparse matrix stored row by row; matrices made from one another share the pattern.
+#[derive(Clone, Debug)]
+pub struct RowMatrix {
+    pattern: Arc<RowPattern>,
+    values: Vec<f64>,
+}
+
+impl RowMatrix {
+    /// The whole matrix of `symmetric` (both triangles).
+    pub fn from_symmetric(symmetric: &SymmetricMatrix) -> Self {
+        let n = symmetric.n();
+        let mut counts = vec![0usize; n + 1];
+        for (i, j, _) in symmetric.lower_entries() {
+            counts[i + 1] += 1;
+            if i != j {
+                counts[j + 1] += 1;
+            }
+        }
+        (0..n).for_each(|r| counts[r + 1] += counts[r]);
+        let row_ptr = counts.clone();
+        let mut next = counts;
+        let mut columns = vec![0; row_ptr[n]];
+        let mut values = vec![0.0; row_ptr[n]];
+        // Column j of the lower triangle, in increasing j: row i ≥ j receives column j, and
+        // row j receives columns i ≥ j after every column below j — each row in order.
+        for (i, j, v) in symmetric.lower_entries() {
+            let mut put = |row: usize, col: usize| {
+                (columns[next[row]], values[next[row]]) = (col, v);
+                next[row] += 1;
+            };
+            put(i, j);
+            if i != j {
+                put(j, i);
+            }
+        }
+        Self { pattern: Arc::new(RowPattern { row_ptr, columns }), values }
+    }
+
+    /// Order of the matrix.
+    pub fn n(&self) -> usize {
+        self.pattern.row_ptr.len() - 1
+    }
+
+    /// Stored entries.
+    pub fn nnz(&self) -> usize {
+        self.values.len()
+    }
+
+    /// Row r: its columns (increasing) and values.
+    pub fn row(&self, r: usize) -> (&[usize], &[f64]) {
+        let range = self.pattern.row_ptr[r]..self.pattern.row_ptr[r + 1];
+        (&self.pattern.columns[range.clone()], &self.values[range])
+    }
+
+    /// Row r: its columns and values to change.
+    pub fn row_mut(&mut self, r: usize) -> (&[usize], &mut [f64]) {
+        let range = self.pattern.row_ptr[r]..self.pattern.row_ptr[r + 1];
+        (&self.pattern.columns[range.clone()], &mut self.values[range])
+    }
+
+    /// The index of column c within row r, if the pattern has the entry.
+    pub fn position(&self, r: usize, c: usize) -> Option<usize> {
+        self.row(r).0.binary_search(&c).ok()
+    }
+
+    /// Entry (r, r), 0 where the pattern lacks it.
+    pub fn diagonal(&self, r: usize) -> f64 {
+        self.position(r, r).map_or(0.0, |k| self.row(r).1[k])
+    }
+
+    /// y = A x.
+    pub fn mul(&self, x: &[f64]) -> Vec<f64> {
+        (0..self.n())
+            .into_par_iter()
+            .map(|r| {
+                let (columns, values) = self.row(r);
+                columns.iter().zip(values).map(|(&c, v)| v * x[c]).sum()
+            })
+            .collect()
+    }
+
+    /// A ← T A Tᵀ with T the identity but on the unknowns `positions`, where it is the
+    /// orthogonal block `q` (q[a][b]: row a, column b, `positions.len()` of each): unknowns
+    /// turned to another frame. Their rows must have the same columns (the components of a
+    /// mesh node do), as must every row's entries in them.
+    pub fn turn(&mut self, positions: &[usize], q: &[[f64; 3]; 3]) -> Result<()> {
+        let m = positions.len();
+        let columns = self.row(positions[0]).0.to_vec();
+        if positions.iter().any(|&p| self.row(p).0 != columns.as_slice()) {
+            return Err(Error::LinearAlgebra(format!(
+                "unknowns {positions:?}, turned together, have different sparsity patterns"
+            )));
+        }
+        // Rows: row a ← Σ_b q[a][b] row b.
+        let old: Vec<Vec<f64>> = positions.iter().map(|&p| self.row(p).1.to_vec()).collect();
+        for (a, &p) in positions.iter().enumerate() {
+            let (_, values) = self.row_mut(p);
+            for (k, v) in values.iter_mut().enumerate() {
+                *v = (0..m).map(|b| q[a][b] * old[b][k]).sum();
+            }
+        }
+        // Columns: in each row that has them (the pattern is symmetric), the same.
+        for &r in &columns {
+            let at: Vec<usize> = positions
+                .iter()
+                .map(|&p| self.position(r, p))
+                .collect::<Option<_>>()
+                .ok_or_else(|| {
+                    Error::LinearAlgebra(format!("row {r} lacks some of the columns {positions:?}"))
+                })?;
+            let (_, values) = self.row_mut(r);
+            let old: Vec<f64> = at.iter().map(|&k| values[k]).collect();
+            for (a, &k) in at.iter().enumerate() {
+                values[k] = (0..m).map(|b| q[a][b] * old[b]).sum();
+            }
+        }
+        Ok(())
+    }
+
+    /// Makes unknown k's equation x_k = `value` with `diagonal` on its row — the row and the
+    /// column zeroed but for the diagonal — and moves the column's part to `rhs`, so that the
+    /// other equations keep their solution (rhs_r −= a_rk value). The pattern must be
+    /// symmetric.
+    pub fn eliminate(&mut self, k: usize, value: f64, diagonal: f64, rhs: &mut [f64]) {
+        let columns = self.row(k).0.to_vec();
+        for r in columns.into_iter().filter(|&r| r != k) {
+            if let Some(at) = self.position(r, k) {
+                let (_, values) = self.row_mut(r);
+                rhs[r] -= values[at] * value;
+                values[at] = 0.0;
+            }
+        }
+        let at = self.position(k, k);
+        let (columns, values) = self.row_mut(k);
+        values.iter_mut().for_each(|v| *v = 0.0);
+        match at {
+            Some(at) => values[at] = diagonal,
+            None => debug_assert!(columns.is_empty(), "row {k} without its diagonal"),
+        }
+        rhs[k] = diagonal * value;
+    }
+}
+
+/// faer's sparse LU of [`RowMatrix`]es of one pattern: the symbolic analysis once, a numeric
+/// factorisation per matrix.
+#[derive(Debug, Default)]
+pub struct RowLu {
+    /// The pattern analysed and its analysis.
+    symbolic: Option<(Arc<RowPattern>, SymbolicLu<usize>)>,
+}
+
+impl RowLu {
+    /// Solves A x = b in place (b on entry, x on exit).
+    pub fn solve(&mut self, a: &RowMatrix, rhs: &mut [f64]) -> Result<()> {
+        check_length("right-hand side", a.n(), rhs.len())?;
+        let n = a.n();
+        // A's rows are the columns of Aᵀ: factorise Aᵀ, solve with its transpose.
+        let transposed = SymbolicSparseColMat::new_checked(
+            n,
+            n,
+            a.pattern.row_ptr.clone(),
+            None,
+            a.pattern.columns.clone(),
+        );
+        let analysed = self.symbolic.as_ref().is_some_and(|(p, _)| Arc::ptr_eq(p, &a.pattern));
+        if !analysed {
+            let symbolic = SymbolicLu::try_new(transposed.as_ref())
+                .map_err(|e| Error::LinearAlgebra(format!("sparse LU analysis: {e:?}")))?;
+            self.symbolic = Some((a.pattern.clone(), symbolic));
+        }
+        let Some((_, symbolic)) = &self.symbolic else { unreachable!("analysed above") };
+        let transposed = SparseColMat::new(transposed, a.values.clone());
+        let lu = Lu::try_new_with_symbolic(symbolic.clone(), transposed.as_ref())
+            .map_err(|e| Error::SingularSystem { detail: format!("sparse LU: {e:?}") })?;
+        let rhs_view: MatMut<'_, f64> = column(rhs);
+        lu.solve_transpose_in_place_with_conj(Conj::No, rhs_view);
+        if rhs.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(Error::SingularSystem { detail: "the sparse LU's solution is not finite".into() })
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linalg::DenseMatrix;
+    use crate::linalg::SymmetricPattern;
+
+    /// A symmetric 5 × 5 matrix with unknowns 1, 2 (a node's) coupled to 0, 3 and 4.
+    fn symmetric() -> SymmetricMatrix {
+        let entries = [
+            (0, 0, 4.0),
+            (1, 0, 1.0),
+            (2, 0, -1.0),
+            (1, 1, 5.0),
+            (2, 1, 0.5),
+            (3, 1, 1.5),
+            (4, 1, -0.5),
+            (2, 2, 6.0),
+            (3, 2, 0.25),
+            (4, 2, 2.0),
+            (3, 3, 3.0),
+            (4, 4, 7.0),
+        ];
+        let positions: Vec<(usize, usize)> = entries.iter().map(|&(r, c, _)| (r, c)).collect();
+        let pattern = SymmetricPattern::from_positions(5, &positions).unwrap();
+        let mut values = vec![0.0; pattern.nnz()];
+        entries.iter().for_each(|&(r, c, v)| values[pattern.position(r, c).unwrap()] = v);
+        pattern.matrix(values).unwrap()
+    }
+
+    fn dense(a: &RowMatrix) -> Vec<Vec<f64>> {
+        let mut d = vec![vec![0.0; a.n()]; a.n()];
+        for (r, row) in d.iter_mut().enumerate() {
+            let (columns, values) = a.row(r);
+            columns.iter().zip(values).for_each(|(&c, &v)| row[c] = v);
+        }
+        d
+    }
+
+    /// Both triangles, each row in order; A x as the symmetric matrix's.
+    #[test]
+    fn the_rows_are_the_whole_symmetric_matrix() {
+        let s = symmetric();
+        let a = RowMatrix::from_symmetric(&s);
+        assert_eq!(a.nnz(), 2 * s.lower_entries().count() - 5);
+        for r in 0..5 {
+            assert!(a.row(r).0.windows(2).all(|w| w[0] < w[1]), "row {r} in order");
+        }
+        let d = dense(&a);
+        (0..5).for_each(|r| (0..5).for_each(|c| assert_eq!(d[r][c], d[c][r])));
+        let x = [1.0, -2.0, 0.5, 3.0, 0.25];
+        assert_eq!(a.mul(&x), s.mul(&x));
+    }
+
+    /// T A Tᵀ on unknowns 1, 2 turned by a rotation equals the dense product.
+    #[test]
+    fn turning_a_node_is_the_product_with_its_rotation() {
+        let mut a = RowMatrix::from_symmetric(&symmetric());
+        let before = dense(&a);
+        let (c, s) = (0.6, 0.8);
+        let q = [[c, s, 0.0], [-s, c, 0.0], [0.0; 3]];
+        a.turn(&[1, 2], &q).unwrap();
+        let mut t = vec![vec![0.0; 5]; 5];
+        (0..5).for_each(|k| t[k][k] = 1.0);
+        (t[1][1], t[1][2], t[2][1], t[2][2]) = (c, s, -s, c);
+        let after = dense(&a);
+        for r in 0..5 {
+            for k in 0..5 {
+                let expected: f64 = (0..5)
+                    .flat_map(|i| (0..5).map(move |j| (i, j)))
+                    .map(|(i, j)| t[r][i] * before[i][j] * t[k][j])
+                    .sum();
+                assert!((after[r][k] - expected).abs() < 1e-14, "({r}, {k})");
+            }
+        }
+    }
+
+    /// The LU solve of an unsymmetric matrix of the pattern, with one unknown eliminated,
+    /// satisfies every equation, and the eliminated unknown has its value.
+    #[test]
+    fn the_sparse_lu_solves_an_unsymmetric_system_with_an_eliminated_unknown() {
+        let mut a = RowMatrix::from_symmetric(&symmetric());
+        let (_, values) = a.row_mut(1);
+        values.iter_mut().enumerate().for_each(|(k, v)| *v += 0.3 * k as f64); // unsymmetric
+        let original = a.clone();
+        let b = vec![1.0, 2.0, -1.0, 0.5, 3.0];
+        let mut rhs = b.clone();
+        a.eliminate(3, 0.7, 9.0, &mut rhs);
+        let mut lu = RowLu::default();
+        lu.solve(&a, &mut rhs).unwrap();
+        assert!((rhs[3] - 0.7).abs() < 1e-14);
+        let ax = original.mul(&rhs);
+        for r in (0..5).filter(|&r| r != 3) {
+            assert!((ax[r] - b[r]).abs() < 1e-12, "row {r}: {} against {}", ax[r], b[r]);
+        }
+        // A second matrix of the pattern reuses the analysis and solves as the dense LU.
+        let mut rhs = b.clone();
+        lu.solve(&original, &mut rhs).unwrap();
+        let mut d = DenseMatrix::zeros(5);
+        for (r, row) in dense(&original).iter().enumerate() {
+            d.col_mut(r).copy_from_slice(row); // the columns of the transposed LU are rows
+        }
+        let expected = d.lu_transposed().solve(&b).unwrap();
+        rhs.iter().zip(&expected).for_each(|(x, e)| assert!((x - e).abs() < 1e-12));
+    }
+}
