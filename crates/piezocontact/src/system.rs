@@ -8,7 +8,8 @@ use crate::assembly::{Assembler, Linearisation, NodalBlock, load_vector, node_ne
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::{
-    DenseMatrix, LinearRoute, LinearSolver, SchurComplement, SolverStats, SymmetricMatrix,
+    DenseMatrix, LinearRoute, LinearSolver, RowLu, RowMatrix, SchurComplement, SolverStats,
+    SymmetricMatrix,
 };
 use crate::problem::{Factors, Problem};
 use std::time::Instant;
@@ -73,6 +74,9 @@ pub struct CoupledSystem {
     /// Whether the prescribed displacements changed since the lifting was assembled
     /// ([`CoupledSystem::scale_loads`]): the next solve needs a new assembly.
     lifting_stale: bool,
+    /// The sparse LU of general matrices, for a backend without its own
+    /// ([`LinearSolver::unsymmetric`]).
+    row_lu: RowLu,
 }
 
 impl CoupledSystem {
@@ -138,6 +142,7 @@ impl CoupledSystem {
             pattern_seconds,
             assembly_seconds,
             lifting_stale: false,
+            row_lu: RowLu::default(),
         })
     }
 
@@ -262,6 +267,16 @@ impl CoupledSystem {
             self.unloaded = Some(x.clone());
         }
         Ok(x)
+    }
+
+    /// Solves A x = b in place (free DOFs) for a general matrix A of the pattern of B̌ (both
+    /// triangles): by the backend where it has its own solver of such matrices, to the
+    /// relative residual `rtol`, else by a sparse LU.
+    pub fn solve_unsymmetric(&mut self, a: &RowMatrix, rhs: &mut [f64], rtol: f64) -> Result<()> {
+        match self.solver.unsymmetric() {
+            Some(solver) => solver.solve_unsymmetric(a, rhs, rtol),
+            None => self.row_lu.solve(a, rhs),
+        }
     }
 
     /// Solves B̌ Y = B in place with the current factorisation for the columns of B stored

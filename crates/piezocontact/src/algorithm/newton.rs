@@ -29,9 +29,7 @@ use crate::contact::law::{coulomb, stop_complementarity};
 use crate::contact::{ContactState, ContactSurface, NodeStatus};
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
-use crate::linalg::{
-    DenseMatrix, LinearSolver, RowLu, RowMatrix, TransposedLu, max_distance, max_norm,
-};
+use crate::linalg::{DenseMatrix, LinearSolver, RowMatrix, TransposedLu, max_distance, max_norm};
 use crate::system::CoupledSystem;
 use rayon::prelude::*;
 use std::sync::Mutex;
@@ -57,6 +55,11 @@ const FIRST_INCREMENT: f64 = 1.0 / 16.0;
 const LEAST_INCREMENT: f64 = 1.0 / 4096.0;
 /// Stages of the continuation in k_e, at most.
 const MAX_STAGES: usize = 64;
+/// The loosest relative residual of an iterative solve of a whole-system Newton step.
+const FORCING_CEILING: f64 = 1e-2;
+/// The tightest relative residual of an iterative solve of a whole-system Newton step: about
+/// what GMRES reaches on the scaled system in double precision.
+const FORCING_FLOOR: f64 = 1e-12;
 /// The longest period of a cycle of iterates that [`Cycles`] tells.
 const LONGEST_CYCLE: usize = 8;
 /// Two iterates a period apart and nearer than this fraction of the longest step between
@@ -79,8 +82,8 @@ enum Operator {
     /// Q S Qᵀ, S the Schur complement of the condensed unknowns.
     Dense(DenseMatrix),
     /// T K Tᵀ, K the whole system's matrix, T turning each kept Γ3 node's u to its local
-    /// frame; with the sparse LU of the Newton steps.
-    Sparse(RowMatrix, Mutex<RowLu>),
+    /// frame.
+    Sparse(RowMatrix),
 }
 
 impl Operator {
@@ -88,7 +91,7 @@ impl Operator {
     fn mul(&self, y: &[f64]) -> Vec<f64> {
         match self {
             Operator::Dense(schur) => schur.mul(y),
-            Operator::Sparse(matrix, _) => matrix.mul(y),
+            Operator::Sparse(matrix) => matrix.mul(y),
         }
     }
 
@@ -96,7 +99,7 @@ impl Operator {
     fn diagonal(&self, k: usize) -> f64 {
         match self {
             Operator::Dense(schur) => schur.get(k, k),
-            Operator::Sparse(matrix, _) => matrix.diagonal(k),
+            Operator::Sparse(matrix) => matrix.diagonal(k),
         }
     }
 
@@ -106,7 +109,7 @@ impl Operator {
             Operator::Dense(schur) => {
                 out.iter_mut().zip(schur.col(j)).for_each(|(o, s)| *o += factor * s)
             }
-            Operator::Sparse(matrix, _) => {
+            Operator::Sparse(matrix) => {
                 let (columns, values) = matrix.row(j);
                 columns.iter().zip(values).for_each(|(&c, v)| out[c] += factor * v);
             }
@@ -119,6 +122,9 @@ struct Local<'a> {
     semismooth: &'a Semismooth<'a>,
     /// A.
     operator: Operator,
+    /// The coupled system: its solves of the whole system's Newton steps and the final
+    /// solve of the condensed problem's interior.
+    system: Mutex<&'a mut CoupledSystem>,
     /// Per position, its Γ3 node ([`INTERIOR`] for the whole system's other unknowns).
     node_of: Vec<usize>,
     /// Q b: the condensed load in local coordinates.
@@ -382,6 +388,14 @@ impl InnerMethod for Newton {
         let with_phi = model.compliance.penetration > 0.0;
         self.c_factor = self.parameters.r / problem.materials.reference_modulus();
         self.whole = solver.schur().is_none();
+        if self.whole && processes(solver.as_mut())? > 1.0 {
+            return Err(Error::Input(
+                "the exact solver on the whole system (solver.method = \"newton\" with \
+                 solver.linear = \"iterative\") runs on one process as yet: run it without \
+                 mpirun (or with -n 1), or use solver.method = \"uzawa\" under mpirun"
+                    .into(),
+            ));
+        }
         if self.whole {
             self.condensed = Some(Condensed::whole(&dofs, surface, with_phi));
             return CoupledSystem::new(problem, dofs, &[], solver);
@@ -568,6 +582,11 @@ impl Newton {
     }
 }
 
+/// The processes `solver` runs on (1 for a backend that is not distributed).
+fn processes(solver: &mut dyn LinearSolver) -> Result<f64> {
+    solver.distributed().map_or(Ok(1.0), |d| d.sum(1.0))
+}
+
 /// The friction bound s = µ|Rσ_ν| per Γ3 node at `result` as the outer loop records it: 0
 /// where the laws make it so (λ_c = 0 off the active set, no compliance at u_ν ≤ g_a, no force
 /// on a node left out), not the round-off of the condensed forces — so that a left-out node
@@ -609,11 +628,11 @@ impl Semismooth<'_> {
                 let matrix = system.matrix().ok_or_else(|| {
                     Error::LinearAlgebra("the whole system's Newton step before its matrix".into())
                 })?;
-                let sparse = Operator::Sparse(RowMatrix::from_symmetric(matrix), Mutex::default());
+                let sparse = Operator::Sparse(RowMatrix::from_symmetric(matrix));
                 (sparse, Some(system.rhs().to_vec()))
             }
         };
-        let mut local = Local::new(self, operator, (x_hat, rhs.as_deref()), system.dofs())?;
+        let mut local = Local::new(self, operator, (x_hat, rhs.as_deref()), system)?;
         let from = local
             .zero_if_solution()
             .unwrap_or_else(|| local.gather(self.start.unwrap_or(&local.x_hat)));
@@ -634,7 +653,7 @@ impl Semismooth<'_> {
         }
         let Iteration { y, stop, iterations, history, .. } = newton;
         let eval = local.evaluate(&y);
-        let x = local.whole_solution(&y, &eval, system)?;
+        let x = local.whole_solution(&y, &eval)?;
         let mut state = eval.multipliers;
         // Off the active set the law is λ_c = 0, held to round-off by the Newton equations.
         for (i, at_stop) in eval.sets.at_stop.iter().enumerate() {
@@ -682,11 +701,11 @@ fn turned_operator(
         q
     };
     match operator {
-        Operator::Sparse(mut matrix, lu) => {
+        Operator::Sparse(mut matrix) => {
             for &i in &kept {
                 matrix.turn(cond.slots(i).0, &block(i))?;
             }
-            Ok(Operator::Sparse(matrix, lu))
+            Ok(Operator::Sparse(matrix))
         }
         Operator::Dense(mut schur) => {
             let rotate = |q: &[[f64; 3]; 3], old: &[f64; 3], n: usize, a: usize| -> f64 {
@@ -726,10 +745,10 @@ impl<'a> Local<'a> {
         semismooth: &'a Semismooth<'a>,
         operator: Operator,
         (x_hat, rhs): (Vec<f64>, Option<&[f64]>),
-        dofs: &DofMap,
+        system: &'a mut CoupledSystem,
     ) -> Result<Self> {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
-        let (frames, turned) = unknown_frames(surface, dofs);
+        let (frames, turned) = unknown_frames(surface, system.dofs());
         let m = cond.len();
         let mut node_of = vec![INTERIOR; m];
         for i in (0..surface.len()).filter(|&i| cond.kept[i]) {
@@ -741,6 +760,7 @@ impl<'a> Local<'a> {
         let mut this = Self {
             semismooth,
             operator: turned_operator(operator, cond, &frames)?,
+            system: Mutex::new(system),
             node_of,
             load: Vec::new(),
             frames,
@@ -972,16 +992,29 @@ impl<'a> Local<'a> {
         }
     }
 
+    /// The coupled system, locked.
+    fn system(&self) -> Result<std::sync::MutexGuard<'_, &'a mut CoupledSystem>> {
+        let poisoned = |_| Error::LinearAlgebra("a Newton step panicked with the system".into());
+        self.system.lock().map_err(poisoned)
+    }
+
+    /// The relative residual to which an iterative backend solves a whole-system Newton
+    /// step at an iterate of merit ‖scaled E‖² (inexact Newton, a forcing term in the manner
+    /// of Eisenstat and Walker): ‖scaled E‖ relative to the scaled load's, between
+    /// [`FORCING_FLOOR`] and [`FORCING_CEILING`] — loose far from the solution, tight near it,
+    /// so that the steps converge as exact ones do there.
+    fn forcing(&self, merit: f64) -> f64 {
+        let load = self.load.iter().zip(&self.scale).map(|(b, s)| (b * s).powi(2)).sum::<f64>();
+        let relative = (merit / load.max(f64::MIN_POSITIVE)).sqrt();
+        relative.clamp(FORCING_FLOOR, FORCING_CEILING)
+    }
+
     /// The global vector (mesh components) of the solution y with its evaluation: the
     /// condensed problem's interior by a solve with the contact forces on the Γ3 rows; the
     /// whole system's y itself.
-    fn whole_solution(
-        &self,
-        y: &[f64],
-        eval: &Evaluation,
-        system: &mut CoupledSystem,
-    ) -> Result<Vec<f64>> {
+    fn whole_solution(&self, y: &[f64], eval: &Evaluation) -> Result<Vec<f64>> {
         let cond = self.semismooth.condensed;
+        let mut system = self.system()?;
         if let Operator::Sparse(..) = self.operator {
             if let Some(k) = y.iter().position(|v| !v.is_finite()) {
                 return Err(Error::NonFinite { what: format!("solution component {k}") });
@@ -1124,7 +1157,7 @@ impl<'a> Local<'a> {
     ) -> Result<(Vec<f64>, Option<TransposedLu>)> {
         match &self.operator {
             Operator::Dense(_) => self.dense_step(y, eval, frozen),
-            Operator::Sparse(matrix, lu) => Ok((self.sparse_step(y, eval, matrix, lu)?, None)),
+            Operator::Sparse(matrix) => Ok((self.sparse_step(y, eval, matrix)?, None)),
         }
     }
 
@@ -1145,13 +1178,7 @@ impl<'a> Local<'a> {
     /// terms on other nodes' rows — a nonlocal R's — are left out, so that the pattern stays
     /// K's), each u row times −w (force units, as the interior's); the fixed unknowns
     /// eliminated with their steps, their rows and columns zeroed but for K's diagonal.
-    fn sparse_step(
-        &self,
-        y: &[f64],
-        eval: &Evaluation,
-        matrix: &RowMatrix,
-        lu: &Mutex<RowLu>,
-    ) -> Result<Vec<f64>> {
+    fn sparse_step(&self, y: &[f64], eval: &Evaluation, matrix: &RowMatrix) -> Result<Vec<f64>> {
         let surface = self.semismooth.step.surface;
         let delta = self.fixed_steps(eval);
         let mut jacobian = matrix.clone();
@@ -1180,9 +1207,8 @@ impl<'a> Local<'a> {
         for k in (0..y.len()).filter(|&k| eval.fixed[k]) {
             jacobian.eliminate(k, delta[k], matrix.diagonal(k).abs(), &mut rhs);
         }
-        lu.lock()
-            .map_err(|_| Error::LinearAlgebra("the sparse LU was poisoned".into()))?
-            .solve(&jacobian, &mut rhs)?;
+        let rtol = self.forcing(self.merit(eval));
+        self.system()?.solve_unsymmetric(&jacobian, &mut rhs, rtol)?;
         Ok(rhs)
     }
 
@@ -1564,12 +1590,12 @@ mod tests {
         let x_hat = system.solve(None).unwrap();
         let (operator, rhs) = if whole {
             let matrix = RowMatrix::from_symmetric(system.matrix().unwrap());
-            (Operator::Sparse(matrix, Mutex::default()), Some(system.rhs().to_vec()))
+            (Operator::Sparse(matrix), Some(system.rhs().to_vec()))
         } else {
             (Operator::Dense(system.schur_complement().unwrap()), None)
         };
         let local =
-            Local::new(&semismooth, operator, (x_hat, rhs.as_deref()), system.dofs()).unwrap();
+            Local::new(&semismooth, operator, (x_hat, rhs.as_deref()), &mut system).unwrap();
         check(&local, &result)
     }
 

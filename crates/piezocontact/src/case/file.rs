@@ -146,8 +146,8 @@ impl Case {
         )))
     }
 
-    /// `solver.linear = "iterative"` runs on PETSc, and not under the exact solver, which
-    /// reads a Schur complement off a factorisation.
+    /// `solver.linear = "iterative"` runs on PETSc (the exact solver then runs on the whole
+    /// system, having no factorisation to condense with).
     fn check_linear(&self) -> Result<()> {
         let s = &self.file.solver;
         if s.linear != Some(LinearKey::Iterative) {
@@ -156,12 +156,6 @@ impl Case {
         if s.backend != Some(BackendKey::Petsc) {
             return Err(Error::Input(format!(
                 "{}: solver.linear = \"iterative\" runs on PETSc's Krylov solvers: set solver.backend = \"petsc\" too, or use solver.linear = \"direct\"",
-                self.locate("solver.linear")
-            )));
-        }
-        if self.file.contact.is_some() && self.method_name() == "newton" {
-            return Err(Error::Input(format!(
-                "{}: the exact solver (solver.method = \"newton\") reads a Schur complement off a factorisation, which solver.linear = \"iterative\" does not make: use solver.method = \"uzawa\" with it, or solver.linear = \"direct\"",
                 self.locate("solver.linear")
             )));
         }

@@ -62,7 +62,10 @@ pub use ldlt::LdltSolver;
 #[cfg(feature = "petsc")]
 pub use petsc::PetscSolver;
 pub use rows::{RowLu, RowMatrix};
-pub use seam::{Distributed, LinearRoute, LinearSolver, Ordering, SchurComplement, SolverStats};
+pub use seam::{
+    Distributed, LinearRoute, LinearSolver, Ordering, SchurComplement, SolverStats,
+    UnsymmetricSolve,
+};
 pub use sparse::{SymmetricMatrix, SymmetricPattern};
 pub use vectors::parallelism;
 

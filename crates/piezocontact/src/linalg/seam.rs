@@ -4,6 +4,7 @@
 //! shaped.
 
 use super::dense::DenseMatrix;
+use super::rows::RowMatrix;
 use super::sparse::{SymmetricMatrix, SymmetricPattern};
 use super::vectors::column_count;
 use crate::error::Result;
@@ -111,6 +112,22 @@ pub trait LinearSolver: std::fmt::Debug + Send {
     fn distributed(&mut self) -> Option<&mut dyn Distributed> {
         None
     }
+    /// The solve with a general matrix of a backend that has its own (an iterative one);
+    /// `None`: the caller's sparse LU.
+    fn unsymmetric(&mut self) -> Option<&mut dyn UnsymmetricSolve> {
+        None
+    }
+}
+
+/// What a backend with its own solver of general matrices does: solve with a matrix of the
+/// factorised one's pattern and values that are not symmetric — the Jacobian of the
+/// semismooth Newton method on the whole system (model §11).
+pub trait UnsymmetricSolve {
+    /// Solves A x = b in place (b on entry, x on exit, whole vectors), A with the pattern of
+    /// the matrix last factorised (both triangles; a process may hold only the rows it owns),
+    /// to the relative residual `rtol` where the method is iterative. The factorised matrix
+    /// stays the one [`LinearSolver::solve_in_place`] solves with.
+    fn solve_unsymmetric(&mut self, a: &RowMatrix, rhs: &mut [f64], rtol: f64) -> Result<()>;
 }
 
 /// What a backend whose rows live on several processes tells the assembly, so that each

@@ -185,6 +185,7 @@ unsafe extern "C" {
     ) -> Code;
     fn KSPDestroy(ksp: *mut Handle) -> Code;
     fn PCSetType(pc: Handle, kind: *const c_char) -> Code;
+    fn PCSetReusePreconditioner(pc: Handle, flag: c_int) -> Code;
     fn VecCreateMPI(comm: MpiHandle, local: PetscInt, n: PetscInt, v: *mut Handle) -> Code;
     fn VecSetBlockSize(v: Handle, bs: PetscInt) -> Code;
     fn ISSetBlockSize(is: Handle, bs: PetscInt) -> Code;
@@ -211,6 +212,7 @@ unsafe extern "C" {
 }
 
 const PETSC_TRUE: c_int = 1;
+const PETSC_FALSE: c_int = 0;
 const INSERT_VALUES: c_int = 1;
 const MAT_FINAL_ASSEMBLY: c_int = 0;
 const MAT_SYMMETRIC: c_int = 1;
@@ -599,6 +601,8 @@ pub struct KrylovSolve {
     pub reason: i32,
     /// The norm of the residual at the end, as the method measures it.
     pub residual: f64,
+    /// The relative tolerance it was asked for.
+    pub rtol: f64,
 }
 
 /// One field of a field split: its name, this process's rows of it (PETSc's numbering) and,
@@ -712,7 +716,39 @@ impl Krylov {
             check(KSPGetConvergedReason(self.0, &mut reason), "KSPGetConvergedReason")?;
             check(KSPGetResidualNorm(self.0, &mut residual), "KSPGetResidualNorm")?;
         }
-        Ok(KrylovSolve { iterations: iterations.max(0) as usize, reason, residual })
+        let rtol = self.tolerances()?.0;
+        Ok(KrylovSolve { iterations: iterations.max(0) as usize, reason, residual, rtol })
+    }
+
+    /// x = A⁻¹ b from x = 0 with A = `operator` (of the pattern of the solver's own matrix
+    /// `own`), to the relative residual `rtol`, preconditioned by the preconditioner as set up
+    /// for `own` — not set up again: A is near it; the solver's operators and tolerance are
+    /// its own again afterwards.
+    pub fn solve_operator(
+        &self,
+        (operator, own): (&Matrix, &Matrix),
+        rtol: f64,
+        b: &Vector,
+        x: &mut Vector,
+    ) -> Result<KrylovSolve> {
+        let (own_rtol, most) = self.tolerances()?;
+        let most = index(most)?;
+        let mut pc = null_mut();
+        // SAFETY: a valid solver.
+        check(unsafe { KSPGetPC(self.0, &mut pc) }, "KSPGetPC")?;
+        let set = |a: &Matrix, rtol: f64, reuse: c_int| {
+            // SAFETY: valid matrices of the solver's layout and its own preconditioner.
+            unsafe {
+                check(PCSetReusePreconditioner(pc, reuse), "PCSetReusePreconditioner")?;
+                check(KSPSetOperators(self.0, a.0, own.0), "KSPSetOperators")?;
+                let code = KSPSetTolerances(self.0, rtol, PETSC_DEFAULT, PETSC_DEFAULT, most);
+                check(code, "KSPSetTolerances")
+            }
+        };
+        set(operator, rtol, PETSC_TRUE)?;
+        let solve = self.solve(b, x);
+        set(own, own_rtol, PETSC_FALSE)?;
+        solve
     }
 
     /// The relative tolerance and the most iterations of a solve, as the options left them.

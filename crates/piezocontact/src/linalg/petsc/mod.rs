@@ -31,7 +31,10 @@ mod ffi;
 pub use ffi::{abort, gather, initialize, rank_and_size, sum_over_processes};
 
 use super::dense::DenseMatrix;
-use super::seam::{Distributed, LinearRoute, LinearSolver, SchurComplement, SolverStats};
+use super::rows::RowMatrix;
+use super::seam::{
+    Distributed, LinearRoute, LinearSolver, SchurComplement, SolverStats, UnsymmetricSolve,
+};
 use super::sparse::{SymmetricMatrix, SymmetricPattern};
 use super::vectors::check_length;
 use crate::error::{Error, Result};
@@ -161,6 +164,9 @@ impl Rows {
 #[derive(Debug)]
 struct Objects {
     matrix: Matrix,
+    /// A general matrix of `matrix`'s pattern (the whole system's Newton Jacobian), made at
+    /// its first solve ([`UnsymmetricSolve`]).
+    general: Option<Matrix>,
     factor: Option<Factor>,
     krylov: Option<Krylov>,
     b: Vector,
@@ -287,7 +293,9 @@ impl PetscSolver {
             let matrix = Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?;
             let (b, x) = (matrix.vector()?, matrix.vector()?);
             let gather = Gather::new(&x)?;
-            self.distributed = Some(Objects { matrix, factor: None, krylov: None, b, x, gather });
+            let general = None;
+            self.distributed =
+                Some(Objects { matrix, general, factor: None, krylov: None, b, x, gather });
         }
         let d = self.distributed.as_mut().expect("made above");
         // The diagonal of the owned rows, gathered whole: each process's matrix holds only
@@ -323,6 +331,38 @@ impl PetscSolver {
             d.matrix.set_row(p, &cols, &vals)?;
         }
         d.matrix.assemble(self.iterative.is_none())
+    }
+
+    /// The general matrix with the values of `a` (the seam's numbering, both triangles) as
+    /// [`PetscSolver::fill`] fills the factorised one: D A D with the factorised matrix's D,
+    /// ϕ rows negated, held rows 1 on the diagonal.
+    fn fill_general(&mut self, a: &RowMatrix) -> Result<()> {
+        let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
+            return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
+        };
+        if d.general.is_none() {
+            let (diagonal, off) = rows.preallocation();
+            d.general = Some(Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?);
+        }
+        let general = d.general.as_mut().expect("made above");
+        let (mut cols, mut vals) = (Vec::new(), Vec::new());
+        for p in rows.start..rows.end {
+            let (i, at) = (rows.order[p], p as PetscInt);
+            if i == HELD {
+                general.set_row(at, &[at], &[1.0])?;
+                continue;
+            }
+            let s = self.scaling[i] * row_sign(true, self.signs[i]);
+            let (columns, values) = a.row(i);
+            cols.clear();
+            vals.clear();
+            for (&j, &v) in columns.iter().zip(values) {
+                cols.push(rows.petsc[j] as PetscInt);
+                vals.push(v * s * self.scaling[j]);
+            }
+            general.set_row(at, &cols, &vals)?;
+        }
+        general.assemble(false)
     }
 
     /// The Krylov solver of the filled matrix, made after the first fill of an analysis, and
@@ -572,6 +612,47 @@ impl LinearSolver for PetscSolver {
     fn distributed(&mut self) -> Option<&mut dyn Distributed> {
         Some(self)
     }
+
+    fn unsymmetric(&mut self) -> Option<&mut dyn UnsymmetricSolve> {
+        match self.iterative {
+            Some(_) => Some(self),
+            None => None,
+        }
+    }
+}
+
+/// On the iterative route: the general matrix filled as the factorised one is (scaled, ϕ rows
+/// negated, held rows), and solved by the Krylov solver with the preconditioner set up for
+/// the factorised matrix.
+impl UnsymmetricSolve for PetscSolver {
+    fn solve_unsymmetric(&mut self, a: &RowMatrix, rhs: &mut [f64], rtol: f64) -> Result<()> {
+        let t = Instant::now();
+        let n = self.rows.as_ref().map_or(0, |r| r.n);
+        check_length("right-hand side", n, rhs.len())?;
+        check_length("general matrix order", n, a.n())?;
+        self.fill_general(a)?;
+        rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
+        rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(true, sign));
+        let rows = self.rows.as_ref().expect("analysed");
+        let d = self.distributed.as_mut().expect("filled");
+        let (krylov, general) = (d.krylov.as_ref(), d.general.as_ref());
+        let (Some(krylov), Some(general)) = (krylov, general) else {
+            return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
+        };
+        d.b.with_local(|b| rows.scatter(rhs, b))?;
+        let solve = krylov.solve_operator((general, &d.matrix), rtol, &d.b, &mut d.x)?;
+        self.krylov_iterations.push(solve.iterations);
+        if solve.reason <= 0 {
+            return Err(not_converged(krylov, &solve));
+        }
+        let mut gathered = vec![0.0; rows.total];
+        d.gather.run(&d.x, &mut gathered)?;
+        rows.unpermute(&gathered, rhs);
+        rhs.iter_mut().zip(&self.scaling).for_each(|(x, s)| *x *= s);
+        self.stats.solve_seconds += t.elapsed().as_secs_f64();
+        self.stats.solve_count += 1;
+        Ok(())
+    }
 }
 
 impl Distributed for PetscSolver {
@@ -739,7 +820,8 @@ fn not_converged(krylov: &Krylov, solve: &KrylovSolve) -> Error {
     let [method, preconditioner] = krylov
         .kinds()
         .unwrap_or_else(|_| ["the Krylov method".into(), "its preconditioner".into()]);
-    let (rtol, most) = krylov.tolerances().unwrap_or((f64::NAN, 0));
+    let most = krylov.tolerances().map_or(0, |(_, most)| most);
+    let rtol = solve.rtol;
     Error::LinearAlgebra(format!(
         "the Krylov solve ({method}, preconditioner {preconditioner}) stopped after {} iterations with PETSc's reason {} and a residual of {:.3e} (relative tolerance {:e}, at most {} iterations): give it more iterations or another tolerance with --petsc-options \"-ksp_max_it N -ksp_rtol R\", another preconditioner (-fieldsplit_u_pc_type, -fieldsplit_phi_pc_type), or use solver.linear = \"direct\"",
         solve.iterations, solve.reason, solve.residual, rtol, most
