@@ -271,10 +271,16 @@ impl CoupledSystem {
 
     /// Solves A x = b in place (free DOFs) for a general matrix A of the pattern of B̌ (both
     /// triangles): by the backend where it has its own solver of such matrices, to the
-    /// relative residual `rtol`, else by a sparse LU.
-    pub fn solve_unsymmetric(&mut self, a: &RowMatrix, rhs: &mut [f64], rtol: f64) -> Result<()> {
+    /// relative residual `rtol`, preconditioned as for the symmetric matrix P near A; else by
+    /// a sparse LU of A.
+    pub fn solve_unsymmetric(
+        &mut self,
+        (a, p): (&RowMatrix, &RowMatrix),
+        rhs: &mut [f64],
+        rtol: f64,
+    ) -> Result<()> {
         match self.solver.unsymmetric() {
-            Some(solver) => solver.solve_unsymmetric(a, rhs, rtol),
+            Some(solver) => solver.solve_unsymmetric((a, p), rhs, rtol),
             None => self.row_lu.solve(a, rhs),
         }
     }

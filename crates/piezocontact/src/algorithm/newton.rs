@@ -683,6 +683,17 @@ impl Semismooth<'_> {
     }
 }
 
+/// Node i's block of T: q[a][b], from its free component b (in its unknowns' frame) to its
+/// local component a.
+fn node_block(cond: &Condensed, frames: &[[[f64; 3]; 3]], i: usize) -> [[f64; 3]; 3] {
+    let axes = cond.slots(i).1;
+    let mut q = [[0.0; 3]; 3];
+    for (a, row) in q.iter_mut().enumerate().take(axes.len()) {
+        axes.iter().enumerate().for_each(|(b, &axis)| row[b] = frames[i][a][axis]);
+    }
+    q
+}
+
 /// The operator in local coordinates: Q S Qᵀ, or T K Tᵀ, node block by node block (a node
 /// that condenses u_ν alone has one slot, on the axis of its normal).
 fn turned_operator(
@@ -691,15 +702,7 @@ fn turned_operator(
     frames: &[[[f64; 3]; 3]],
 ) -> Result<Operator> {
     let kept: Vec<usize> = (0..frames.len()).filter(|&i| cond.kept[i]).collect();
-    // Node i's block: q[a][b], from its free component b to its local component a.
-    let block = |i: usize| -> [[f64; 3]; 3] {
-        let axes = cond.slots(i).1;
-        let mut q = [[0.0; 3]; 3];
-        for (a, row) in q.iter_mut().enumerate().take(axes.len()) {
-            axes.iter().enumerate().for_each(|(b, &axis)| row[b] = frames[i][a][axis]);
-        }
-        q
-    };
+    let block = |i: usize| node_block(cond, frames, i);
     match operator {
         Operator::Sparse(mut matrix) => {
             for &i in &kept {
@@ -1173,15 +1176,43 @@ impl<'a> Local<'a> {
         delta
     }
 
-    /// The whole system's Newton step δ at y: the Jacobian T K Tᵀ with the Γ3 rows that no
-    /// set fixes replaced by the laws' rows (their terms on the rows of K of the same node;
-    /// terms on other nodes' rows — a nonlocal R's — are left out, so that the pattern stays
-    /// K's), each u row times −w (force units, as the interior's); the fixed unknowns
-    /// eliminated with their steps, their rows and columns zeroed but for K's diagonal.
+    /// The whole system's Newton step δ at y ([`Local::sparse_jacobian`]), solved in the
+    /// unknowns' frames (Tᵀ J T, Tᵀ r), where the preconditioner's rigid-body modes are the
+    /// nodes' (a fixed local component is then a fixed direction), to the forcing tolerance.
     fn sparse_step(&self, y: &[f64], eval: &Evaluation, matrix: &RowMatrix) -> Result<Vec<f64>> {
+        let (mut jacobian, mut preconditioner, rhs) = self.sparse_jacobian(y, eval, matrix);
+        let cond = self.semismooth.condensed;
+        for i in (0..self.frames.len()).filter(|&i| cond.kept[i]) {
+            let q = node_block(cond, &self.frames, i);
+            let transposed = std::array::from_fn(|a| q.map(|row| row[a]));
+            jacobian.turn(cond.slots(i).0, &transposed)?;
+            preconditioner.turn(cond.slots(i).0, &transposed)?;
+        }
+        let mut rhs = self.to_global(&rhs);
+        let rtol = self.forcing(self.merit(eval));
+        self.system()?.solve_unsymmetric((&jacobian, &preconditioner), &mut rhs, rtol)?;
+        self.to_local(&mut rhs);
+        Ok(rhs)
+    }
+
+    /// The whole system's Jacobian J at y in local coordinates, a symmetric matrix P near it
+    /// to precondition with, and the right-hand side. J: T K Tᵀ with the Γ3 rows that no set
+    /// fixes replaced by the laws' rows (their terms on the rows of K of the same node; terms
+    /// on other nodes' rows — a nonlocal R's — are left out, so that the pattern stays K's),
+    /// each u row times −w (force units, as the interior's); the fixed unknowns eliminated
+    /// with their steps, their rows and columns zeroed but for K's diagonal. P: T K Tᵀ with
+    /// the laws' terms on the diagonal of those rows (the compliance's, a slip's, the
+    /// conduction's: ≥ 0 on u rows and ≤ 0 on ϕ rows, as K's own) and the same eliminations,
+    /// so that its blocks are like K's for the field split and algebraic multigrid.
+    fn sparse_jacobian(
+        &self,
+        y: &[f64],
+        eval: &Evaluation,
+        matrix: &RowMatrix,
+    ) -> (RowMatrix, RowMatrix, Vec<f64>) {
         let surface = self.semismooth.step.surface;
         let delta = self.fixed_steps(eval);
-        let mut jacobian = matrix.clone();
+        let (mut jacobian, mut preconditioner) = (matrix.clone(), matrix.clone());
         let mut rhs: Vec<f64> = eval.residual.iter().map(|e| -e).collect();
         let mut terms = Vec::new();
         for k in (0..y.len()).filter(|&k| self.node_of[k] != INTERIOR && !eval.fixed[k]) {
@@ -1192,6 +1223,7 @@ impl<'a> Local<'a> {
             let factor = if phi_row { 1.0 } else { -surface.weight[i] };
             let (columns, values) = jacobian.row_mut(k);
             values.iter_mut().for_each(|v| *v = 0.0);
+            let mut diagonal = 0.0;
             for term in &terms {
                 match *term {
                     Term::Force(j, f) => add_matching(matrix.row(j), factor * f, columns, values),
@@ -1199,17 +1231,21 @@ impl<'a> Local<'a> {
                         if let Ok(at) = columns.binary_search(&j) {
                             values[at] += factor * f;
                         }
+                        diagonal += if j == k { factor * f } else { 0.0 };
                     }
                 }
             }
+            if let Some(at) = preconditioner.position(k, k) {
+                preconditioner.row_mut(k).1[at] += diagonal;
+            }
             rhs[k] *= factor;
         }
+        let mut unused = vec![0.0; y.len()];
         for k in (0..y.len()).filter(|&k| eval.fixed[k]) {
             jacobian.eliminate(k, delta[k], matrix.diagonal(k).abs(), &mut rhs);
+            preconditioner.eliminate(k, 0.0, matrix.diagonal(k).abs(), &mut unused);
         }
-        let rtol = self.forcing(self.merit(eval));
-        self.system()?.solve_unsymmetric(&jacobian, &mut rhs, rtol)?;
-        Ok(rhs)
+        (jacobian, preconditioner, rhs)
     }
 
     /// The dense Newton step of the condensed problem (see [`Local::newton_step`]).

@@ -125,9 +125,15 @@ pub trait LinearSolver: std::fmt::Debug + Send {
 pub trait UnsymmetricSolve {
     /// Solves A x = b in place (b on entry, x on exit, whole vectors), A with the pattern of
     /// the matrix last factorised (both triangles; a process may hold only the rows it owns),
-    /// to the relative residual `rtol` where the method is iterative. The factorised matrix
-    /// stays the one [`LinearSolver::solve_in_place`] solves with.
-    fn solve_unsymmetric(&mut self, a: &RowMatrix, rhs: &mut [f64], rtol: f64) -> Result<()>;
+    /// to the relative residual `rtol` where the method is iterative, preconditioned as for P,
+    /// a symmetric matrix of the pattern near A. The factorised matrix stays the one
+    /// [`LinearSolver::solve_in_place`] solves with.
+    fn solve_unsymmetric(
+        &mut self,
+        a_and_p: (&RowMatrix, &RowMatrix),
+        rhs: &mut [f64],
+        rtol: f64,
+    ) -> Result<()>;
 }
 
 /// What a backend whose rows live on several processes tells the assembly, so that each

@@ -185,7 +185,6 @@ unsafe extern "C" {
     ) -> Code;
     fn KSPDestroy(ksp: *mut Handle) -> Code;
     fn PCSetType(pc: Handle, kind: *const c_char) -> Code;
-    fn PCSetReusePreconditioner(pc: Handle, flag: c_int) -> Code;
     fn VecCreateMPI(comm: MpiHandle, local: PetscInt, n: PetscInt, v: *mut Handle) -> Code;
     fn VecSetBlockSize(v: Handle, bs: PetscInt) -> Code;
     fn ISSetBlockSize(is: Handle, bs: PetscInt) -> Code;
@@ -212,7 +211,6 @@ unsafe extern "C" {
 }
 
 const PETSC_TRUE: c_int = 1;
-const PETSC_FALSE: c_int = 0;
 const INSERT_VALUES: c_int = 1;
 const MAT_FINAL_ASSEMBLY: c_int = 0;
 const MAT_SYMMETRIC: c_int = 1;
@@ -720,34 +718,30 @@ impl Krylov {
         Ok(KrylovSolve { iterations: iterations.max(0) as usize, reason, residual, rtol })
     }
 
-    /// x = A⁻¹ b from x = 0 with A = `operator` (of the pattern of the solver's own matrix
-    /// `own`), to the relative residual `rtol`, preconditioned by the preconditioner as set up
-    /// for `own` — not set up again: A is near it; the solver's operators and tolerance are
-    /// its own again afterwards.
+    /// x = A⁻¹ b from x = 0 with A = `operator`, preconditioned by the preconditioner set up
+    /// for `preconditioner` (both of the pattern of the solver's own matrix `own`), to the
+    /// relative residual `rtol`; the solver's operators and tolerance are its own again
+    /// afterwards (its next solve sets its preconditioner up for `own` again).
     pub fn solve_operator(
-        &self,
-        (operator, own): (&Matrix, &Matrix),
+        &mut self,
+        (operator, preconditioner, own): (&Matrix, &Matrix, &Matrix),
         rtol: f64,
         b: &Vector,
         x: &mut Vector,
     ) -> Result<KrylovSolve> {
         let (own_rtol, most) = self.tolerances()?;
         let most = index(most)?;
-        let mut pc = null_mut();
-        // SAFETY: a valid solver.
-        check(unsafe { KSPGetPC(self.0, &mut pc) }, "KSPGetPC")?;
-        let set = |a: &Matrix, rtol: f64, reuse: c_int| {
-            // SAFETY: valid matrices of the solver's layout and its own preconditioner.
+        let set = |a: &Matrix, p: &Matrix, rtol: f64| {
+            // SAFETY: valid matrices of the solver's layout.
             unsafe {
-                check(PCSetReusePreconditioner(pc, reuse), "PCSetReusePreconditioner")?;
-                check(KSPSetOperators(self.0, a.0, own.0), "KSPSetOperators")?;
+                check(KSPSetOperators(self.0, a.0, p.0), "KSPSetOperators")?;
                 let code = KSPSetTolerances(self.0, rtol, PETSC_DEFAULT, PETSC_DEFAULT, most);
                 check(code, "KSPSetTolerances")
             }
         };
-        set(operator, rtol, PETSC_TRUE)?;
+        set(operator, preconditioner, rtol)?;
         let solve = self.solve(b, x);
-        set(own, own_rtol, PETSC_FALSE)?;
+        set(own, own, own_rtol)?;
         solve
     }
 

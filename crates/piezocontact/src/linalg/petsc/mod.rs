@@ -164,9 +164,10 @@ impl Rows {
 #[derive(Debug)]
 struct Objects {
     matrix: Matrix,
-    /// A general matrix of `matrix`'s pattern (the whole system's Newton Jacobian), made at
-    /// its first solve ([`UnsymmetricSolve`]).
-    general: Option<Matrix>,
+    /// A general matrix of `matrix`'s pattern (the whole system's Newton Jacobian) and the
+    /// matrix its preconditioner is set up for, made at the first such solve
+    /// ([`UnsymmetricSolve`]).
+    general: Option<[Matrix; 2]>,
     factor: Option<Factor>,
     krylov: Option<Krylov>,
     b: Vector,
@@ -333,36 +334,39 @@ impl PetscSolver {
         d.matrix.assemble(self.iterative.is_none())
     }
 
-    /// The general matrix with the values of `a` (the seam's numbering, both triangles) as
-    /// [`PetscSolver::fill`] fills the factorised one: D A D with the factorised matrix's D,
-    /// ϕ rows negated, held rows 1 on the diagonal.
-    fn fill_general(&mut self, a: &RowMatrix) -> Result<()> {
+    /// The general matrix A and the preconditioning matrix P with the values of `a` and `p`
+    /// (the seam's numbering, both triangles), as [`PetscSolver::fill`] fills the factorised
+    /// one: D A D with the factorised matrix's D, ϕ rows negated, held rows 1 on the diagonal.
+    fn fill_general(&mut self, (a, p): (&RowMatrix, &RowMatrix)) -> Result<()> {
         let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
             return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
         };
         if d.general.is_none() {
             let (diagonal, off) = rows.preallocation();
-            d.general = Some(Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?);
+            let new = || Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off);
+            d.general = Some([new()?, new()?]);
         }
-        let general = d.general.as_mut().expect("made above");
         let (mut cols, mut vals) = (Vec::new(), Vec::new());
-        for p in rows.start..rows.end {
-            let (i, at) = (rows.order[p], p as PetscInt);
-            if i == HELD {
-                general.set_row(at, &[at], &[1.0])?;
-                continue;
+        for (target, source) in d.general.as_mut().expect("made above").iter_mut().zip([a, p]) {
+            for row in rows.start..rows.end {
+                let (i, at) = (rows.order[row], row as PetscInt);
+                if i == HELD {
+                    target.set_row(at, &[at], &[1.0])?;
+                    continue;
+                }
+                let s = self.scaling[i] * row_sign(true, self.signs[i]);
+                let (columns, values) = source.row(i);
+                cols.clear();
+                vals.clear();
+                for (&j, &v) in columns.iter().zip(values) {
+                    cols.push(rows.petsc[j] as PetscInt);
+                    vals.push(v * s * self.scaling[j]);
+                }
+                target.set_row(at, &cols, &vals)?;
             }
-            let s = self.scaling[i] * row_sign(true, self.signs[i]);
-            let (columns, values) = a.row(i);
-            cols.clear();
-            vals.clear();
-            for (&j, &v) in columns.iter().zip(values) {
-                cols.push(rows.petsc[j] as PetscInt);
-                vals.push(v * s * self.scaling[j]);
-            }
-            general.set_row(at, &cols, &vals)?;
+            target.assemble(false)?;
         }
-        general.assemble(false)
+        Ok(())
     }
 
     /// The Krylov solver of the filled matrix, made after the first fill of an analysis, and
@@ -621,26 +625,33 @@ impl LinearSolver for PetscSolver {
     }
 }
 
-/// On the iterative route: the general matrix filled as the factorised one is (scaled, ϕ rows
-/// negated, held rows), and solved by the Krylov solver with the preconditioner set up for
-/// the factorised matrix.
+/// On the iterative route: the general matrix and the preconditioning one filled as the
+/// factorised one is (scaled, ϕ rows negated, held rows), and solved by the Krylov solver with
+/// its preconditioner (field split, GAMG) set up for the preconditioning matrix.
 impl UnsymmetricSolve for PetscSolver {
-    fn solve_unsymmetric(&mut self, a: &RowMatrix, rhs: &mut [f64], rtol: f64) -> Result<()> {
+    fn solve_unsymmetric(
+        &mut self,
+        (a, p): (&RowMatrix, &RowMatrix),
+        rhs: &mut [f64],
+        rtol: f64,
+    ) -> Result<()> {
         let t = Instant::now();
         let n = self.rows.as_ref().map_or(0, |r| r.n);
         check_length("right-hand side", n, rhs.len())?;
         check_length("general matrix order", n, a.n())?;
-        self.fill_general(a)?;
+        check_length("preconditioning matrix order", n, p.n())?;
+        self.fill_general((a, p))?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
         rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(true, sign));
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("filled");
-        let (krylov, general) = (d.krylov.as_ref(), d.general.as_ref());
-        let (Some(krylov), Some(general)) = (krylov, general) else {
+        let (krylov, general) = (d.krylov.as_mut(), d.general.as_ref());
+        let (Some(krylov), Some([general, symmetric])) = (krylov, general) else {
             return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
         };
         d.b.with_local(|b| rows.scatter(rhs, b))?;
-        let solve = krylov.solve_operator((general, &d.matrix), rtol, &d.b, &mut d.x)?;
+        let operators = (general, symmetric, &d.matrix);
+        let solve = krylov.solve_operator(operators, rtol, &d.b, &mut d.x)?;
         self.krylov_iterations.push(solve.iterations);
         if solve.reason <= 0 {
             return Err(not_converged(krylov, &solve));
