@@ -166,7 +166,9 @@ struct BenchArgs {
     /// The linear-solver backend to time on --mesh: "faer" (default) or "petsc" (PETSc +
     /// MUMPS on the processes of mpirun, beside faer's in the same run; a build with the
     /// feature `petsc`).
-    #[arg(long, default_value = "faer", value_parser = ["faer", "petsc"], requires = "mesh", conflicts_with_all = ["contact", "path", "lu"])]
+    /// With --contact: the exact solver on the 3D indentation of --mesh by each route of
+    /// --linear.
+    #[arg(long, default_value = "faer", value_parser = ["faer", "petsc"], requires = "mesh", conflicts_with_all = ["path", "lu"])]
     backend: String,
     /// With --backend petsc: the routes to time, comma separated: "direct" (MUMPS's LDLᵀ)
     /// and "iterative" (GMRES with a field split and GAMG, as solver.linear = "iterative";
@@ -337,7 +339,7 @@ fn bench_command(args: BenchArgs) -> Result<Outcome> {
         return bench::quarter::run(&mesh).map(|_| Outcome::Done);
     }
     if backend == "petsc" {
-        return bench_backend(mesh.as_deref(), &linear).map(|_| Outcome::Done);
+        return bench_backend(mesh.as_deref(), &linear, contact).map(|_| Outcome::Done);
     }
     if linear != ["direct"] {
         anyhow::bail!("--linear goes with --backend petsc (the routes of the PETSc backend)");
@@ -383,15 +385,18 @@ fn bench_contact(
     bench::contact::contact(&targets)
 }
 
-/// `bench --mesh FILE --backend petsc [--linear ROUTES]`.
+/// `bench [--contact] --mesh FILE --backend petsc [--linear ROUTES]`.
 #[cfg(feature = "petsc")]
-fn bench_backend(mesh: Option<&Path>, linear: &[String]) -> Result<()> {
+fn bench_backend(mesh: Option<&Path>, linear: &[String], contact: bool) -> Result<()> {
     let mesh = mesh.ok_or_else(|| anyhow::anyhow!("--backend petsc needs --mesh FILE"))?;
-    bench::petsc::run(mesh, linear)
+    match contact {
+        true => bench::petsc_contact::run(mesh, linear),
+        false => bench::petsc::run(mesh, linear),
+    }
 }
 
 #[cfg(not(feature = "petsc"))]
-fn bench_backend(_mesh: Option<&Path>, _linear: &[String]) -> Result<()> {
+fn bench_backend(_mesh: Option<&Path>, _linear: &[String], _contact: bool) -> Result<()> {
     anyhow::bail!(
         "--backend petsc needs piezocontact built with the PETSc backend: cargo build --release --features petsc (Debian packages petsc-dev and openmpi-bin)"
     )

@@ -277,6 +277,40 @@ fn a_krylov_solve_short_of_its_tolerance_ends_the_run_unconverged() {
     let _ = std::fs::remove_dir_all(&out);
 }
 
+/// `bench --contact --backend petsc --linear direct,iterative` under mpirun -n 1 on the 3D
+/// indentation's coarse mesh: PV1 and PV2 by both routes, each converged, the iterative
+/// route's answers the direct route's to 1e−8 with its GMRES iterations.
+#[test]
+fn the_contact_bench_times_the_exact_solver_on_both_routes() {
+    let args = ["bench", "--contact", "--mesh", "meshes/indent-3d-h0.05.msh", "--backend"];
+    let result = run(1, &[&args[..], &["petsc", "--linear", "direct,iterative"]].concat());
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(result.status.success(), "{stdout}{}", String::from_utf8_lossy(&result.stderr));
+    for problem in ["PV1", "PV2 mu=0.3"] {
+        // The fields after the problem's words: route, DOFs, newton, solves, krylov_max (and
+        // its mean on the iterative route), run_s, kkt, KB/DOF, du, dphi, the peaks.
+        let words = problem.split_whitespace().count();
+        let row = |route: &str| -> Vec<String> {
+            let line = stdout.lines().find(|l| {
+                let fields: Vec<&str> = l.split_whitespace().collect();
+                fields.len() > words
+                    && fields[..words].join(" ") == problem
+                    && fields[words] == route
+            });
+            let line = line.unwrap_or_else(|| panic!("no {problem} {route} row: {stdout}"));
+            line.split_whitespace().skip(words).map(String::from).collect()
+        };
+        let (direct, iterative) = (row("direct"), row("iterative"));
+        assert!(!stdout.contains("NOT CONVERGED") && !stdout.contains("did not run"), "{stdout}");
+        assert_eq!(direct[1], iterative[1], "{problem}: the same unknowns");
+        let krylov: usize = iterative[4].parse().unwrap();
+        assert!(krylov > 0, "{problem}: {iterative:?}");
+        let (du, dphi): (f64, f64) =
+            (iterative[9].parse().unwrap(), iterative[10].parse().unwrap());
+        assert!(du < 1e-8 && dphi < 1e-8, "{problem}: {iterative:?}");
+    }
+}
+
 /// `bench --backend petsc --linear direct,iterative` under mpirun -n 2 on the 3D indentation's
 /// coarse mesh (its patch pressed down): a row per route and faer's, the iterative solve's
 /// GMRES iterations; a mesh without the patch is refused on the iterative route.

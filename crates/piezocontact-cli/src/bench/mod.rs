@@ -11,6 +11,7 @@
 //! - [`quarter`]: the quarter model against the whole block, and rollers against a clamp;
 //! - [`electrodes`]: the indentation with its top face floating against the same grounded;
 //! - `petsc` (feature `petsc`): the PETSc + MUMPS backend under mpirun beside faer;
+//! - `petsc_contact` (feature `petsc`): the exact solver on each route of the PETSc backend;
 //! - [`one`]: `bench --one SPEC`, one measurement of the above in a child process.
 //!
 //! This file holds what they share, and they depend on it alone: the benchmark cases (the
@@ -27,6 +28,8 @@ pub mod one;
 pub mod path;
 #[cfg(feature = "petsc")]
 pub mod petsc;
+#[cfg(feature = "petsc")]
+pub mod petsc_contact;
 pub mod quarter;
 
 use anyhow::{Result, anyhow, bail};
