@@ -24,8 +24,10 @@ pub struct Timings {
     /// The linear solver's counts and times: symbolic analysis, numeric factorisations and
     /// solves, and the bytes its last analysis predicted for a factorisation.
     pub solver: SolverStats,
-    /// The exact solver's dense condensed problem: its Schur complements (beyond the solves
-    /// counted above) and Newton's iterations (0 without one) \[s\].
+    /// The exact solver's own work beyond the phases above: on the condensed problem its
+    /// Schur complements (beyond the solves counted above) and Newton's dense iterations; on
+    /// the whole system its Jacobians and, without a backend solver of general matrices, their
+    /// sparse LU (0 without the exact solver) \[s\].
     pub dense: f64,
     /// The assessment of the solution: its KKT residual and force balance, the table of Γ3
     /// (without contact: the reactions and the extremes) \[s\].
