@@ -394,16 +394,25 @@ impl PetscSolver {
         d.krylov.as_mut().expect("made above").set_up(&d.matrix)
     }
 
-    /// One Krylov solve of the scaled system (ϕ rows negated): `rhs` whole in, the whole
-    /// solution out; a solve that does not converge is an error with its numbers and the
-    /// options to change.
-    fn krylov_solve(&mut self, rhs: &mut [f64]) -> Result<()> {
+    /// One Krylov solve of the scaled system (ϕ rows negated) — with the factorised matrix, or
+    /// with the general one filled last ([`PetscSolver::fill_general`]) to the relative
+    /// residual `general` —: `rhs` whole in, the whole solution out; a solve that does not
+    /// converge is an error with its numbers and the options to change.
+    fn krylov_solve(&mut self, rhs: &mut [f64], general: Option<f64>) -> Result<()> {
         rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(true, sign));
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("set up");
-        let krylov = d.krylov.as_ref().expect("set up");
+        let krylov = d.krylov.as_mut().expect("set up");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
-        let solve = krylov.solve(&d.b, &mut d.x)?;
+        let solve = match (general, &d.general) {
+            (None, _) => krylov.solve(&d.b, &mut d.x)?,
+            (Some(rtol), Some([a, p])) => {
+                krylov.solve_operator((a, p, &d.matrix), rtol, &d.b, &mut d.x)?
+            }
+            (Some(_), None) => {
+                return Err(Error::LinearAlgebra("PETSc backend: no general matrix".into()));
+            }
+        };
         self.krylov_iterations.push(solve.iterations);
         if solve.reason <= 0 {
             return Err(not_converged(krylov, &solve));
@@ -570,7 +579,7 @@ impl LinearSolver for PetscSolver {
         }
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
         if self.iterative.is_some() {
-            self.krylov_solve(rhs)?;
+            self.krylov_solve(rhs, None)?;
         } else if self.last.is_empty() {
             self.mumps_solve(rhs)?;
         } else {
@@ -640,25 +649,12 @@ impl UnsymmetricSolve for PetscSolver {
         check_length("right-hand side", n, rhs.len())?;
         check_length("general matrix order", n, a.n())?;
         check_length("preconditioning matrix order", n, p.n())?;
+        if self.distributed.as_ref().is_none_or(|d| d.krylov.is_none()) {
+            return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
+        }
         self.fill_general((a, p))?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
-        rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(true, sign));
-        let rows = self.rows.as_ref().expect("analysed");
-        let d = self.distributed.as_mut().expect("filled");
-        let (krylov, general) = (d.krylov.as_mut(), d.general.as_ref());
-        let (Some(krylov), Some([general, symmetric])) = (krylov, general) else {
-            return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
-        };
-        d.b.with_local(|b| rows.scatter(rhs, b))?;
-        let operators = (general, symmetric, &d.matrix);
-        let solve = krylov.solve_operator(operators, rtol, &d.b, &mut d.x)?;
-        self.krylov_iterations.push(solve.iterations);
-        if solve.reason <= 0 {
-            return Err(not_converged(krylov, &solve));
-        }
-        let mut gathered = vec![0.0; rows.total];
-        d.gather.run(&d.x, &mut gathered)?;
-        rows.unpermute(&gathered, rhs);
+        self.krylov_solve(rhs, Some(rtol))?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(x, s)| *x *= s);
         self.stats.solve_seconds += t.elapsed().as_secs_f64();
         self.stats.solve_count += 1;
