@@ -120,6 +120,12 @@ gap = 0.1
         assert!(
             unused[0].contains("solver.max_condensed is not used by solver.method = \"uzawa\"")
         );
+        // The whole system's Newton method (the iterative route) has no condensed set.
+        let iterative = ["solver.backend=\"petsc\"", "solver.linear=\"iterative\""];
+        let unused = case(MINIMAL, &[&iterative[..], &["solver.max_condensed=10"]].concat());
+        let unused = unused.unwrap().setting_warnings();
+        assert!(unused[0].contains("solver.max_condensed is not used with solver.linear"));
+        assert!(case(MINIMAL, &iterative).unwrap().setting_warnings().is_empty());
         // Both keys of the other method in one warning.
         let unused = case(MINIMAL, &["solver.eps=1e-6", "solver.eps_fp=1e-6"]).unwrap();
         let unused = unused.setting_warnings();

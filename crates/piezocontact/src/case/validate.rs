@@ -4,7 +4,9 @@
 
 use super::build::MethodParameters;
 use super::file::Case;
-use super::schema::{BackendKey, FrictionPathKey, MethodKey, ProblemKey, RegularizationKey};
+use super::schema::{
+    BackendKey, FrictionPathKey, LinearKey, MethodKey, ProblemKey, RegularizationKey,
+};
 use crate::error::Result;
 use crate::material::{ElasticLaw, Material, Materials};
 
@@ -211,6 +213,13 @@ impl Case {
             warnings.push(format!(
                 "{}: solver.ordering is faer's; with solver.backend = \"petsc\" MUMPS chooses its own ordering (PETSc option -mat_mumps_icntl_7)",
                 self.locate("solver.ordering")
+            ));
+        }
+        let whole = s.linear == Some(LinearKey::Iterative) && method == "newton";
+        if whole && s.max_condensed.is_some() {
+            warnings.push(format!(
+                "{}: solver.max_condensed is not used with solver.linear = \"iterative\": the exact solver runs on the whole system there, every Γ3 node that can touch the foundation in it",
+                self.locate("solver.max_condensed")
             ));
         }
         warnings.extend(self.model_warnings());
