@@ -688,7 +688,7 @@ impl Semismooth<'_> {
     }
 }
 
-/// Node i's block of T: q[a][b], from its free component b (in its unknowns' frame) to its
+/// Node i's block of T: `q[a][b]`, from its free component b (in its unknowns' frame) to its
 /// local component a.
 fn node_block(cond: &Condensed, frames: &[[[f64; 3]; 3]], i: usize) -> [[f64; 3]; 3] {
     let axes = cond.slots(i).1;

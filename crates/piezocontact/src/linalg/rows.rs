@@ -102,7 +102,7 @@ impl RowMatrix {
     }
 
     /// A ← T A Tᵀ with T the identity but on the unknowns `positions`, where it is the
-    /// orthogonal block `q` (q[a][b]: row a, column b, `positions.len()` of each): unknowns
+    /// orthogonal block `q` (`q[a][b]`: row a, column b, `positions.len()` of each): unknowns
     /// turned to another frame. Their rows must have the same columns (the components of a
     /// mesh node do), as must every row's entries in them.
     pub fn turn(&mut self, positions: &[usize], q: &[[f64; 3]; 3]) -> Result<()> {
