@@ -637,7 +637,7 @@ impl Semismooth<'_> {
                 (sparse, Some(system.rhs().to_vec()))
             }
         };
-        let mut local = Local::new(self, operator, (x_hat, rhs.as_deref()), system)?;
+        let mut local = Local::new(self, operator, (x_hat, rhs), system)?;
         let from = local
             .zero_if_solution()
             .unwrap_or_else(|| local.gather(self.start.unwrap_or(&local.x_hat)));
@@ -752,7 +752,7 @@ impl<'a> Local<'a> {
     fn new(
         semismooth: &'a Semismooth<'a>,
         operator: Operator,
-        (x_hat, rhs): (Vec<f64>, Option<&[f64]>),
+        (x_hat, rhs): (Vec<f64>, Option<Vec<f64>>),
         system: &'a mut CoupledSystem,
     ) -> Result<Self> {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
@@ -781,8 +781,7 @@ impl<'a> Local<'a> {
             first_merit: std::sync::OnceLock::new(),
         };
         this.load = match rhs {
-            Some(rhs) => {
-                let mut load = rhs.to_vec();
+            Some(mut load) => {
                 this.to_local(&mut load);
                 load
             }
@@ -1249,10 +1248,10 @@ impl<'a> Local<'a> {
             }
             rhs[k] *= factor;
         }
-        let mut unused = vec![0.0; y.len()];
         for k in (0..y.len()).filter(|&k| eval.fixed[k]) {
-            jacobian.eliminate(k, delta[k], matrix.diagonal(k).abs(), &mut rhs);
-            preconditioner.eliminate(k, 0.0, matrix.diagonal(k).abs(), &mut unused);
+            let diagonal = matrix.diagonal(k).abs();
+            jacobian.eliminate(k, diagonal, Some((delta[k], &mut rhs)));
+            preconditioner.eliminate(k, diagonal, None);
         }
         (jacobian, preconditioner, rhs)
     }
@@ -1651,8 +1650,7 @@ mod tests {
         } else {
             (Operator::Dense(system.schur_complement().unwrap()), None)
         };
-        let local =
-            Local::new(&semismooth, operator, (x_hat, rhs.as_deref()), &mut system).unwrap();
+        let local = Local::new(&semismooth, operator, (x_hat, rhs), &mut system).unwrap();
         check(&local, &result)
     }
 

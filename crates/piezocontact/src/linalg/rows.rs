@@ -8,17 +8,15 @@ use super::vectors::{check_length, column};
 use crate::error::{Error, Result};
 use faer::linalg::solvers::SolveCore;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut};
 use rayon::prelude::*;
 use std::sync::Arc;
 
-/// The pattern of a [`RowMatrix`]: the columns of each row, increasing.
-#[derive(Debug, PartialEq)]
-struct RowPattern {
-    row_ptr: Vec<usize>,
-    columns: Vec<usize>,
-}
+/// The pattern of a [`RowMatrix`]: the columns of each row, increasing — held as faer's
+/// compressed columns of the transpose, which its LU factorises ([`RowLu`]).
+#[derive(Debug)]
+struct RowPattern(SymbolicSparseColMat<usize>);
 
 /// A square sparse matrix stored row by row; matrices made from one another share the pattern.
 #[derive(Clone, Debug)]
@@ -55,12 +53,13 @@ impl RowMatrix {
                 put(j, i);
             }
         }
-        Self { pattern: Arc::new(RowPattern { row_ptr, columns }), values }
+        let transposed = SymbolicSparseColMat::new_checked(n, n, row_ptr, None, columns);
+        Self { pattern: Arc::new(RowPattern(transposed)), values }
     }
 
     /// Order of the matrix.
     pub fn n(&self) -> usize {
-        self.pattern.row_ptr.len() - 1
+        self.pattern.0.ncols()
     }
 
     /// Stored entries.
@@ -70,14 +69,14 @@ impl RowMatrix {
 
     /// Row r: its columns (increasing) and values.
     pub fn row(&self, r: usize) -> (&[usize], &[f64]) {
-        let range = self.pattern.row_ptr[r]..self.pattern.row_ptr[r + 1];
-        (&self.pattern.columns[range.clone()], &self.values[range])
+        let range = self.pattern.0.col_range(r);
+        (&self.pattern.0.row_idx()[range.clone()], &self.values[range])
     }
 
     /// Row r: its columns and values to change.
     pub fn row_mut(&mut self, r: usize) -> (&[usize], &mut [f64]) {
-        let range = self.pattern.row_ptr[r]..self.pattern.row_ptr[r + 1];
-        (&self.pattern.columns[range.clone()], &mut self.values[range])
+        let range = self.pattern.0.col_range(r);
+        (&self.pattern.0.row_idx()[range.clone()], &mut self.values[range])
     }
 
     /// The index of column c within row r, if the pattern has the entry.
@@ -139,16 +138,18 @@ impl RowMatrix {
         Ok(())
     }
 
-    /// Makes unknown k's equation x_k = `value` with `diagonal` on its row — the row and the
-    /// column zeroed but for the diagonal — and moves the column's part to `rhs`, so that the
-    /// other equations keep their solution (rhs_r −= a_rk value). The pattern must be
-    /// symmetric.
-    pub fn eliminate(&mut self, k: usize, value: f64, diagonal: f64, rhs: &mut [f64]) {
+    /// Makes unknown k's row and column zero but for `diagonal` on the diagonal. With
+    /// `fixed` = (value, rhs), k's equation becomes x_k = value and the column's part moves
+    /// to `rhs`, so that the other equations keep their solution (rhs_r −= a_rk value). The
+    /// pattern must be symmetric.
+    pub fn eliminate(&mut self, k: usize, diagonal: f64, mut fixed: Option<(f64, &mut [f64])>) {
         let columns = self.row(k).0.to_vec();
         for r in columns.into_iter().filter(|&r| r != k) {
             if let Some(at) = self.position(r, k) {
                 let (_, values) = self.row_mut(r);
-                rhs[r] -= values[at] * value;
+                if let Some((value, rhs)) = fixed.as_mut() {
+                    rhs[r] -= values[at] * *value;
+                }
                 values[at] = 0.0;
             }
         }
@@ -159,7 +160,9 @@ impl RowMatrix {
             Some(at) => values[at] = diagonal,
             None => debug_assert!(columns.is_empty(), "row {k} without its diagonal"),
         }
-        rhs[k] = diagonal * value;
+        if let Some((value, rhs)) = fixed {
+            rhs[k] = diagonal * value;
+        }
     }
 }
 
@@ -175,24 +178,17 @@ impl RowLu {
     /// Solves A x = b in place (b on entry, x on exit).
     pub fn solve(&mut self, a: &RowMatrix, rhs: &mut [f64]) -> Result<()> {
         check_length("right-hand side", a.n(), rhs.len())?;
-        let n = a.n();
         // A's rows are the columns of Aᵀ: factorise Aᵀ, solve with its transpose.
-        let transposed = SymbolicSparseColMat::new_checked(
-            n,
-            n,
-            a.pattern.row_ptr.clone(),
-            None,
-            a.pattern.columns.clone(),
-        );
+        let transposed = a.pattern.0.as_ref();
         let analysed = self.symbolic.as_ref().is_some_and(|(p, _)| Arc::ptr_eq(p, &a.pattern));
         if !analysed {
-            let symbolic = SymbolicLu::try_new(transposed.as_ref())
+            let symbolic = SymbolicLu::try_new(transposed)
                 .map_err(|e| Error::LinearAlgebra(format!("sparse LU analysis: {e:?}")))?;
             self.symbolic = Some((a.pattern.clone(), symbolic));
         }
         let Some((_, symbolic)) = &self.symbolic else { unreachable!("analysed above") };
-        let transposed = SparseColMat::new(transposed, a.values.clone());
-        let lu = Lu::try_new_with_symbolic(symbolic.clone(), transposed.as_ref())
+        let transposed = SparseColMatRef::new(transposed, &a.values);
+        let lu = Lu::try_new_with_symbolic(symbolic.clone(), transposed)
             .map_err(|e| Error::SingularSystem { detail: format!("sparse LU: {e:?}") })?;
         let rhs_view: MatMut<'_, f64> = column(rhs);
         lu.solve_transpose_in_place_with_conj(Conj::No, rhs_view);
@@ -290,7 +286,7 @@ mod tests {
         let original = a.clone();
         let b = vec![1.0, 2.0, -1.0, 0.5, 3.0];
         let mut rhs = b.clone();
-        a.eliminate(3, 0.7, 9.0, &mut rhs);
+        a.eliminate(3, 9.0, Some((0.7, &mut rhs)));
         let mut lu = RowLu::default();
         lu.solve(&a, &mut rhs).unwrap();
         assert!((rhs[3] - 0.7).abs() < 1e-14);
