@@ -175,6 +175,37 @@ struct Objects {
     gather: Gather,
 }
 
+/// Writes this process's rows into `target` as the backend holds a matrix: owned row k
+/// (unknown i) from `row(k, i, entries)`, which pushes its (PETSc column, value) pairs, scaled
+/// D A D by `scaling` and, on the iterative route, negated on ϕ rows (`signs`); a held row 1
+/// on its diagonal (the scaled elastic diagonal is 1 on average: [`field_scaling`]).
+fn write_rows(
+    target: &mut Matrix,
+    rows: &Rows,
+    (scaling, signs, iterative): (&[f64], &[i8], bool),
+    mut row: impl FnMut(usize, usize, &mut Vec<(PetscInt, f64)>),
+) -> Result<()> {
+    let (mut entries, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
+    for k in 0..rows.end - rows.start {
+        let (p, i) = ((rows.start + k) as PetscInt, rows.order[rows.start + k]);
+        if i == HELD {
+            target.set_row(p, &[p], &[1.0])?;
+            continue;
+        }
+        let s = scaling[i] * row_sign(iterative, signs[i]);
+        entries.clear();
+        row(k, i, &mut entries);
+        cols.clear();
+        vals.clear();
+        for &(q, v) in &entries {
+            cols.push(q);
+            vals.push(v * s * scaling[rows.order[q as usize]]);
+        }
+        target.set_row(p, &cols, &vals)?;
+    }
+    Ok(())
+}
+
 /// MUMPS's LDLᵀ of the distributed matrix (see the module's documentation).
 #[derive(Debug, Default)]
 pub struct PetscSolver {
@@ -314,23 +345,10 @@ impl PetscSolver {
             None => diagonal.iter().map(|d| 1.0 / d.abs().sqrt()).collect(),
         };
         let values = matrix.lower().val();
-        let (mut cols, mut vals) = (Vec::new(), Vec::new());
-        for (k, row) in rows.owned_rows().enumerate() {
-            let (p, i) = ((rows.start + k) as PetscInt, rows.order[rows.start + k]);
-            if i == HELD {
-                // The scaled elastic diagonal is 1 on average (field_scaling).
-                d.matrix.set_row(p, &[p], &[1.0])?;
-                continue;
-            }
-            let s = self.scaling[i] * row_sign(self.iterative.is_some(), self.signs[i]);
-            cols.clear();
-            vals.clear();
-            for &(q, at) in row {
-                cols.push(q);
-                vals.push(values[at as usize] * s * self.scaling[rows.order[q as usize]]);
-            }
-            d.matrix.set_row(p, &cols, &vals)?;
-        }
+        let scaled = (&self.scaling[..], &self.signs[..], self.iterative.is_some());
+        write_rows(&mut d.matrix, rows, scaled, |k, _, row| {
+            row.extend(rows.row(k).iter().map(|&(q, at)| (q, values[at as usize])));
+        })?;
         d.matrix.assemble(self.iterative.is_none())
     }
 
@@ -346,24 +364,13 @@ impl PetscSolver {
             let new = || Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off);
             d.general = Some([new()?, new()?]);
         }
-        let (mut cols, mut vals) = (Vec::new(), Vec::new());
+        let scaled = (&self.scaling[..], &self.signs[..], true);
         for (target, source) in d.general.as_mut().expect("made above").iter_mut().zip([a, p]) {
-            for row in rows.start..rows.end {
-                let (i, at) = (rows.order[row], row as PetscInt);
-                if i == HELD {
-                    target.set_row(at, &[at], &[1.0])?;
-                    continue;
-                }
-                let s = self.scaling[i] * row_sign(true, self.signs[i]);
+            write_rows(target, rows, scaled, |_, i, row| {
                 let (columns, values) = source.row(i);
-                cols.clear();
-                vals.clear();
-                for (&j, &v) in columns.iter().zip(values) {
-                    cols.push(rows.petsc[j] as PetscInt);
-                    vals.push(v * s * self.scaling[j]);
-                }
-                target.set_row(at, &cols, &vals)?;
-            }
+                let petsc = columns.iter().map(|&j| rows.petsc[j] as PetscInt);
+                row.extend(petsc.zip(values.iter().copied()));
+            })?;
             target.assemble(false)?;
         }
         Ok(())
