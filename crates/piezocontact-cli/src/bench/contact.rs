@@ -23,9 +23,9 @@ pub fn case_target(file: &Path) -> String {
 /// The problems of the contact benchmark on a target: the paper's bar at a size "NXxNY"
 /// (PV1, PV2 with µ = k_e = 0.2 and 0.6), a Gmsh mesh with the parts of
 /// meshes/indent-3d.geo in the indentation case, or "case:FILE" (both: PV1, and PV2 with
-/// µ = 0.3).
-pub fn contact_problems(target: &str) -> Result<Vec<(&'static str, Case)>> {
-    let newton = || vec!["solver.method=\"newton\"".to_string()];
+/// µ = 0.3); each with the exact solver and the overrides `extra`.
+pub fn contact_problems(target: &str, extra: &[String]) -> Result<Vec<(&'static str, Case)>> {
+    let newton = || [&["solver.method=\"newton\"".to_string()][..], extra].concat();
     if let Some(file) = target.strip_prefix(CASE_PREFIX) {
         let with = |extra: &[&str]| -> Result<Case> {
             let mut overrides = newton();
@@ -65,7 +65,7 @@ pub fn contact_problems(target: &str) -> Result<Vec<(&'static str, Case)>> {
 pub fn contact(targets: &[String]) -> Result<()> {
     let names: Vec<Vec<&str>> = targets
         .iter()
-        .map(|t| Ok(contact_problems(t)?.into_iter().map(|(name, _)| name).collect()))
+        .map(|t| Ok(contact_problems(t, &[])?.into_iter().map(|(name, _)| name).collect()))
         .collect::<Result<_>>()?;
     say!(
         "{:>10} {:>9} {:>11} {:>11} {:>7} {:>12} {:>8} {:>8} {:>8} {:>8} {:>15} {:>7} {:>7} {:>8} {:>16} {:>9}",

@@ -205,6 +205,11 @@ pub fn median(mut s: Vec<f64>) -> f64 {
     s[s.len() / 2]
 }
 
+/// The largest of `values` (0 for none: they are sizes and times).
+pub fn largest(values: &[f64]) -> f64 {
+    values.iter().fold(0.0, |m, v| m.max(*v))
+}
+
 /// Peak resident memory of this process, in MiB (0 where the system does not say).
 pub fn peak_mb() -> f64 {
     piezocontact::limits::peak_resident_bytes().map_or(0.0, |b| b / 1024.0 / 1024.0)

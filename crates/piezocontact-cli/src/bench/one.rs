@@ -23,7 +23,7 @@ pub fn measure_one(spec: &str) -> Result<()> {
         let (routes, mesh) = target.split_once(',').ok_or_else(|| anyhow!("--one {spec}"))?;
         return super::petsc::measure_faer(routes, std::path::Path::new(mesh));
     }
-    let mut problems = contact_problems(target)?;
+    let mut problems = contact_problems(target, &[])?;
     if kind == "plain" {
         let problem = problems.swap_remove(0).1.problem()?;
         let start = Instant::now();

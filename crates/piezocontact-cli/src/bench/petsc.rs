@@ -6,7 +6,8 @@
 //! share the cores.
 
 use super::{
-    factorised_once, in_child, mesh_case, mesh_case_with, mesh_parts, peak_mb, print_figures,
+    factorised_once, in_child, largest, mesh_case, mesh_case_with, mesh_parts, peak_mb,
+    print_figures,
 };
 use crate::{processes, say};
 use anyhow::{Result, bail};
@@ -101,15 +102,11 @@ fn ratios(rows: &[(String, Phases, usize)]) {
             p.total() / base.total(),
             p.total(),
             base.total(),
-            max(&p.peak_mb) / max(&base.peak_mb),
-            max(&p.peak_mb),
-            max(&base.peak_mb)
+            largest(&p.peak_mb) / largest(&base.peak_mb),
+            largest(&p.peak_mb),
+            largest(&base.peak_mb)
         );
     }
-}
-
-fn max(values: &[f64]) -> f64 {
-    values.iter().fold(0.0, |m, v| m.max(*v))
 }
 
 /// The case of the bench on `mesh`: with the parts "bottom" and "contact" of

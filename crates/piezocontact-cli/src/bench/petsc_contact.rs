@@ -6,7 +6,8 @@
 //! time, each process's peak memory, the KKT residual and each route's answer against the
 //! first route's.
 
-use super::{INDENTATION, peak_mb};
+use super::contact::contact_problems;
+use super::{largest, peak_mb};
 use crate::{processes, say};
 use anyhow::{Result, anyhow};
 use piezocontact::case::Case;
@@ -39,22 +40,20 @@ struct Measured {
 
 /// Every route of `linear` on the problems of `mesh` (every process), printed by process 0.
 pub fn run(mesh: &Path, linear: &[String]) -> Result<()> {
-    let file =
-        std::fs::canonicalize(mesh).map_err(|e| anyhow!("--mesh {}: {e}", mesh.display()))?;
+    // Per route, the problems of the contact benchmark on the mesh (PV1, PV2 µ = 0.3).
+    let problems = linear
+        .iter()
+        .map(|route| {
+            let sets = ["solver.backend=\"petsc\"".into(), format!("solver.linear={route:?}")];
+            contact_problems(&mesh.display().to_string(), &sets)
+        })
+        .collect::<Result<Vec<_>>>()?;
     let mut rows = Vec::new();
-    for (problem, sets) in [("PV1", &["contact.problem=\"PV1\""][..]), ("PV2 mu=0.3", &[][..])] {
+    for k in 0..problems.first().map_or(0, Vec::len) {
         let mut first: Option<(Vec<f64>, usize)> = None;
-        for route in linear {
-            let mut overrides = vec![
-                "solver.method=\"newton\"".to_string(),
-                "solver.backend=\"petsc\"".to_string(),
-                format!("solver.linear={route:?}"),
-                format!("mesh.file={:?}", file.display().to_string()),
-            ];
-            overrides.extend(sets.iter().map(|s| s.to_string()));
-            let case =
-                Case::from_text(Path::new("cases/indentation-3d.toml"), INDENTATION, &overrides)?;
-            let outcome = measure(&case, &mut first).map_err(|e| e.to_string());
+        for (route, cases) in linear.iter().zip(&problems) {
+            let (problem, case) = &cases[k];
+            let outcome = measure(case, &mut first).map_err(|e| e.to_string());
             rows.push(Row { problem, route: route.clone(), outcome });
         }
     }
@@ -172,8 +171,4 @@ fn ratios(rows: &[Row]) {
             }
         }
     }
-}
-
-fn largest(values: &[f64]) -> f64 {
-    values.iter().fold(0.0, |m, v| m.max(*v))
 }
