@@ -723,7 +723,7 @@ impl Krylov {
     /// relative residual `rtol`; the solver's operators and tolerance are its own again
     /// afterwards (its next solve sets its preconditioner up for `own` again).
     pub fn solve_operator(
-        &mut self,
+        &self,
         (operator, preconditioner, own): (&Matrix, &Matrix, &Matrix),
         rtol: f64,
         b: &Vector,

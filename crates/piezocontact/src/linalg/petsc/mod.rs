@@ -409,7 +409,7 @@ impl PetscSolver {
         rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(true, sign));
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("set up");
-        let krylov = d.krylov.as_mut().expect("set up");
+        let krylov = d.krylov.as_ref().expect("set up");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
         let solve = match (general, &d.general) {
             (None, _) => krylov.solve(&d.b, &mut d.x)?,
