@@ -8,8 +8,8 @@ use crate::assembly::{Assembler, Linearisation, NodalBlock, load_vector, node_ne
 use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::{
-    DenseMatrix, LinearRoute, LinearSolver, RowLu, RowMatrix, SchurComplement, SolverStats,
-    SymmetricMatrix,
+    DenseMatrix, LinearRoute, LinearSolver, Patched, RowLu, RowMatrix, SchurComplement,
+    SolverStats, SymmetricMatrix,
 };
 use crate::problem::{Factors, Problem};
 use std::time::Instant;
@@ -271,19 +271,23 @@ impl CoupledSystem {
         Ok(x)
     }
 
-    /// Solves A x = b in place (free DOFs) for a general matrix A of the pattern of B̌ (both
-    /// triangles): by the backend where it has its own solver of such matrices, to the
-    /// relative residual `rtol`, preconditioned as for the symmetric matrix P near A; else by
-    /// a sparse LU of A.
+    /// Solves J x = b in place (free DOFs) for J the factorised matrix B̌ but on the rows of
+    /// `jacobian` (a [`Patched`] row matrix of B̌'s pattern): by the backend where it has its
+    /// own solver of such matrices, to the relative residual `rtol`, preconditioned as for P,
+    /// B̌ with the rows of `preconditioner` (symmetric, near J); else by a sparse LU of J.
     pub fn solve_unsymmetric(
         &mut self,
-        (a, p): (&RowMatrix, &RowMatrix),
+        (jacobian, preconditioner): (&RowMatrix, &RowMatrix),
         rhs: &mut [f64],
         rtol: f64,
     ) -> Result<()> {
+        let matrix = self.matrix.as_ref().ok_or_else(|| {
+            Error::LinearAlgebra("a solve with a patched matrix before the factorisation".into())
+        })?;
+        let patched = Patched { matrix, jacobian, preconditioner };
         match self.solver.unsymmetric() {
-            Some(solver) => solver.solve_unsymmetric((a, p), rhs, rtol),
-            None => self.row_lu.solve(a, rhs),
+            Some(solver) => solver.solve_unsymmetric(patched, rhs, rtol),
+            None => self.row_lu.solve(&patched.whole_jacobian()?, rhs),
         }
     }
 

@@ -5,10 +5,13 @@
 //! Run with `cargo test --workspace --features piezocontact-cli/petsc --test petsc`.
 
 use piezocontact::assembly::Assembler;
+use piezocontact::assembly::secant_moduli;
 use piezocontact::case::Case;
 use piezocontact::dofs::DofMap;
 use piezocontact::linalg::petsc::{self, PetscSolver};
-use piezocontact::linalg::{LdltSolver, LinearRoute, LinearSolver, SymmetricMatrix};
+use piezocontact::linalg::{
+    LdltSolver, LinearRoute, LinearSolver, Patched, RowLu, RowMatrix, SymmetricMatrix,
+};
 use piezocontact::run::{ContactRun, Run};
 use piezocontact::system::{CoupledSystem, solve_without_contact};
 use std::path::PathBuf;
@@ -22,6 +25,11 @@ const PROCESSES: [usize; 3] = [1, 2, 3];
 /// this test under mpirun (one MPI job at a time) and asserts that every process passed,
 /// showing the processes' output when one did not; under mpirun, runs it.
 fn on_processes(test: &str, body: impl FnOnce()) {
+    on(&PROCESSES, test, body)
+}
+
+/// [`on_processes`] with the process counts `counts`.
+fn on(counts: &[usize], test: &str, body: impl FnOnce()) {
     if std::env::var_os("OMPI_COMM_WORLD_SIZE").is_some() {
         // MPI first: MPI_Abort before MPI_Init cannot end the job, and the process would
         // exit with 1 and the MPI library's complaint instead of the assertion's.
@@ -40,7 +48,7 @@ fn on_processes(test: &str, body: impl FnOnce()) {
     // tests run on parallel threads.
     static ONE_JOB: Mutex<()> = Mutex::new(());
     let _job = ONE_JOB.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-    for n in PROCESSES {
+    for &n in counts {
         let output = Command::new("mpirun")
             .args(["--allow-run-as-root", "--oversubscribe", "--timeout", "600", "-n"])
             .arg(n.to_string())
@@ -328,6 +336,50 @@ fn the_krylov_route_solves_the_coupled_system_as_faer_does() {
             let most = petsc::KRYLOV_MAX_ITERATIONS;
             assert!(route.krylov_iterations.iter().all(|&k| (1..most).contains(&k)), "{route:?}");
         }
+    });
+}
+
+/// The solve with a patched matrix on the iterative route (the whole system's Newton step,
+/// on one process as yet): J = K but on every seventh row, where its diagonal is doubled and
+/// its other entries made unsymmetric (× 1 + 0.01 (column mod 3)), and P = K with those rows'
+/// diagonal doubled, written over PETSc's K for the preconditioner and K's rows written back
+/// after. The solution is the sparse LU's of J whole to 1e−8, and the next solve with K is
+/// faer's again.
+#[test]
+fn a_solve_with_a_patched_matrix_is_the_lu_s_and_leaves_k_as_it_was() {
+    on(&[1], "a_solve_with_a_patched_matrix_is_the_lu_s_and_leaves_k_as_it_was", || {
+        let problem = case("bar-3d.toml", &[]).problem().unwrap();
+        let faer = solve_without_contact(&problem, Box::new(LdltSolver::new())).unwrap();
+        let dofs = DofMap::new(&problem).unwrap();
+        let mut system = CoupledSystem::new(&problem, dofs, &[], krylov_solver()).unwrap();
+        let zero = vec![0.0; system.dofs().n_total()];
+        let moduli = secant_moduli(&problem, system.dofs(), &zero).unwrap();
+        system.factorize(&problem, &moduli, &[]).unwrap();
+        let matrix = system.matrix().unwrap().clone();
+        let patched = |r: usize| r.is_multiple_of(7);
+        let mut jacobian = RowMatrix::from_symmetric_rows(&matrix, patched);
+        let mut preconditioner = jacobian.clone();
+        for r in (0..matrix.n()).filter(|&r| patched(r)) {
+            let (columns, values) = jacobian.row_mut(r);
+            for (c, v) in columns.iter().zip(values) {
+                *v *= if *c == r { 2.0 } else { 1.0 + 0.01 * (c % 3) as f64 };
+            }
+            let at = preconditioner.position(r, r).unwrap();
+            preconditioner.row_mut(r).1[at] *= 2.0;
+        }
+        let b = system.rhs().to_vec();
+        let mut x = b.clone();
+        system.solve_unsymmetric((&jacobian, &preconditioner), &mut x, 1e-10).unwrap();
+        let whole =
+            Patched { matrix: &matrix, jacobian: &jacobian, preconditioner: &preconditioner };
+        let mut expected = b.clone();
+        RowLu::default().solve(&whole.whole_jacobian().unwrap(), &mut expected).unwrap();
+        let difference = relative_difference(&x, &expected);
+        assert!(difference < 1e-8, "‖x − x_LU‖/‖x_LU‖ = {difference:e}");
+        assert!(relative_difference(&expected, &b) > 1e-3, "J is not K: the test must tell");
+        let again = system.solve(Some(&vec![0.0; b.len()])).unwrap();
+        let difference = relative_difference(&again, &faer.x);
+        assert!(difference < 1e-8, "K's solve after: ‖x − x_faer‖/‖x_faer‖ = {difference:e}");
     });
 }
 

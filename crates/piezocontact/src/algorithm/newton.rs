@@ -83,25 +83,19 @@ enum Term {
 enum Operator {
     /// Q S Qᵀ, S the Schur complement of the condensed unknowns.
     Dense(DenseMatrix),
-    /// T K Tᵀ, K the whole system's matrix, T turning each kept Γ3 node's u to its local
-    /// frame.
-    Sparse(RowMatrix),
+    /// T K Tᵀ, K the whole system's matrix (the coupled system's, which multiplies),
+    /// T turning each kept Γ3 node's u to its local frame: of T K Tᵀ, the rows that the
+    /// Newton steps change (`rows`: the kept nodes' and their neighbours', the others empty)
+    /// and the diagonal.
+    Sparse { rows: RowMatrix, diagonal: Vec<f64> },
 }
 
 impl Operator {
-    /// A y.
-    fn mul(&self, y: &[f64]) -> Vec<f64> {
-        match self {
-            Operator::Dense(schur) => schur.mul(y),
-            Operator::Sparse(matrix) => matrix.mul(y),
-        }
-    }
-
     /// A_kk.
     fn diagonal(&self, k: usize) -> f64 {
         match self {
             Operator::Dense(schur) => schur.get(k, k),
-            Operator::Sparse(matrix) => matrix.diagonal(k),
+            Operator::Sparse { diagonal, .. } => diagonal[k],
         }
     }
 
@@ -111,8 +105,8 @@ impl Operator {
             Operator::Dense(schur) => {
                 out.iter_mut().zip(schur.col(j)).for_each(|(o, s)| *o += factor * s)
             }
-            Operator::Sparse(matrix) => {
-                let (columns, values) = matrix.row(j);
+            Operator::Sparse { rows, .. } => {
+                let (columns, values) = rows.row(j);
                 columns.iter().zip(values).for_each(|(&c, v)| out[c] += factor * v);
             }
         }
@@ -629,13 +623,7 @@ impl Semismooth<'_> {
         let x_hat = system.solve(None)?;
         let (operator, rhs) = match schur {
             Some(schur) => (Operator::Dense(schur.get(system, &cond.free)?), None),
-            None => {
-                let matrix = system.matrix().ok_or_else(|| {
-                    Error::LinearAlgebra("the whole system's Newton step before its matrix".into())
-                })?;
-                let sparse = Operator::Sparse(RowMatrix::from_symmetric(matrix));
-                (sparse, Some(system.rhs().to_vec()))
-            }
+            None => whole_operator(system, cond)?,
         };
         let mut local = Local::new(self, operator, (x_hat, rhs), system)?;
         let from = local
@@ -688,6 +676,39 @@ impl Semismooth<'_> {
     }
 }
 
+/// Per position of `cond`, its Γ3 node ([`INTERIOR`] for the other unknowns).
+fn nodes_of(cond: &Condensed) -> Vec<usize> {
+    let mut node_of = vec![INTERIOR; cond.len()];
+    for i in (0..cond.kept.len()).filter(|&i| cond.kept[i]) {
+        cond.slots(i).0.iter().for_each(|&k| node_of[k] = i);
+        if let Phi::Unknown(p) = cond.phi[i] {
+            node_of[p] = i;
+        }
+    }
+    node_of
+}
+
+/// The whole system's operator (K's rows that the Newton steps change — the kept Γ3 nodes'
+/// and their neighbours' — and K's diagonal, in the unknowns' frames) and its right-hand
+/// side.
+fn whole_operator(
+    system: &CoupledSystem,
+    cond: &Condensed,
+) -> Result<(Operator, Option<Vec<f64>>)> {
+    let matrix = system.matrix().ok_or_else(|| {
+        Error::LinearAlgebra("the whole system's Newton step before its matrix".into())
+    })?;
+    let on_contact: Vec<bool> = nodes_of(cond).iter().map(|&i| i != INTERIOR).collect();
+    let mut touched = on_contact.clone();
+    for (i, j, _) in matrix.lower_entries() {
+        touched[i] |= on_contact[j];
+        touched[j] |= on_contact[i];
+    }
+    let rows = RowMatrix::from_symmetric_rows(matrix, |r| touched[r]);
+    let diagonal = matrix.diagonal();
+    Ok((Operator::Sparse { rows, diagonal }, Some(system.rhs().to_vec())))
+}
+
 /// Node i's block of T: `q[a][b]`, from its free component b (in its unknowns' frame) to its
 /// local component a.
 fn node_block(cond: &Condensed, frames: &[[[f64; 3]; 3]], i: usize) -> [[f64; 3]; 3] {
@@ -709,11 +730,14 @@ fn turned_operator(
     let kept: Vec<usize> = (0..frames.len()).filter(|&i| cond.kept[i]).collect();
     let block = |i: usize| node_block(cond, frames, i);
     match operator {
-        Operator::Sparse(mut matrix) => {
+        Operator::Sparse { mut rows, mut diagonal } => {
             for &i in &kept {
-                matrix.turn(cond.slots(i).0, &block(i))?;
+                rows.turn(cond.slots(i).0, &block(i))?;
             }
-            Ok(Operator::Sparse(matrix))
+            for (k, d) in diagonal.iter_mut().enumerate().filter(|(k, _)| rows.has_row(*k)) {
+                *d = rows.diagonal(k);
+            }
+            Ok(Operator::Sparse { rows, diagonal })
         }
         Operator::Dense(mut schur) => {
             let rotate = |q: &[[f64; 3]; 3], old: &[f64; 3], n: usize, a: usize| -> f64 {
@@ -757,14 +781,7 @@ impl<'a> Local<'a> {
     ) -> Result<Self> {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
         let (frames, turned) = unknown_frames(surface, system.dofs());
-        let m = cond.len();
-        let mut node_of = vec![INTERIOR; m];
-        for i in (0..surface.len()).filter(|&i| cond.kept[i]) {
-            cond.slots(i).0.iter().for_each(|&k| node_of[k] = i);
-            if let Phi::Unknown(p) = cond.phi[i] {
-                node_of[p] = i;
-            }
-        }
+        let (m, node_of) = (cond.len(), nodes_of(cond));
         let mut this = Self {
             semismooth,
             operator: turned_operator(operator, cond, &frames)?,
@@ -785,7 +802,7 @@ impl<'a> Local<'a> {
                 this.to_local(&mut load);
                 load
             }
-            None => this.operator.mul(&this.gather(&this.x_hat)),
+            None => this.product(&this.gather(&this.x_hat)),
         };
         if let Some(origin) = semismooth.step.slip_origin {
             this.origin = this.gather(origin);
@@ -1000,6 +1017,21 @@ impl<'a> Local<'a> {
         }
     }
 
+    /// A y: Q S Qᵀ y, or T K Tᵀ y with the coupled system's K.
+    fn product(&self, y: &[f64]) -> Vec<f64> {
+        match &self.operator {
+            Operator::Dense(schur) => schur.mul(y),
+            Operator::Sparse { .. } => {
+                // K is only read: a panic elsewhere while the lock was held cannot spoil it.
+                let system = self.system.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+                let matrix = system.matrix().expect("whole_operator checked that K is there");
+                let mut forces = matrix.mul(&self.to_global(y));
+                self.to_local(&mut forces);
+                forces
+            }
+        }
+    }
+
     /// The coupled system, locked.
     fn system(&self) -> Result<std::sync::MutexGuard<'_, &'a mut CoupledSystem>> {
         let poisoned = |_| Error::LinearAlgebra("a Newton step panicked with the system".into());
@@ -1026,7 +1058,7 @@ impl<'a> Local<'a> {
     fn whole_solution(&self, y: &[f64], eval: &Evaluation) -> Result<Vec<f64>> {
         let cond = self.semismooth.condensed;
         let mut system = self.system()?;
-        if let Operator::Sparse(..) = self.operator {
+        if let Operator::Sparse { .. } = self.operator {
             if let Some(k) = y.iter().position(|v| !v.is_finite()) {
                 return Err(Error::NonFinite { what: format!("solution component {k}") });
             }
@@ -1077,7 +1109,7 @@ impl<'a> Local<'a> {
         let (step, cond) = (self.semismooth.step, self.semismooth.condensed);
         let (surface, law) = (step.surface, &step.model.compliance);
         let n3 = surface.len();
-        let mut forces = self.operator.mul(y);
+        let mut forces = self.product(y);
         forces.iter_mut().zip(&self.load).for_each(|(f, b)| *f -= b);
         let sigma_nu: Vec<f64> = (0..n3)
             .map(|i| if cond.kept[i] { forces[cond.u[i][0]] / surface.weight[i] } else { 0.0 })
@@ -1168,7 +1200,7 @@ impl<'a> Local<'a> {
     ) -> Result<(Vec<f64>, Option<TransposedLu>)> {
         match &self.operator {
             Operator::Dense(_) => self.dense_step(y, eval, frozen),
-            Operator::Sparse(matrix) => Ok((self.sparse_step(y, eval, matrix)?, None)),
+            Operator::Sparse { rows, .. } => Ok((self.sparse_step(y, eval, rows)?, None)),
         }
     }
 
@@ -1184,11 +1216,13 @@ impl<'a> Local<'a> {
         delta
     }
 
-    /// The whole system's Newton step δ at y ([`Local::sparse_jacobian`]), solved in the
-    /// unknowns' frames (Tᵀ J T, Tᵀ r), where the preconditioner's rigid-body modes are the
-    /// nodes' (a fixed local component is then a fixed direction), to the forcing tolerance.
-    fn sparse_step(&self, y: &[f64], eval: &Evaluation, matrix: &RowMatrix) -> Result<Vec<f64>> {
-        let (mut jacobian, mut preconditioner, rhs) = self.sparse_jacobian(y, eval, matrix);
+    /// The whole system's Newton step δ at y ([`Local::sparse_jacobian`] on `rows`, T K Tᵀ's
+    /// rows that it changes), solved in the unknowns' frames (Tᵀ J T, Tᵀ r), where the
+    /// preconditioner's rigid-body modes are the nodes' (a fixed local component is then a
+    /// fixed direction), to the forcing tolerance: J and P handed to the system as patches of
+    /// its matrix K, whose other rows they share.
+    fn sparse_step(&self, y: &[f64], eval: &Evaluation, rows: &RowMatrix) -> Result<Vec<f64>> {
+        let (mut jacobian, mut preconditioner, rhs) = self.sparse_jacobian(y, eval, rows);
         let cond = self.semismooth.condensed;
         for i in (0..self.frames.len()).filter(|&i| cond.kept[i]) {
             let q = node_block(cond, &self.frames, i);
@@ -1211,7 +1245,9 @@ impl<'a> Local<'a> {
     /// with their steps, their rows and columns zeroed but for K's diagonal. P: T K Tᵀ with
     /// the laws' terms on the diagonal of those rows (the compliance's, a slip's, the
     /// conduction's: ≥ 0 on u rows and ≤ 0 on ϕ rows, as K's own) and the same eliminations,
-    /// so that its blocks are like K's for the field split and algebraic multigrid.
+    /// so that its blocks are like K's for the field split and algebraic multigrid. J and P
+    /// are made from `matrix`, T K Tᵀ's rows of the kept nodes and their neighbours (the rows
+    /// that differ from K's), and hold those rows alone.
     fn sparse_jacobian(
         &self,
         y: &[f64],
@@ -1645,8 +1681,7 @@ mod tests {
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
         let (operator, rhs) = if whole {
-            let matrix = RowMatrix::from_symmetric(system.matrix().unwrap());
-            (Operator::Sparse(matrix), Some(system.rhs().to_vec()))
+            whole_operator(&system, &condensed).unwrap()
         } else {
             (Operator::Dense(system.schur_complement().unwrap()), None)
         };

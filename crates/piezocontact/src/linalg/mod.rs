@@ -61,7 +61,7 @@ pub use dense::{DenseMatrix, TransposedLu, max_distance, max_norm, null_space, s
 pub use ldlt::LdltSolver;
 #[cfg(feature = "petsc")]
 pub use petsc::PetscSolver;
-pub use rows::{RowLu, RowMatrix};
+pub use rows::{Patched, RowLu, RowMatrix};
 pub use seam::{
     Distributed, LinearRoute, LinearSolver, Ordering, SchurComplement, SolverStats,
     UnsymmetricSolve,

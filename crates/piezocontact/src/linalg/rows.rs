@@ -10,7 +10,6 @@ use faer::linalg::solvers::SolveCore;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut};
-use rayon::prelude::*;
 use std::sync::Arc;
 
 /// The pattern of a [`RowMatrix`]: the columns of each row, increasing — held as faer's
@@ -28,12 +27,18 @@ pub struct RowMatrix {
 impl RowMatrix {
     /// The whole matrix of `symmetric` (both triangles).
     pub fn from_symmetric(symmetric: &SymmetricMatrix) -> Self {
+        Self::from_symmetric_rows(symmetric, |_| true)
+    }
+
+    /// The rows r of `symmetric` for which `keep(r)` (both triangles' entries), the others
+    /// empty: the part of a matrix that a few rows' changes touch.
+    pub fn from_symmetric_rows(symmetric: &SymmetricMatrix, keep: impl Fn(usize) -> bool) -> Self {
         let n = symmetric.n();
         let mut counts = vec![0usize; n + 1];
         for (i, j, _) in symmetric.lower_entries() {
-            counts[i + 1] += 1;
+            counts[i + 1] += usize::from(keep(i));
             if i != j {
-                counts[j + 1] += 1;
+                counts[j + 1] += usize::from(keep(j));
             }
         }
         (0..n).for_each(|r| counts[r + 1] += counts[r]);
@@ -45,8 +50,10 @@ impl RowMatrix {
         // row j receives columns i ≥ j after every column below j — each row in order.
         for (i, j, v) in symmetric.lower_entries() {
             let mut put = |row: usize, col: usize| {
-                (columns[next[row]], values[next[row]]) = (col, v);
-                next[row] += 1;
+                if keep(row) {
+                    (columns[next[row]], values[next[row]]) = (col, v);
+                    next[row] += 1;
+                }
             };
             put(i, j);
             if i != j {
@@ -65,6 +72,12 @@ impl RowMatrix {
     /// Stored entries.
     pub fn nnz(&self) -> usize {
         self.values.len()
+    }
+
+    /// Whether row r has entries (a row left out of [`RowMatrix::from_symmetric_rows`] has
+    /// none; a kept one has at least its diagonal).
+    pub fn has_row(&self, r: usize) -> bool {
+        !self.pattern.0.col_range(r).is_empty()
     }
 
     /// Row r: its columns (increasing) and values.
@@ -87,17 +100,6 @@ impl RowMatrix {
     /// Entry (r, r), 0 where the pattern lacks it.
     pub fn diagonal(&self, r: usize) -> f64 {
         self.position(r, r).map_or(0.0, |k| self.row(r).1[k])
-    }
-
-    /// y = A x.
-    pub fn mul(&self, x: &[f64]) -> Vec<f64> {
-        (0..self.n())
-            .into_par_iter()
-            .map(|r| {
-                let (columns, values) = self.row(r);
-                columns.iter().zip(values).map(|(&c, v)| v * x[c]).sum()
-            })
-            .collect()
     }
 
     /// A ← T A Tᵀ with T the identity but on the unknowns `positions`, where it is the
@@ -166,8 +168,40 @@ impl RowMatrix {
     }
 }
 
+/// The Jacobian J of a whole-system Newton step and the matrix P its preconditioner is set up
+/// for, as changes of the factorised matrix K (the seam's numbering, the unknowns' frames):
+/// each is K but on the rows its patch has ([`RowMatrix::has_row`]), which replace K's and
+/// have their pattern. No copy of K is made for them: a backend writes the patched rows over
+/// its own matrix, or adds them to it.
+#[derive(Clone, Copy, Debug)]
+pub struct Patched<'a> {
+    /// K.
+    pub matrix: &'a SymmetricMatrix,
+    /// J's rows that differ from K's.
+    pub jacobian: &'a RowMatrix,
+    /// P's rows that differ from K's.
+    pub preconditioner: &'a RowMatrix,
+}
+
+impl Patched<'_> {
+    /// J whole.
+    pub fn whole_jacobian(&self) -> Result<RowMatrix> {
+        let mut whole = RowMatrix::from_symmetric(self.matrix);
+        check_length("patch order", whole.n(), self.jacobian.n())?;
+        for r in (0..whole.n()).filter(|&r| self.jacobian.has_row(r)) {
+            let ((columns, values), patch) = (whole.row_mut(r), self.jacobian.row(r));
+            if columns != patch.0 {
+                let detail = format!("row {r} of the patch has another pattern than the matrix's");
+                return Err(Error::LinearAlgebra(detail));
+            }
+            values.copy_from_slice(patch.1);
+        }
+        Ok(whole)
+    }
+}
+
 /// faer's sparse LU of [`RowMatrix`]es of one pattern: the symbolic analysis once, a numeric
-/// factorisation per matrix.
+/// factorisation per matrix (a matrix made anew with the same pattern reuses the analysis).
 #[derive(Debug, Default)]
 pub struct RowLu {
     /// The pattern analysed and its analysis.
@@ -180,7 +214,11 @@ impl RowLu {
         check_length("right-hand side", a.n(), rhs.len())?;
         // A's rows are the columns of Aᵀ: factorise Aᵀ, solve with its transpose.
         let transposed = a.pattern.0.as_ref();
-        let analysed = self.symbolic.as_ref().is_some_and(|(p, _)| Arc::ptr_eq(p, &a.pattern));
+        let same = |p: &RowPattern| {
+            let (p, q) = (&p.0, &a.pattern.0);
+            p.col_ptr() == q.col_ptr() && p.row_idx() == q.row_idx()
+        };
+        let analysed = self.symbolic.as_ref().is_some_and(|(p, _)| same(p));
         if !analysed {
             let symbolic = SymbolicLu::try_new(transposed)
                 .map_err(|e| Error::LinearAlgebra(format!("sparse LU analysis: {e:?}")))?;
@@ -238,6 +276,11 @@ mod tests {
         d
     }
 
+    fn mul(a: &RowMatrix, x: &[f64]) -> Vec<f64> {
+        let row = |r: usize| a.row(r).0.iter().zip(a.row(r).1).map(|(&c, v)| v * x[c]).sum();
+        (0..a.n()).map(row).collect()
+    }
+
     /// Both triangles, each row in order; A x as the symmetric matrix's.
     #[test]
     fn the_rows_are_the_whole_symmetric_matrix() {
@@ -250,7 +293,7 @@ mod tests {
         let d = dense(&a);
         (0..5).for_each(|r| (0..5).for_each(|c| assert_eq!(d[r][c], d[c][r])));
         let x = [1.0, -2.0, 0.5, 3.0, 0.25];
-        assert_eq!(a.mul(&x), s.mul(&x));
+        assert_eq!(mul(&a, &x), s.mul(&x));
     }
 
     /// T A Tᵀ on unknowns 1, 2 turned by a rotation equals the dense product.
@@ -290,7 +333,7 @@ mod tests {
         let mut lu = RowLu::default();
         lu.solve(&a, &mut rhs).unwrap();
         assert!((rhs[3] - 0.7).abs() < 1e-14);
-        let ax = original.mul(&rhs);
+        let ax = mul(&original, &rhs);
         for r in (0..5).filter(|&r| r != 3) {
             assert!((ax[r] - b[r]).abs() < 1e-12, "row {r}: {} against {}", ax[r], b[r]);
         }
@@ -303,5 +346,34 @@ mod tests {
         }
         let expected = d.lu_transposed().solve(&b).unwrap();
         rhs.iter().zip(&expected).for_each(|(x, e)| assert!((x - e).abs() < 1e-12));
+    }
+
+    /// Rows kept are the whole matrix's rows, the others empty; a patch of kept rows makes
+    /// the whole Jacobian with those rows replaced and every other row the symmetric
+    /// matrix's.
+    #[test]
+    fn a_patch_of_some_rows_replaces_those_rows_alone() {
+        let s = symmetric();
+        let (whole, keep) = (RowMatrix::from_symmetric(&s), [false, true, true, false, false]);
+        let mut patch = RowMatrix::from_symmetric_rows(&s, |r| keep[r]);
+        for r in 0..5 {
+            assert_eq!(patch.has_row(r), keep[r], "row {r}");
+            if keep[r] {
+                assert_eq!(patch.row(r), whole.row(r), "row {r}");
+            }
+        }
+        patch.row_mut(2).1.iter_mut().for_each(|v| *v = -1.0);
+        let patched = Patched { matrix: &s, jacobian: &patch, preconditioner: &patch };
+        let jacobian = dense(&patched.whole_jacobian().unwrap());
+        let original = dense(&whole);
+        for r in 0..5 {
+            for c in 0..5 {
+                let expected = match (r, original[r][c]) {
+                    (2, v) if v != 0.0 => -1.0,
+                    (_, v) => v,
+                };
+                assert_eq!(jacobian[r][c], expected, "({r}, {c})");
+            }
+        }
     }
 }

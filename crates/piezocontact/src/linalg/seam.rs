@@ -4,7 +4,7 @@
 //! shaped.
 
 use super::dense::DenseMatrix;
-use super::rows::RowMatrix;
+use super::rows::Patched;
 use super::sparse::{SymmetricMatrix, SymmetricPattern};
 use super::vectors::column_count;
 use crate::error::Result;
@@ -123,17 +123,12 @@ pub trait LinearSolver: std::fmt::Debug + Send {
 /// factorised one's pattern and values that are not symmetric — the Jacobian of the
 /// semismooth Newton method on the whole system (model §11).
 pub trait UnsymmetricSolve {
-    /// Solves A x = b in place (b on entry, x on exit, whole vectors), A with the pattern of
-    /// the matrix last factorised (both triangles; a process may hold only the rows it owns),
-    /// to the relative residual `rtol` where the method is iterative, preconditioned as for P,
-    /// a symmetric matrix of the pattern near A. The factorised matrix stays the one
-    /// [`LinearSolver::solve_in_place`] solves with.
-    fn solve_unsymmetric(
-        &mut self,
-        a_and_p: (&RowMatrix, &RowMatrix),
-        rhs: &mut [f64],
-        rtol: f64,
-    ) -> Result<()>;
+    /// Solves J x = b in place (b on entry, x on exit, whole vectors), J the factorised
+    /// matrix K with the rows of `patched.jacobian` in place of K's (a process may hold only
+    /// the rows it owns), to the relative residual `rtol` where the method is iterative,
+    /// preconditioned as for P (K with the rows of `patched.preconditioner`: symmetric, near
+    /// J). The factorised matrix stays the one [`LinearSolver::solve_in_place`] solves with.
+    fn solve_unsymmetric(&mut self, patched: Patched, rhs: &mut [f64], rtol: f64) -> Result<()>;
 }
 
 /// What a backend whose rows live on several processes tells the assembly, so that each

@@ -122,6 +122,12 @@ unsafe extern "C" {
     fn MatMult(mat: Handle, x: Handle, y: Handle) -> Code;
     fn MatCreateVecs(mat: Handle, right: *mut Handle, left: *mut Handle) -> Code;
     fn MatDestroy(mat: *mut Handle) -> Code;
+    fn MatCreateComposite(
+        comm: MpiHandle,
+        n: PetscInt,
+        mats: *const Handle,
+        mat: *mut Handle,
+    ) -> Code;
     fn MatGetFactor(mat: Handle, kind: *const c_char, ftype: c_int, factor: *mut Handle) -> Code;
     fn MatFactorSetSchurIS(factor: Handle, is: Handle) -> Code;
     fn MatCholeskyFactorSymbolic(
@@ -441,6 +447,17 @@ impl Matrix {
         check(unsafe { MatMult(self.0, x.0, y.0) }, "MatMult")
     }
 
+    /// The sum of `parts` (of one layout) as an operator: PETSc's composite matrix, which
+    /// multiplies by each and adds, and holds its own references to them.
+    pub fn sum(parts: &[&Matrix]) -> Result<Self> {
+        let handles: Vec<Handle> = parts.iter().map(|m| m.0).collect();
+        let (n, mut mat) = (index(handles.len())?, null_mut());
+        // SAFETY: valid assembled matrices of one layout; collective.
+        let code = unsafe { MatCreateComposite(world(), n, handles.as_ptr(), &mut mat) };
+        check(code, "MatCreateComposite")?;
+        Ok(Self(mat))
+    }
+
     /// A distributed vector with this matrix's row layout.
     pub fn vector(&self) -> Result<Vector> {
         let mut v = null_mut();
@@ -718,13 +735,12 @@ impl Krylov {
         Ok(KrylovSolve { iterations: iterations.max(0) as usize, reason, residual, rtol })
     }
 
-    /// x = A⁻¹ b from x = 0 with A = `operator`, preconditioned by the preconditioner set up
-    /// for `preconditioner` (both of the pattern of the solver's own matrix `own`), to the
-    /// relative residual `rtol`; the solver's operators and tolerance are its own again
-    /// afterwards (its next solve sets its preconditioner up for `own` again).
+    /// x = A⁻¹ b from x = 0 with A = `operator` (of the layout of the solver's own matrix
+    /// `own`), preconditioned as for `own`'s current values, to the relative residual `rtol`;
+    /// the solver's operators and tolerance are its own again afterwards.
     pub fn solve_operator(
         &self,
-        (operator, preconditioner, own): (&Matrix, &Matrix, &Matrix),
+        (operator, own): (&Matrix, &Matrix),
         rtol: f64,
         b: &Vector,
         x: &mut Vector,
@@ -739,7 +755,7 @@ impl Krylov {
                 check(code, "KSPSetTolerances")
             }
         };
-        set(operator, preconditioner, rtol)?;
+        set(operator, own, rtol)?;
         let solve = self.solve(b, x);
         set(own, own, own_rtol)?;
         solve

@@ -31,7 +31,7 @@ mod ffi;
 pub use ffi::{abort, gather, initialize, rank_and_size, sum_over_processes};
 
 use super::dense::DenseMatrix;
-use super::rows::RowMatrix;
+use super::rows::{Patched, RowMatrix};
 use super::seam::{
     Distributed, LinearRoute, LinearSolver, SchurComplement, SolverStats, UnsymmetricSolve,
 };
@@ -131,12 +131,17 @@ impl Rows {
         (0..self.end - self.start).map(|k| self.row(k))
     }
 
-    /// PETSc's preallocation: per owned row, entries in the owned columns and outside.
-    fn preallocation(&self) -> (Vec<PetscInt>, Vec<PetscInt>) {
+    /// PETSc's preallocation: per owned row, entries in the owned columns and outside; none
+    /// in the rows of the unknowns (or [`HELD`]) that `only` leaves out.
+    fn preallocation(&self, only: impl Fn(usize) -> bool) -> (Vec<PetscInt>, Vec<PetscInt>) {
         let owned = |c: &&Entry| (self.start..self.end).contains(&(c.0 as usize));
+        let rows = || {
+            let unknowns = self.order[self.start..self.end].iter();
+            self.owned_rows().zip(unknowns).map(|(c, &i)| if only(i) { c } else { &[] })
+        };
         let diagonal: Vec<PetscInt> =
-            self.owned_rows().map(|c| c.iter().filter(owned).count() as PetscInt).collect();
-        let off = self.owned_rows().zip(&diagonal).map(|(c, d)| c.len() as PetscInt - d).collect();
+            rows().map(|c| c.iter().filter(owned).count() as PetscInt).collect();
+        let off = rows().zip(&diagonal).map(|(c, d)| c.len() as PetscInt - d).collect();
         (diagonal, off)
     }
 
@@ -163,11 +168,9 @@ impl Rows {
 /// The PETSc objects of one analysis.
 #[derive(Debug)]
 struct Objects {
+    /// The factorised matrix (during a solve with a patched matrix, the preconditioning one:
+    /// [`UnsymmetricSolve`]).
     matrix: Matrix,
-    /// A general matrix of `matrix`'s pattern (the whole system's Newton Jacobian) and the
-    /// matrix its preconditioner is set up for, made at the first such solve
-    /// ([`UnsymmetricSolve`]).
-    general: Option<[Matrix; 2]>,
     factor: Option<Factor>,
     krylov: Option<Krylov>,
     b: Vector,
@@ -175,19 +178,23 @@ struct Objects {
     gather: Gather,
 }
 
-/// Writes this process's rows into `target` as the backend holds a matrix: owned row k
-/// (unknown i) from `row(k, i, entries)`, which pushes its (PETSc column, value) pairs, scaled
-/// D A D by `scaling` and, on the iterative route, negated on ϕ rows (`signs`); a held row 1
-/// on its diagonal (the scaled elastic diagonal is 1 on average: [`field_scaling`]).
+/// Writes this process's rows — those of the unknowns (or [`HELD`]) that `only` takes — into
+/// `target` as the backend holds a matrix: owned row k (unknown i) from `row(k, i, entries)`,
+/// which pushes its (PETSc column, value) pairs, scaled D A D by `scaling` and, on the
+/// iterative route, negated on ϕ rows (`signs`); a held row 1 on its diagonal (the scaled
+/// elastic diagonal is 1 on average: [`field_scaling`]).
 fn write_rows(
     target: &mut Matrix,
-    rows: &Rows,
+    (rows, only): (&Rows, impl Fn(usize) -> bool),
     (scaling, signs, iterative): (&[f64], &[i8], bool),
     mut row: impl FnMut(usize, usize, &mut Vec<(PetscInt, f64)>),
 ) -> Result<()> {
     let (mut entries, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
     for k in 0..rows.end - rows.start {
         let (p, i) = ((rows.start + k) as PetscInt, rows.order[rows.start + k]);
+        if !only(i) {
+            continue;
+        }
         if i == HELD {
             target.set_row(p, &[p], &[1.0])?;
             continue;
@@ -230,6 +237,11 @@ pub struct PetscSolver {
     layout: Option<(usize, Vec<f64>, Vec<u8>)>,
     /// The Krylov iterations of each solve on the iterative route, in order.
     krylov_iterations: Vec<usize>,
+}
+
+/// The error of a solve before the matrix is filled.
+fn unfilled() -> Error {
+    Error::LinearAlgebra("PETSc backend: solve before factorize".into())
 }
 
 /// The iterative route's settings (defaults that PETSc's options override).
@@ -321,13 +333,11 @@ impl PetscSolver {
         })?;
         check_length("matrix order", rows.n, matrix.n())?;
         if self.distributed.is_none() {
-            let (diagonal, off) = rows.preallocation();
+            let (diagonal, off) = rows.preallocation(|_| true);
             let matrix = Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?;
             let (b, x) = (matrix.vector()?, matrix.vector()?);
             let gather = Gather::new(&x)?;
-            let general = None;
-            self.distributed =
-                Some(Objects { matrix, general, factor: None, krylov: None, b, x, gather });
+            self.distributed = Some(Objects { matrix, factor: None, krylov: None, b, x, gather });
         }
         let d = self.distributed.as_mut().expect("made above");
         // The diagonal of the owned rows, gathered whole: each process's matrix holds only
@@ -344,36 +354,71 @@ impl PetscSolver {
             Some(_) => field_scaling(&diagonal, &self.signs),
             None => diagonal.iter().map(|d| 1.0 / d.abs().sqrt()).collect(),
         };
+        self.write_matrix_rows(matrix, |_| true)
+    }
+
+    /// Writes `matrix`'s owned rows of the unknowns (or [`HELD`]) that `only` takes into the
+    /// distributed matrix, scaled, and assembles it.
+    fn write_matrix_rows(
+        &mut self,
+        matrix: &SymmetricMatrix,
+        only: impl Fn(usize) -> bool,
+    ) -> Result<()> {
+        let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
+            return Err(unfilled());
+        };
         let values = matrix.lower().val();
         let scaled = (&self.scaling[..], &self.signs[..], self.iterative.is_some());
-        write_rows(&mut d.matrix, rows, scaled, |k, _, row| {
+        write_rows(&mut d.matrix, (rows, only), scaled, |k, _, row| {
             row.extend(rows.row(k).iter().map(|&(q, at)| (q, values[at as usize])));
         })?;
         d.matrix.assemble(self.iterative.is_none())
     }
 
-    /// The general matrix A and the preconditioning matrix P with the values of `a` and `p`
-    /// (the seam's numbering, both triangles), as [`PetscSolver::fill`] fills the factorised
-    /// one: D A D with the factorised matrix's D, ϕ rows negated, held rows 1 on the diagonal.
-    fn fill_general(&mut self, (a, p): (&RowMatrix, &RowMatrix)) -> Result<()> {
+    /// Writes the rows of `patch` (the seam's numbering, both triangles) over the owned rows
+    /// of the distributed matrix, scaled as [`PetscSolver::fill`] does, and assembles it.
+    fn write_patch(&mut self, patch: &RowMatrix) -> Result<()> {
         let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
-            return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
+            return Err(unfilled());
         };
-        if d.general.is_none() {
-            let (diagonal, off) = rows.preallocation();
-            let new = || Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off);
-            d.general = Some([new()?, new()?]);
-        }
         let scaled = (&self.scaling[..], &self.signs[..], true);
-        for (target, source) in d.general.as_mut().expect("made above").iter_mut().zip([a, p]) {
-            write_rows(target, rows, scaled, |_, i, row| {
-                let (columns, values) = source.row(i);
-                let petsc = columns.iter().map(|&j| rows.petsc[j] as PetscInt);
-                row.extend(petsc.zip(values.iter().copied()));
-            })?;
-            target.assemble(false)?;
+        let only = |i: usize| i != HELD && patch.has_row(i);
+        write_rows(&mut d.matrix, (rows, only), scaled, |_, i, row| {
+            let (columns, values) = patch.row(i);
+            let petsc = columns.iter().map(|&j| rows.petsc[j] as PetscInt);
+            row.extend(petsc.zip(values.iter().copied()));
+        })?;
+        d.matrix.assemble(false)
+    }
+
+    /// J − P, scaled as the distributed matrix: a matrix of the layout with entries only in
+    /// the rows that the patches change (those of the preconditioner's patch, which must hold
+    /// the Jacobian's with the same columns).
+    fn difference(&mut self, patched: &Patched) -> Result<Matrix> {
+        let (jacobian, preconditioner) = (patched.jacobian, patched.preconditioner);
+        let Some(rows) = &self.rows else { return Err(unfilled()) };
+        let only = |i: usize| i != HELD && preconditioner.has_row(i);
+        let (diagonal, off) = rows.preallocation(only);
+        let mut difference = Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?;
+        let mut mismatch = None;
+        let scaled = (&self.scaling[..], &self.signs[..], true);
+        write_rows(&mut difference, (rows, only), scaled, |_, i, row| {
+            let ((columns, p), (others, j)) = (preconditioner.row(i), jacobian.row(i));
+            if jacobian.has_row(i) && others != columns {
+                mismatch = Some(i);
+            }
+            let j = |at: usize| if jacobian.has_row(i) { j[at] } else { p[at] };
+            let petsc = columns.iter().map(|&c| rows.petsc[c] as PetscInt);
+            row.extend(petsc.zip((0..p.len()).map(|at| j(at) - p[at])));
+        })?;
+        if let Some(i) = mismatch
+            .or_else(|| (0..rows.n).find(|&i| jacobian.has_row(i) && !preconditioner.has_row(i)))
+        {
+            let detail = format!("row {i} of the Jacobian's patch is not the preconditioner's");
+            return Err(Error::LinearAlgebra(detail));
         }
-        Ok(())
+        difference.assemble(false)?;
+        Ok(difference)
     }
 
     /// The Krylov solver of the filled matrix, made after the first fill of an analysis, and
@@ -402,22 +447,19 @@ impl PetscSolver {
     }
 
     /// One Krylov solve of the scaled system (ϕ rows negated) — with the factorised matrix, or
-    /// with the general one filled last ([`PetscSolver::fill_general`]) to the relative
-    /// residual `general` —: `rhs` whole in, the whole solution out; a solve that does not
-    /// converge is an error with its numbers and the options to change.
-    fn krylov_solve(&mut self, rhs: &mut [f64], general: Option<f64>) -> Result<()> {
+    /// with `general` = (an operator, the relative residual), preconditioned as for the
+    /// distributed matrix's current values —: `rhs` whole in, the whole solution out; a solve
+    /// that does not converge is an error with its numbers and the options to change.
+    fn krylov_solve(&mut self, rhs: &mut [f64], general: Option<(&Matrix, f64)>) -> Result<()> {
         rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(true, sign));
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("set up");
         let krylov = d.krylov.as_ref().expect("set up");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
-        let solve = match (general, &d.general) {
-            (None, _) => krylov.solve(&d.b, &mut d.x)?,
-            (Some(rtol), Some([a, p])) => {
-                krylov.solve_operator((a, p, &d.matrix), rtol, &d.b, &mut d.x)?
-            }
-            (Some(_), None) => {
-                return Err(Error::LinearAlgebra("PETSc backend: no general matrix".into()));
+        let solve = match general {
+            None => krylov.solve(&d.b, &mut d.x)?,
+            Some((operator, rtol)) => {
+                krylov.solve_operator((operator, &d.matrix), rtol, &d.b, &mut d.x)?
             }
         };
         self.krylov_iterations.push(solve.iterations);
@@ -641,27 +683,31 @@ impl LinearSolver for PetscSolver {
     }
 }
 
-/// On the iterative route: the general matrix and the preconditioning one filled as the
-/// factorised one is (scaled, ϕ rows negated, held rows), and solved by the Krylov solver with
-/// its preconditioner (field split, GAMG) set up for the preconditioning matrix.
+/// On the iterative route: P written over the distributed matrix's patched rows (as the
+/// factorised matrix is written: scaled, ϕ rows negated), the preconditioner (field split,
+/// GAMG) set up for it, and J = P + (J − P) solved by the Krylov solver — J − P a matrix of
+/// the patched rows alone, J the sum of the two held as PETSc's composite matrix —; the
+/// factorised matrix's rows written back after. No other copy of the matrix is made.
 impl UnsymmetricSolve for PetscSolver {
-    fn solve_unsymmetric(
-        &mut self,
-        (a, p): (&RowMatrix, &RowMatrix),
-        rhs: &mut [f64],
-        rtol: f64,
-    ) -> Result<()> {
+    fn solve_unsymmetric(&mut self, patched: Patched, rhs: &mut [f64], rtol: f64) -> Result<()> {
         let t = Instant::now();
         let n = self.rows.as_ref().map_or(0, |r| r.n);
         check_length("right-hand side", n, rhs.len())?;
-        check_length("general matrix order", n, a.n())?;
-        check_length("preconditioning matrix order", n, p.n())?;
+        check_length("Jacobian's patch order", n, patched.jacobian.n())?;
+        check_length("preconditioner's patch order", n, patched.preconditioner.n())?;
         if self.distributed.as_ref().is_none_or(|d| d.krylov.is_none()) {
             return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
         }
-        self.fill_general((a, p))?;
+        let difference = self.difference(&patched)?;
+        self.write_patch(patched.preconditioner)?;
+        let own = &self.distributed.as_ref().ok_or_else(unfilled)?.matrix;
+        let operator = Matrix::sum(&[own, &difference])?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
-        self.krylov_solve(rhs, Some(rtol))?;
+        let solved = self.krylov_solve(rhs, Some((&operator, rtol)));
+        // K's rows again, whether or not the solve converged.
+        let preconditioner = patched.preconditioner;
+        self.write_matrix_rows(patched.matrix, |i| i != HELD && preconditioner.has_row(i))?;
+        solved?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(x, s)| *x *= s);
         self.stats.solve_seconds += t.elapsed().as_secs_f64();
         self.stats.solve_count += 1;
