@@ -9,7 +9,7 @@ use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::{
     DenseMatrix, LinearRoute, LinearSolver, Patched, RowLu, RowMatrix, SchurComplement,
-    SolverStats, SymmetricMatrix,
+    SolverStats, SymmetricMatrix, check_length,
 };
 use crate::problem::{Factors, Problem};
 use std::time::Instant;
@@ -339,6 +339,30 @@ impl CoupledSystem {
             (r2, b2) = (d.sum(r2)?, d.sum(b2)?);
         }
         Ok(r2.sqrt() / b2.sqrt().max(f64::MIN_POSITIVE))
+    }
+
+    /// `rows` (a vector of the free unknowns whose complete rows are right on each process: a
+    /// product with the matrix, the right-hand side) made whole on every process: each
+    /// process's complete rows — those of the nodes it owns — kept, the others zeroed, and the
+    /// sum over the processes taken. Unchanged where every row is complete.
+    pub fn whole_rows(&mut self, rows: &mut [f64]) -> Result<()> {
+        let Some(complete) = self.assembler.complete_rows() else { return Ok(()) };
+        check_length("rows", complete.len(), rows.len())?;
+        rows.iter_mut().zip(complete).filter(|(_, c)| !**c).for_each(|(v, _)| *v = 0.0);
+        match self.solver.distributed() {
+            Some(distributed) => distributed.sum_each(rows),
+            None => Ok(()),
+        }
+    }
+
+    /// B̌ x on the free unknowns (`x` whole), whole on every process.
+    pub fn product(&mut self, x: &[f64]) -> Result<Vec<f64>> {
+        let matrix =
+            self.matrix.as_ref().ok_or_else(|| Error::LinearAlgebra("no matrix".into()))?;
+        check_length("x", matrix.n(), x.len())?;
+        let mut product = matrix.mul(x);
+        self.whole_rows(&mut product)?;
+        Ok(product)
     }
 
     /// The linear solver's counts, times, factor size and ordering.

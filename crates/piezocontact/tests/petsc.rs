@@ -339,8 +339,8 @@ fn the_krylov_route_solves_the_coupled_system_as_faer_does() {
     });
 }
 
-/// The solve with a patched matrix on the iterative route (the whole system's Newton step,
-/// on one process as yet): J = K but on every seventh row, where its diagonal is doubled and
+/// The solve with a patched matrix on the iterative route (the whole system's Newton step;
+/// on one process, as the LU it is checked against is whole): J = K but on every seventh row, where its diagonal is doubled and
 /// its other entries made unsymmetric (× 1 + 0.01 (column mod 3)), and P = K with those rows'
 /// diagonal doubled, written over PETSc's K for the preconditioner and K's rows written back
 /// after. The solution is the sparse LU's of J whole to 1e−8, and the next solve with K is

@@ -387,14 +387,6 @@ impl InnerMethod for Newton {
         let with_phi = model.compliance.penetration > 0.0;
         self.c_factor = self.parameters.r / problem.materials.reference_modulus();
         self.whole = solver.schur().is_none();
-        if self.whole && processes(solver.as_mut())? > 1.0 {
-            return Err(Error::Input(
-                "the exact solver on the whole system (solver.method = \"newton\" with \
-                 solver.linear = \"iterative\") runs on one process as yet: run it without \
-                 mpirun (or with -n 1), or use solver.method = \"uzawa\" under mpirun"
-                    .into(),
-            ));
-        }
         if self.whole {
             self.condensed = Some(Condensed::whole(&dofs, surface, with_phi));
             return CoupledSystem::new(problem, dofs, &[], solver);
@@ -582,10 +574,6 @@ impl Newton {
 }
 
 /// The processes `solver` runs on (1 for a backend that is not distributed).
-fn processes(solver: &mut dyn LinearSolver) -> Result<f64> {
-    solver.distributed().map_or(Ok(1.0), |d| d.sum(1.0))
-}
-
 /// The friction bound s = µ|Rσ_ν| per Γ3 node at `result` as the outer loop records it: 0
 /// where the laws make it so (λ_c = 0 off the active set, no compliance at u_ν ≤ g_a, no force
 /// on a node left out), not the round-off of the condensed forces — so that a left-out node
@@ -623,7 +611,7 @@ impl Semismooth<'_> {
         let x_hat = system.solve(None)?;
         let (operator, rhs) = match schur {
             Some(schur) => (Operator::Dense(schur.get(system, &cond.free)?), None),
-            None => whole_operator(system, cond)?,
+            None => whole_operator(&mut *system, cond)?,
         };
         let mut local = Local::new(self, operator, (x_hat, rhs), system)?;
         let from = local
@@ -690,9 +678,11 @@ fn nodes_of(cond: &Condensed) -> Vec<usize> {
 
 /// The whole system's operator (K's rows that the Newton steps change — the kept Γ3 nodes'
 /// and their neighbours' — and K's diagonal, in the unknowns' frames) and its right-hand
-/// side.
+/// side, whole. On several processes the rows are this process's complete ones (its nodes')
+/// and, partial, the kept nodes' that others own: their columns are the neighbours whose
+/// rows turn with them ([`RowMatrix::turn`]); their own values are not used.
 fn whole_operator(
-    system: &CoupledSystem,
+    system: &mut CoupledSystem,
     cond: &Condensed,
 ) -> Result<(Operator, Option<Vec<f64>>)> {
     let matrix = system.matrix().ok_or_else(|| {
@@ -704,9 +694,13 @@ fn whole_operator(
         touched[i] |= on_contact[j];
         touched[j] |= on_contact[i];
     }
-    let rows = RowMatrix::from_symmetric_rows(matrix, |r| touched[r]);
+    let complete = system.assembler().complete_rows();
+    let held = |r: usize| on_contact[r] || complete.is_none_or(|c| c[r]);
+    let rows = RowMatrix::from_symmetric_rows(matrix, |r| touched[r] && held(r));
     let diagonal = matrix.diagonal();
-    Ok((Operator::Sparse { rows, diagonal }, Some(system.rhs().to_vec())))
+    let mut rhs = system.rhs().to_vec();
+    system.whole_rows(&mut rhs)?;
+    Ok((Operator::Sparse { rows, diagonal }, Some(rhs)))
 }
 
 /// Node i's block of T: `q[a][b]`, from its free component b (in its unknowns' frame) to its
@@ -782,9 +776,13 @@ impl<'a> Local<'a> {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
         let (frames, turned) = unknown_frames(surface, system.dofs());
         let (m, node_of) = (cond.len(), nodes_of(cond));
+        let mut operator = turned_operator(operator, cond, &frames)?;
+        if let Operator::Sparse { diagonal, .. } = &mut operator {
+            system.whole_rows(diagonal)?;
+        }
         let mut this = Self {
             semismooth,
-            operator: turned_operator(operator, cond, &frames)?,
+            operator,
             system: Mutex::new(system),
             node_of,
             load: Vec::new(),
@@ -1017,15 +1015,18 @@ impl<'a> Local<'a> {
         }
     }
 
-    /// A y: Q S Qᵀ y, or T K Tᵀ y with the coupled system's K.
+    /// A y: Q S Qᵀ y, or T K Tᵀ y with the coupled system's K (whole on every process).
     fn product(&self, y: &[f64]) -> Vec<f64> {
         match &self.operator {
             Operator::Dense(schur) => schur.mul(y),
             Operator::Sparse { .. } => {
                 // K is only read: a panic elsewhere while the lock was held cannot spoil it.
-                let system = self.system.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-                let matrix = system.matrix().expect("whole_operator checked that K is there");
-                let mut forces = matrix.mul(&self.to_global(y));
+                let mut system =
+                    self.system.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+                // The product fails only where MPI's reduction does, whose errors end the job
+                // by default; were it to return, non-finite forces fail the Newton step.
+                let mut forces =
+                    system.product(&self.to_global(y)).unwrap_or_else(|_| vec![f64::NAN; y.len()]);
                 self.to_local(&mut forces);
                 forces
             }
@@ -1681,7 +1682,7 @@ mod tests {
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
         let (operator, rhs) = if whole {
-            whole_operator(&system, &condensed).unwrap()
+            whole_operator(&mut system, &condensed).unwrap()
         } else {
             (Operator::Dense(system.schur_complement().unwrap()), None)
         };

@@ -67,6 +67,7 @@ pub use seam::{
     UnsymmetricSolve,
 };
 pub use sparse::{SymmetricMatrix, SymmetricPattern};
+pub(crate) use vectors::check_length;
 pub use vectors::parallelism;
 
 /// The processes of the run: those of PETSc's communicator once the PETSc backend has

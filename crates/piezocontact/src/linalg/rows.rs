@@ -105,7 +105,8 @@ impl RowMatrix {
     /// A ← T A Tᵀ with T the identity but on the unknowns `positions`, where it is the
     /// orthogonal block `q` (`q[a][b]`: row a, column b, `positions.len()` of each): unknowns
     /// turned to another frame. Their rows must have the same columns (the components of a
-    /// mesh node do), as must every row's entries in them.
+    /// mesh node do), as must every row's entries in them; the rows that the matrix lacks
+    /// ([`RowMatrix::from_symmetric_rows`]) are left out.
     pub fn turn(&mut self, positions: &[usize], q: &[[f64; 3]; 3]) -> Result<()> {
         let m = positions.len();
         let columns = self.row(positions[0]).0.to_vec();
@@ -123,7 +124,8 @@ impl RowMatrix {
             }
         }
         // Columns: in each row that has them (the pattern is symmetric), the same.
-        for &r in &columns {
+        let rows: Vec<usize> = columns.into_iter().filter(|&r| self.has_row(r)).collect();
+        for r in rows {
             let at: Vec<usize> = positions
                 .iter()
                 .map(|&p| self.position(r, p))
@@ -156,11 +158,12 @@ impl RowMatrix {
             }
         }
         let at = self.position(k, k);
-        let (columns, values) = self.row_mut(k);
+        let (_, values) = self.row_mut(k);
         values.iter_mut().for_each(|v| *v = 0.0);
-        match at {
-            Some(at) => values[at] = diagonal,
-            None => debug_assert!(columns.is_empty(), "row {k} without its diagonal"),
+        // A row without its diagonal (one left out, or a partial one: another process's) stays
+        // zero.
+        if let Some(at) = at {
+            values[at] = diagonal;
         }
         if let Some((value, rhs)) = fixed {
             rhs[k] = diagonal * value;

@@ -144,8 +144,15 @@ pub trait Distributed {
         weights: &[usize],
         adjacency: (&[usize], &[usize]),
     ) -> Result<Option<Vec<bool>>>;
+    /// Each entry of `values` (of the same length on every process) summed over the
+    /// processes, in place.
+    fn sum_each(&self, values: &mut [f64]) -> Result<()>;
     /// The sum of `value` over the processes.
-    fn sum(&self, value: f64) -> Result<f64>;
+    fn sum(&self, value: f64) -> Result<f64> {
+        let mut values = [value];
+        self.sum_each(&mut values)?;
+        Ok(values[0])
+    }
     /// The mesh nodes' coordinates, `dim` per node, and the component of each unknown (`i`
     /// for u_i, `dim` for ϕ), given before the analysis: an iterative backend makes from them
     /// the rigid-body modes of the elastic block, and gives a node's constrained components

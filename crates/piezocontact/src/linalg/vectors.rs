@@ -18,7 +18,7 @@ pub(super) fn column_count(len: usize, n: usize) -> Result<usize> {
 }
 
 /// An [`Error::Length`] unless a vector of `what` has the `expected` length.
-pub(super) fn check_length(what: &str, expected: usize, got: usize) -> Result<()> {
+pub(crate) fn check_length(what: &str, expected: usize, got: usize) -> Result<()> {
     if got == expected {
         return Ok(());
     }

@@ -338,19 +338,28 @@ pub fn broadcast(values: &mut [f64]) -> Result<()> {
 
 /// The sum of `value` over the processes.
 pub fn sum_over_processes(value: f64) -> Result<f64> {
-    let (op, mut out) = ((&raw const ompi_mpi_op_sum) as MpiHandle, value);
-    // SAFETY: one double in and out on every process.
+    let mut out = [value];
+    sum_each_over_processes(&mut out)?;
+    Ok(out[0])
+}
+
+/// Each entry of `values` (the same length everywhere) summed over the processes, in place.
+pub fn sum_each_over_processes(values: &mut [f64]) -> Result<()> {
+    let n = c_int::try_from(values.len())
+        .map_err(|_| Error::LinearAlgebra("a reduction of more than 2³¹ values".into()))?;
+    let (op, send) = ((&raw const ompi_mpi_op_sum) as MpiHandle, values.to_vec());
+    // SAFETY: n doubles in and out on every process, in distinct buffers.
     let code = unsafe {
         MPI_Allreduce(
-            (&raw const value).cast(),
-            (&raw mut out).cast(),
-            1,
+            send.as_ptr().cast(),
+            values.as_mut_ptr().cast(),
+            n,
             (&raw const ompi_mpi_double) as _,
             op,
             world(),
         )
     };
-    check_mpi(code, "reduction").map(|_| out)
+    check_mpi(code, "reduction")
 }
 
 /// `value` of every process, on rank 0 (empty on the others).

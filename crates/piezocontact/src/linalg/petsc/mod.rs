@@ -732,8 +732,8 @@ impl Distributed for PetscSolver {
         Ok(Some(owned))
     }
 
-    fn sum(&self, value: f64) -> Result<f64> {
-        ffi::sum_over_processes(value)
+    fn sum_each(&self, values: &mut [f64]) -> Result<()> {
+        ffi::sum_each_over_processes(values)
     }
 
     fn node_layout(&mut self, dim: usize, coordinates: &[f64], components: &[u8]) {
