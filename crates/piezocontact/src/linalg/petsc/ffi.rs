@@ -428,6 +428,17 @@ impl Matrix {
         check(code, "MatSetValues")
     }
 
+    /// Puts `values` at (rows, col) of owned rows: a column's entries in those rows.
+    pub fn set_column(&mut self, rows: &[PetscInt], col: PetscInt, values: &[f64]) -> Result<()> {
+        assert_eq!(rows.len(), values.len());
+        let m = rows.len() as PetscInt;
+        // SAFETY: `rows` and `values` have m entries (an m × 1 block, row by row).
+        let code = unsafe {
+            MatSetValues(self.0, m, rows.as_ptr(), 1, &col, values.as_ptr(), INSERT_VALUES)
+        };
+        check(code, "MatSetValues")
+    }
+
     /// Final assembly after the values are set; marks the matrix symmetric if it is.
     pub fn assemble(&mut self, symmetric: bool) -> Result<()> {
         // SAFETY: a valid matrix; collective on every process.

@@ -38,10 +38,11 @@ use super::seam::{
 use super::sparse::{SymmetricMatrix, SymmetricPattern};
 use super::vectors::check_length;
 use crate::error::{Error, Result};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use ffi::{Factor, Field, Gather, Krylov, KrylovSolve, Matrix, PetscInt, Vector};
 use std::time::Instant;
 
-/// The rows of the matrix this process owns and where their entries come from. PETSc numbers
+/// The rows of the matrix this process owns. PETSc numbers
 /// the unknowns process by process and node by node (a node's u and ϕ together, in the order
 /// of their components), so that each process's block of PETSc rows is the unknowns of its
 /// nodes. On the iterative route a node with some but not all of its elastic components free
@@ -63,28 +64,16 @@ struct Rows {
     petsc: Vec<usize>,
     /// The mesh node of each owned PETSc row.
     nodes: Vec<usize>,
-    /// Owned PETSc row k's entries are `entries[offsets[k]..offsets[k + 1]]`: its PETSc
-    /// columns (increasing) and, for each, the index of the entry in the lower-triangle values
-    /// of the seam's matrix ([`HELD_ENTRY`] at a held row's diagonal). 8 bytes an entry.
-    offsets: Vec<usize>,
-    entries: Vec<Entry>,
 }
-
-/// A PETSc column and the index of its value in the seam's lower triangle.
-type Entry = (PetscInt, u32);
 
 /// The unknown of a held row (a constrained elastic component kept as an identity row).
 const HELD: usize = usize::MAX;
 
-/// The entry of a held row's diagonal.
-const HELD_ENTRY: u32 = u32::MAX;
-
 impl Rows {
     /// PETSc's numbering of the unknowns of `pattern` (whose groups are the mesh nodes) with
     /// `partition` (the process of each node, from [`Distributed::owned_nodes`]; needed on
-    /// more than one process), this process's block of it, and the full symmetric rows of
-    /// that block; with `held` (the dimension and the component of each unknown, `dim` for
-    /// ϕ), the held rows too.
+    /// more than one process) and this process's block of it; with `held` (the dimension and
+    /// the component of each unknown, `dim` for ϕ), the held rows too.
     fn new(
         pattern: &SymmetricPattern,
         partition: Option<&[usize]>,
@@ -116,32 +105,45 @@ impl Rows {
         order.iter().enumerate().filter(|(_, k)| **k != HELD).for_each(|(p, &k)| petsc[k] = p);
         let start = keys.partition_point(|key| key[0] < rank);
         let end = keys.partition_point(|key| key[0] <= rank);
-        let (offsets, entries) = owned_entries(pattern, (&order, &petsc), start..end)?;
         let nodes = keys[start..end].iter().map(|key| key[1]).collect();
-        Ok(Self { n, total, start, end, order, petsc, nodes, offsets, entries })
+        Ok(Self { n, total, start, end, order, petsc, nodes })
     }
 
-    /// The entries of owned PETSc row `start + k`.
-    fn row(&self, k: usize) -> &[Entry] {
-        &self.entries[self.offsets[k]..self.offsets[k + 1]]
+    /// Whether unknown i's row is this process's.
+    fn owns(&self, i: usize) -> bool {
+        (self.start..self.end).contains(&self.petsc[i])
     }
 
-    /// The entries of every owned PETSc row, in order.
-    fn owned_rows(&self) -> impl Iterator<Item = &[Entry]> {
-        (0..self.end - self.start).map(|k| self.row(k))
-    }
-
-    /// PETSc's preallocation: per owned row, entries in the owned columns and outside; none
-    /// in the rows of the unknowns (or [`HELD`]) that `only` leaves out.
-    fn preallocation(&self, only: impl Fn(usize) -> bool) -> (Vec<PetscInt>, Vec<PetscInt>) {
-        let owned = |c: &&Entry| (self.start..self.end).contains(&(c.0 as usize));
-        let rows = || {
-            let unknowns = self.order[self.start..self.end].iter();
-            self.owned_rows().zip(unknowns).map(|(c, &i)| if only(i) { c } else { &[] })
+    /// PETSc's preallocation for the seam's matrix of pattern `symbolic` (its lower triangle):
+    /// per owned row, entries in the owned columns and outside; none in the rows of the
+    /// unknowns (or [`HELD`]) that `only` leaves out, 1 on a held row's diagonal.
+    fn preallocation(
+        &self,
+        symbolic: SymbolicSparseColMatRef<'_, usize>,
+        only: impl Fn(usize) -> bool,
+    ) -> (Vec<PetscInt>, Vec<PetscInt>) {
+        let local = self.end - self.start;
+        let (mut diagonal, mut off) = (vec![0; local], vec![0; local]);
+        let mut count = |row: usize, column: usize| {
+            if self.owns(row) && only(row) {
+                let k = self.petsc[row] - self.start;
+                match self.owns(column) {
+                    true => diagonal[k] += 1,
+                    false => off[k] += 1,
+                }
+            }
         };
-        let diagonal: Vec<PetscInt> =
-            rows().map(|c| c.iter().filter(owned).count() as PetscInt).collect();
-        let off = rows().zip(&diagonal).map(|(c, d)| c.len() as PetscInt - d).collect();
+        for j in 0..self.n {
+            for &i in &symbolic.row_idx()[symbolic.col_range(j)] {
+                count(i, j);
+                if i != j {
+                    count(j, i);
+                }
+            }
+        }
+        for p in (self.start..self.end).filter(|&p| self.order[p] == HELD && only(HELD)) {
+            diagonal[p - self.start] = 1;
+        }
         (diagonal, off)
     }
 
@@ -178,37 +180,76 @@ struct Objects {
     gather: Gather,
 }
 
-/// Writes this process's rows — those of the unknowns (or [`HELD`]) that `only` takes — into
-/// `target` as the backend holds a matrix: owned row k (unknown i) from `row(k, i, entries)`,
-/// which pushes its (PETSc column, value) pairs, scaled D A D by `scaling` and, on the
-/// iterative route, negated on ϕ rows (`signs`); a held row 1 on its diagonal (the scaled
-/// elastic diagonal is 1 on average: [`field_scaling`]).
+/// Writes this process's rows of the unknowns that `only` takes (never a held one) into
+/// `target` as the backend holds a matrix: unknown i's row from `row(i, entries)`, which
+/// pushes its (PETSc column, value) pairs, scaled D A D by `scaling` and, on the iterative
+/// route, negated on ϕ rows (`signs`).
 fn write_rows(
     target: &mut Matrix,
     (rows, only): (&Rows, impl Fn(usize) -> bool),
     (scaling, signs, iterative): (&[f64], &[i8], bool),
-    mut row: impl FnMut(usize, usize, &mut Vec<(PetscInt, f64)>),
+    mut row: impl FnMut(usize, &mut Vec<(PetscInt, f64)>),
 ) -> Result<()> {
     let (mut entries, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
-    for k in 0..rows.end - rows.start {
-        let (p, i) = ((rows.start + k) as PetscInt, rows.order[rows.start + k]);
-        if !only(i) {
-            continue;
-        }
-        if i == HELD {
-            target.set_row(p, &[p], &[1.0])?;
+    for p in rows.start..rows.end {
+        let i = rows.order[p];
+        if i == HELD || !only(i) {
             continue;
         }
         let s = scaling[i] * row_sign(iterative, signs[i]);
         entries.clear();
-        row(k, i, &mut entries);
+        row(i, &mut entries);
         cols.clear();
         vals.clear();
         for &(q, v) in &entries {
             cols.push(q);
             vals.push(v * s * scaling[rows.order[q as usize]]);
         }
-        target.set_row(p, &cols, &vals)?;
+        target.set_row(p as PetscInt, &cols, &vals)?;
+    }
+    Ok(())
+}
+
+/// Writes the owned rows of the unknowns (or [`HELD`]) that `only` takes of the seam's matrix
+/// (`lower`: its lower triangle) into `target`, scaled as [`write_rows`] does, column by
+/// column of the lower triangle (column j's entries are row j's right of its diagonal and,
+/// below it, an entry of each row i > j); a held row 1 on its diagonal (the scaled elastic
+/// diagonal is 1 on average: [`field_scaling`]).
+fn write_lower(
+    target: &mut Matrix,
+    (rows, only): (&Rows, impl Fn(usize) -> bool),
+    (scaling, signs, iterative): (&[f64], &[i8], bool),
+    lower: SparseColMatRef<'_, usize, f64>,
+) -> Result<()> {
+    let (symbolic, values) = (lower.symbolic(), lower.val());
+    let takes = |i: usize| rows.owns(i) && only(i);
+    let row_scale = |i: usize| scaling[i] * row_sign(iterative, signs[i]);
+    let petsc = |i: usize| rows.petsc[i] as PetscInt;
+    let (mut at, mut vals) = (Vec::new(), Vec::new());
+    for j in 0..rows.n {
+        let range = symbolic.col_range(j);
+        let (below, column) = (&symbolic.row_idx()[range.clone()], &values[range]);
+        if takes(j) {
+            at.clear();
+            vals.clear();
+            for (&i, &v) in below.iter().zip(column) {
+                at.push(petsc(i));
+                vals.push(v * row_scale(j) * scaling[i]);
+            }
+            target.set_row(petsc(j), &at, &vals)?;
+        }
+        at.clear();
+        vals.clear();
+        for (&i, &v) in below.iter().zip(column).filter(|(i, _)| **i != j && takes(**i)) {
+            at.push(petsc(i));
+            vals.push(v * row_scale(i) * scaling[j]);
+        }
+        if !at.is_empty() {
+            target.set_column(&at, petsc(j), &vals)?;
+        }
+    }
+    for p in (rows.start..rows.end).filter(|&p| rows.order[p] == HELD && only(HELD)) {
+        target.set_row(p as PetscInt, &[p as PetscInt], &[1.0])?;
     }
     Ok(())
 }
@@ -333,7 +374,7 @@ impl PetscSolver {
         })?;
         check_length("matrix order", rows.n, matrix.n())?;
         if self.distributed.is_none() {
-            let (diagonal, off) = rows.preallocation(|_| true);
+            let (diagonal, off) = rows.preallocation(matrix.lower().symbolic(), |_| true);
             let matrix = Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?;
             let (b, x) = (matrix.vector()?, matrix.vector()?);
             let gather = Gather::new(&x)?;
@@ -367,11 +408,8 @@ impl PetscSolver {
         let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
             return Err(unfilled());
         };
-        let values = matrix.lower().val();
         let scaled = (&self.scaling[..], &self.signs[..], self.iterative.is_some());
-        write_rows(&mut d.matrix, (rows, only), scaled, |k, _, row| {
-            row.extend(rows.row(k).iter().map(|&(q, at)| (q, values[at as usize])));
-        })?;
+        write_lower(&mut d.matrix, (rows, only), scaled, matrix.lower().as_ref())?;
         d.matrix.assemble(self.iterative.is_none())
     }
 
@@ -383,7 +421,7 @@ impl PetscSolver {
         };
         let scaled = (&self.scaling[..], &self.signs[..], true);
         let only = |i: usize| i != HELD && patch.has_row(i);
-        write_rows(&mut d.matrix, (rows, only), scaled, |_, i, row| {
+        write_rows(&mut d.matrix, (rows, only), scaled, |i, row| {
             let (columns, values) = patch.row(i);
             let petsc = columns.iter().map(|&j| rows.petsc[j] as PetscInt);
             row.extend(petsc.zip(values.iter().copied()));
@@ -398,11 +436,11 @@ impl PetscSolver {
         let (jacobian, preconditioner) = (patched.jacobian, patched.preconditioner);
         let Some(rows) = &self.rows else { return Err(unfilled()) };
         let only = |i: usize| i != HELD && preconditioner.has_row(i);
-        let (diagonal, off) = rows.preallocation(only);
+        let (diagonal, off) = rows.preallocation(patched.matrix.lower().symbolic(), only);
         let mut difference = Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?;
         let mut mismatch = None;
         let scaled = (&self.scaling[..], &self.signs[..], true);
-        write_rows(&mut difference, (rows, only), scaled, |_, i, row| {
+        write_rows(&mut difference, (rows, only), scaled, |i, row| {
             let ((columns, p), (others, j)) = (preconditioner.row(i), jacobian.row(i));
             if jacobian.has_row(i) && others != columns {
                 mismatch = Some(i);
@@ -779,55 +817,6 @@ fn field_scaling(diagonal: &[f64], signs: &[i8]) -> Vec<f64> {
     signs.iter().map(|&s| if s < 0 { phi } else { u }).collect()
 }
 
-/// The full symmetric rows `owned` (PETSc's numbering; `order` and `petsc` map it to the
-/// unknowns of `pattern` and back), each row's columns increasing with the index of their
-/// entry in `pattern`'s lower triangle, a held row ([`HELD`]) its diagonal alone: the row
-/// offsets and the entries ([`Rows`]).
-fn owned_entries(
-    pattern: &SymmetricPattern,
-    (order, petsc): (&[usize], &[usize]),
-    owned: std::ops::Range<usize>,
-) -> Result<(Vec<usize>, Vec<Entry>)> {
-    let symbolic = pattern.symbolic();
-    if symbolic.row_idx().len() >= HELD_ENTRY as usize {
-        return Err(Error::LinearAlgebra(format!(
-            "PETSc backend: {} stored entries, more than the {} its row map holds",
-            symbolic.row_idx().len(),
-            HELD_ENTRY
-        )));
-    }
-    // Each stored entry (i, j) of the lower triangle, in the rows it belongs to: i's, and j's
-    // when it is off the diagonal; `visit` is told (owned row, column, entry).
-    let each = |visit: &mut dyn FnMut(usize, usize, u32)| {
-        for j in 0..pattern.n() {
-            let range = symbolic.col_range(j);
-            for (at, &i) in range.clone().zip(&symbolic.row_idx()[range]) {
-                let (pi, pj) = (petsc[i], petsc[j]);
-                if owned.contains(&pi) {
-                    visit(pi - owned.start, pj, at as u32);
-                }
-                if i != j && owned.contains(&pj) {
-                    visit(pj - owned.start, pi, at as u32);
-                }
-            }
-        }
-        for p in owned.clone().filter(|&p| order[p] == HELD) {
-            visit(p - owned.start, p, HELD_ENTRY);
-        }
-    };
-    let mut offsets = vec![0; owned.len() + 1];
-    each(&mut |k, _, _| offsets[k + 1] += 1);
-    (0..owned.len()).for_each(|k| offsets[k + 1] += offsets[k]);
-    let mut next = offsets.clone();
-    let mut entries = vec![(0, 0); offsets[owned.len()]];
-    each(&mut |k, column, at| {
-        entries[next[k]] = (column as PetscInt, at);
-        next[k] += 1;
-    });
-    offsets.windows(2).for_each(|w| entries[w[0]..w[1]].sort_unstable());
-    Ok((offsets, entries))
-}
-
 /// The (node, component) of each constrained elastic component of a node with some but not
 /// all of its `dim` components among the unknowns (`components`: each unknown's, `dim` for
 /// ϕ).
@@ -908,12 +897,13 @@ mod tests {
         assert_eq!((rows.n, rows.total), (6, 7));
         assert_eq!(rows.order, vec![0, 1, 4, HELD, 2, 5, 3]);
         assert_eq!(rows.nodes, vec![0, 0, 0, 1, 1, 1, 2]);
-        assert_eq!(rows.row(3), [(3, HELD_ENTRY)], "an identity row, alone in its column");
-        let others: Vec<_> = rows.owned_rows().flatten().filter(|c| c.1 != HELD_ENTRY).collect();
-        assert!(others.iter().all(|c| c.0 != 3));
-        // Every other row is full: the 6 × 6 pattern's 21 stored entries give 36.
-        assert_eq!(others.len(), 36);
-        assert!(rows.owned_rows().all(|r| r.windows(2).all(|w| w[0].0 < w[1].0)), "increasing");
+        // The held row an identity row; every other row full: the 6 × 6 pattern's 21 stored
+        // entries give 6 a row; all on this process.
+        let (diagonal, off) = rows.preallocation(pattern.symbolic(), |_| true);
+        assert_eq!(diagonal, vec![6, 6, 6, 1, 6, 6, 6]);
+        assert_eq!(off, vec![0; 7]);
+        let (diagonal, _) = rows.preallocation(pattern.symbolic(), |i| i == 4);
+        assert_eq!(diagonal, vec![0, 0, 6, 0, 0, 0, 0], "the rows `only` takes alone");
         let u = rows.field(&signs, 1);
         assert_eq!(u, vec![0, 1, 3, 4]);
         // One point per node of the field: nodes 0 and 1.
