@@ -268,17 +268,15 @@ impl LinearSolver for LdltSolver {
             }
         }
         self.scaling = diagonal.iter().map(|d| 1.0 / d.abs().sqrt()).collect();
-        let mut scaled = matrix.lower().to_owned();
-        {
-            let symbolic = matrix.lower().symbolic();
-            let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
-            let values = scaled.val_mut();
-            for j in 0..matrix.n() {
-                for k in col_ptr[j]..col_ptr[j + 1] {
-                    values[k] *= self.scaling[row_idx[k]] * self.scaling[j];
-                }
+        let symbolic = matrix.lower().symbolic();
+        let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
+        let mut values = matrix.lower().val().to_vec();
+        for j in 0..matrix.n() {
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                values[k] *= self.scaling[row_idx[k]] * self.scaling[j];
             }
         }
+        let scaled = faer::sparse::SparseColMatRef::new(symbolic, &values);
         let (params, par) = (Default::default(), self.numeric_par());
         let symbolic = self.symbolic.take().ok_or_else(|| {
             Error::LinearAlgebra("factorisation before the symbolic analysis".into())
@@ -299,7 +297,7 @@ impl LinearSolver for LdltSolver {
             symbolic
                 .factorize_numeric_ldlt(
                     &mut self.l_values,
-                    scaled.as_ref(),
+                    scaled,
                     Side::Lower,
                     regularization,
                     par,

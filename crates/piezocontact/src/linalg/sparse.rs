@@ -9,13 +9,17 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
 };
-use faer::sparse::{SparseColMat, SymbolicSparseColMat, SymbolicSparseColMatRef, Triplet};
+use faer::sparse::{
+    SparseColMat, SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef, Triplet,
+};
 use faer::{Par, Side};
+use std::sync::Arc;
 
 /// The lower-triangle sparsity pattern of a symmetric matrix.
 #[derive(Debug)]
 pub struct SymmetricPattern {
-    symbolic: SymbolicSparseColMat<usize>,
+    /// Shared with every matrix made of it ([`SymmetricPattern::matrix`]).
+    symbolic: Arc<SymbolicSparseColMat<usize>>,
     /// The group of each unknown (the mesh node it belongs to), for orderings that keep a
     /// group's unknowns together; `None`: each unknown its own group.
     groups: Option<Vec<usize>>,
@@ -39,7 +43,7 @@ impl SymmetricPattern {
             }
         }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        Ok(Self { symbolic, groups: None })
+        Ok(Self { symbolic: Arc::new(symbolic), groups: None })
     }
 
     /// The pattern of the (row, column) positions, row ≥ column, repetitions allowed.
@@ -80,7 +84,7 @@ impl SymmetricPattern {
 
     /// faer's view, for the backends of this module.
     pub(super) fn symbolic(&self) -> SymbolicSparseColMatRef<'_, usize> {
-        self.symbolic.as_ref()
+        (*self.symbolic).as_ref()
     }
 
     /// Stored entries of the lower triangle.
@@ -108,30 +112,33 @@ impl SymmetricPattern {
     /// The matrix with this pattern and `values` (one per stored entry, column by column).
     pub fn matrix(&self, values: Vec<f64>) -> Result<SymmetricMatrix> {
         check_length("matrix values", self.nnz(), values.len())?;
-        Ok(SymmetricMatrix { lower: SparseColMat::new(self.symbolic.clone(), values) })
+        Ok(SymmetricMatrix { symbolic: Arc::clone(&self.symbolic), values })
     }
 }
 
 /// A symmetric sparse matrix stored by its lower triangle.
 #[derive(Clone, Debug)]
 pub struct SymmetricMatrix {
-    lower: SparseColMat<usize, f64>,
+    /// The lower triangle's pattern, shared with the [`SymmetricPattern`] it was made of.
+    symbolic: Arc<SymbolicSparseColMat<usize>>,
+    /// The lower triangle's values, column by column.
+    values: Vec<f64>,
 }
 
 impl SymmetricMatrix {
     /// faer's matrix, for the backends of this module.
-    pub(super) fn lower(&self) -> &SparseColMat<usize, f64> {
-        &self.lower
+    pub(super) fn lower(&self) -> SparseColMatRef<'_, usize, f64> {
+        SparseColMatRef::new((*self.symbolic).as_ref(), &self.values)
     }
 
     /// Order of the matrix.
     pub fn n(&self) -> usize {
-        self.lower.nrows()
+        self.symbolic.nrows()
     }
 
     /// Lower-triangle entries (row, column, value) with row ≥ column.
     pub fn lower_entries(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
-        let (symbolic, values) = (self.lower.symbolic(), self.lower.val());
+        let (symbolic, values) = ((*self.symbolic).as_ref(), &self.values[..]);
         (0..self.n()).flat_map(move |j| {
             let range = symbolic.col_range(j);
             symbolic.row_idx()[range.clone()]
@@ -155,7 +162,7 @@ impl SymmetricMatrix {
 
     /// The diagonal (the first stored entry of each column, whose rows are sorted).
     pub fn diagonal(&self) -> Vec<f64> {
-        let (symbolic, values) = (self.lower.symbolic(), self.lower.val());
+        let (symbolic, values) = ((*self.symbolic).as_ref(), &self.values[..]);
         (0..self.n())
             .map(|j| {
                 let k = symbolic.col_ptr()[j];
@@ -177,12 +184,13 @@ impl SymmetricMatrix {
             .collect();
         let lower = SparseColMat::try_new_from_triplets(range.len(), range.len(), &triplets)
             .map_err(|e| Error::LinearAlgebra(format!("block: {e:?}")))?;
-        Ok(Self { lower })
+        let (symbolic, values) = lower.into_parts();
+        Ok(Self { symbolic: Arc::new(symbolic), values })
     }
 
     /// Whether the matrix is positive definite (its sparse LLᵀ factorisation exists).
     pub fn is_positive_definite(&self) -> Result<bool> {
-        let symbolic = symbolic_cholesky(self.lower.symbolic(), SymmetricOrdering::Amd, false)?;
+        let symbolic = symbolic_cholesky(self.lower().symbolic(), SymmetricOrdering::Amd, false)?;
         let mut l_values = vec![0.0; symbolic.len_val()];
         let mut mem = MemBuffer::try_new(
             symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
@@ -190,7 +198,7 @@ impl SymmetricMatrix {
         .map_err(|_| Error::LinearAlgebra("out of memory for the LLᵀ workspace".into()))?;
         let result = symbolic.factorize_numeric_llt(
             &mut l_values,
-            self.lower.as_ref(),
+            self.lower(),
             Side::Lower,
             LltRegularization::default(),
             Par::Seq,
