@@ -573,7 +573,6 @@ impl Newton {
     }
 }
 
-/// The processes `solver` runs on (1 for a backend that is not distributed).
 /// The friction bound s = µ|Rσ_ν| per Γ3 node at `result` as the outer loop records it: 0
 /// where the laws make it so (λ_c = 0 off the active set, no compliance at u_ν ≤ g_a, no force
 /// on a node left out), not the round-off of the condensed forces — so that a left-out node
