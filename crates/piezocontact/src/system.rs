@@ -284,7 +284,7 @@ impl CoupledSystem {
         let matrix = self.matrix.as_ref().ok_or_else(|| {
             Error::LinearAlgebra("a solve with a patched matrix before the factorisation".into())
         })?;
-        let patched = Patched { matrix, jacobian, preconditioner };
+        let patched = Patched::new(matrix, jacobian, preconditioner)?;
         match self.solver.unsymmetric() {
             Some(solver) => solver.solve_unsymmetric(patched, rhs, rtol),
             None => self.row_lu.solve(&patched.whole_jacobian()?, rhs),

@@ -370,8 +370,7 @@ fn a_solve_with_a_patched_matrix_is_the_lu_s_and_leaves_k_as_it_was() {
         let b = system.rhs().to_vec();
         let mut x = b.clone();
         system.solve_unsymmetric((&jacobian, &preconditioner), &mut x, 1e-10).unwrap();
-        let whole =
-            Patched { matrix: &matrix, jacobian: &jacobian, preconditioner: &preconditioner };
+        let whole = Patched::new(&matrix, &jacobian, &preconditioner).unwrap();
         let mut expected = b.clone();
         RowLu::default().solve(&whole.whole_jacobian().unwrap(), &mut expected).unwrap();
         let difference = relative_difference(&x, &expected);

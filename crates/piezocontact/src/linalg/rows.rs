@@ -74,6 +74,12 @@ impl RowMatrix {
         self.values.len()
     }
 
+    /// Whether `other` was made from this matrix, or this one from it (a clone): the same
+    /// pattern, held once.
+    pub fn shares_pattern(&self, other: &RowMatrix) -> bool {
+        Arc::ptr_eq(&self.pattern, &other.pattern)
+    }
+
     /// Whether row r has entries (a row left out of [`RowMatrix::from_symmetric_rows`] has
     /// none; a kept one has at least its diagonal).
     pub fn has_row(&self, r: usize) -> bool {
@@ -174,23 +180,53 @@ impl RowMatrix {
 /// The Jacobian J of a whole-system Newton step and the matrix P its preconditioner is set up
 /// for, as changes of the factorised matrix K (the seam's numbering, the unknowns' frames):
 /// each is K but on the rows its patch has ([`RowMatrix::has_row`]), which replace K's and
-/// have their pattern. No copy of K is made for them: a backend writes the patched rows over
-/// its own matrix, or adds them to it.
+/// have their pattern; the two patches share one pattern (the same rows, the same columns).
+/// No copy of K is made for them: a backend writes the patched rows over its own matrix, or
+/// adds them to it.
 #[derive(Clone, Copy, Debug)]
 pub struct Patched<'a> {
     /// K.
-    pub matrix: &'a SymmetricMatrix,
+    matrix: &'a SymmetricMatrix,
     /// J's rows that differ from K's.
-    pub jacobian: &'a RowMatrix,
+    jacobian: &'a RowMatrix,
     /// P's rows that differ from K's.
-    pub preconditioner: &'a RowMatrix,
+    preconditioner: &'a RowMatrix,
 }
 
-impl Patched<'_> {
+impl<'a> Patched<'a> {
+    /// K with the patches of J and P, which must share their pattern and have K's order.
+    pub fn new(
+        matrix: &'a SymmetricMatrix,
+        jacobian: &'a RowMatrix,
+        preconditioner: &'a RowMatrix,
+    ) -> Result<Self> {
+        check_length("Jacobian's patch order", matrix.n(), jacobian.n())?;
+        if !jacobian.shares_pattern(preconditioner) {
+            return Err(Error::LinearAlgebra(
+                "the Jacobian's and the preconditioner's patches have different patterns".into(),
+            ));
+        }
+        Ok(Self { matrix, jacobian, preconditioner })
+    }
+
+    /// K.
+    pub fn matrix(&self) -> &'a SymmetricMatrix {
+        self.matrix
+    }
+
+    /// J's patch.
+    pub fn jacobian(&self) -> &'a RowMatrix {
+        self.jacobian
+    }
+
+    /// P's patch.
+    pub fn preconditioner(&self) -> &'a RowMatrix {
+        self.preconditioner
+    }
+
     /// J whole.
     pub fn whole_jacobian(&self) -> Result<RowMatrix> {
         let mut whole = RowMatrix::from_symmetric(self.matrix);
-        check_length("patch order", whole.n(), self.jacobian.n())?;
         for r in (0..whole.n()).filter(|&r| self.jacobian.has_row(r)) {
             let ((columns, values), patch) = (whole.row_mut(r), self.jacobian.row(r));
             if columns != patch.0 {
@@ -366,7 +402,9 @@ mod tests {
             }
         }
         patch.row_mut(2).1.iter_mut().for_each(|v| *v = -1.0);
-        let patched = Patched { matrix: &s, jacobian: &patch, preconditioner: &patch };
+        let patched = Patched::new(&s, &patch, &patch).unwrap();
+        let other = RowMatrix::from_symmetric_rows(&s, |r| keep[r]);
+        assert!(Patched::new(&s, &patch, &other).is_err(), "patches of two patterns");
         let jacobian = dense(&patched.whole_jacobian().unwrap());
         let original = dense(&whole);
         for r in 0..5 {

@@ -280,6 +280,11 @@ pub struct PetscSolver {
     krylov_iterations: Vec<usize>,
 }
 
+/// Whether unknown i (or [`HELD`]) has a row in `patch`: a held row never has.
+fn patched_rows(patch: &RowMatrix) -> impl Fn(usize) -> bool + '_ {
+    move |i| i != HELD && patch.has_row(i)
+}
+
 /// The error of a solve before the matrix is filled.
 fn unfilled() -> Error {
     Error::LinearAlgebra("PETSc backend: solve before factorize".into())
@@ -420,8 +425,7 @@ impl PetscSolver {
             return Err(unfilled());
         };
         let scaled = (&self.scaling[..], &self.signs[..], true);
-        let only = |i: usize| i != HELD && patch.has_row(i);
-        write_rows(&mut d.matrix, (rows, only), scaled, |i, row| {
+        write_rows(&mut d.matrix, (rows, patched_rows(patch)), scaled, |i, row| {
             let (columns, values) = patch.row(i);
             let petsc = columns.iter().map(|&j| rows.petsc[j] as PetscInt);
             row.extend(petsc.zip(values.iter().copied()));
@@ -430,31 +434,19 @@ impl PetscSolver {
     }
 
     /// J − P, scaled as the distributed matrix: a matrix of the layout with entries only in
-    /// the rows that the patches change (those of the preconditioner's patch, which must hold
-    /// the Jacobian's with the same columns).
-    fn difference(&mut self, patched: &Patched) -> Result<Matrix> {
-        let (jacobian, preconditioner) = (patched.jacobian, patched.preconditioner);
+    /// the patched rows (the two patches share their pattern: [`Patched::new`]).
+    fn difference(&self, patched: &Patched) -> Result<Matrix> {
+        let (jacobian, preconditioner) = (patched.jacobian(), patched.preconditioner());
         let Some(rows) = &self.rows else { return Err(unfilled()) };
-        let only = |i: usize| i != HELD && preconditioner.has_row(i);
-        let (diagonal, off) = rows.preallocation(patched.matrix.lower().symbolic(), only);
+        let only = patched_rows(preconditioner);
+        let (diagonal, off) = rows.preallocation(patched.matrix().lower().symbolic(), &only);
         let mut difference = Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?;
-        let mut mismatch = None;
         let scaled = (&self.scaling[..], &self.signs[..], true);
         write_rows(&mut difference, (rows, only), scaled, |i, row| {
-            let ((columns, p), (others, j)) = (preconditioner.row(i), jacobian.row(i));
-            if jacobian.has_row(i) && others != columns {
-                mismatch = Some(i);
-            }
-            let j = |at: usize| if jacobian.has_row(i) { j[at] } else { p[at] };
+            let ((columns, p), j) = (preconditioner.row(i), jacobian.row(i).1);
             let petsc = columns.iter().map(|&c| rows.petsc[c] as PetscInt);
-            row.extend(petsc.zip((0..p.len()).map(|at| j(at) - p[at])));
+            row.extend(petsc.zip(j.iter().zip(p).map(|(j, p)| j - p)));
         })?;
-        if let Some(i) = mismatch
-            .or_else(|| (0..rows.n).find(|&i| jacobian.has_row(i) && !preconditioner.has_row(i)))
-        {
-            let detail = format!("row {i} of the Jacobian's patch is not the preconditioner's");
-            return Err(Error::LinearAlgebra(detail));
-        }
         difference.assemble(false)?;
         Ok(difference)
     }
@@ -731,20 +723,18 @@ impl UnsymmetricSolve for PetscSolver {
         let t = Instant::now();
         let n = self.rows.as_ref().map_or(0, |r| r.n);
         check_length("right-hand side", n, rhs.len())?;
-        check_length("Jacobian's patch order", n, patched.jacobian.n())?;
-        check_length("preconditioner's patch order", n, patched.preconditioner.n())?;
+        check_length("Jacobian's patch order", n, patched.jacobian().n())?;
         if self.distributed.as_ref().is_none_or(|d| d.krylov.is_none()) {
-            return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
+            return Err(unfilled());
         }
         let difference = self.difference(&patched)?;
-        self.write_patch(patched.preconditioner)?;
+        self.write_patch(patched.preconditioner())?;
         let own = &self.distributed.as_ref().ok_or_else(unfilled)?.matrix;
         let operator = Matrix::sum(&[own, &difference])?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
         let solved = self.krylov_solve(rhs, Some((&operator, rtol)));
         // K's rows again, whether or not the solve converged.
-        let preconditioner = patched.preconditioner;
-        self.write_matrix_rows(patched.matrix, |i| i != HELD && preconditioner.has_row(i))?;
+        self.write_matrix_rows(patched.matrix(), patched_rows(patched.preconditioner()))?;
         solved?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(x, s)| *x *= s);
         self.stats.solve_seconds += t.elapsed().as_secs_f64();
