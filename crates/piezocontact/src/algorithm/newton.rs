@@ -160,6 +160,19 @@ fn add_matching(row: (&[usize], &[f64]), factor: f64, columns: &[usize], values:
     }
 }
 
+/// λ̃ of a slipping node's derivative (s/‖z‖)(I − λ̃ẑᵀ) of the projection onto the ball:
+/// λ_f / max(s, ‖λ_f‖) where it points along ẑ (λ̃·ẑ ≥ 0), else ẑ itself — the projection's
+/// exact derivative. With λ̃·ẑ ≥ 0 the eigenvalues of I − (s/‖z‖)(I − λ̃ẑᵀ), 1 − s/‖z‖ and
+/// 1 − (s/‖z‖)(1 − λ̃·ẑ), are positive on a slipping node (‖z‖ > s); a λ_f against z would
+/// make the second vanish or turn negative, the node's tangential stiffness in the Jacobian
+/// infinite or negative. At a slip solution λ̃ = ẑ, so the choice leaves Newton's local
+/// convergence as it is.
+fn slip_direction(lambda_f: &[f64], bound: f64, z_hat: &[f64]) -> Vec<f64> {
+    let lambda_tilde: Vec<f64> = lambda_f.iter().map(|v| v / bound).collect();
+    let along: f64 = lambda_tilde.iter().zip(z_hat).map(|(l, z)| l * z).sum();
+    if along >= 0.0 { lambda_tilde } else { z_hat.to_vec() }
+}
+
 /// The node of a position of the whole system outside Γ3.
 const INTERIOR: usize = usize::MAX;
 
@@ -1398,10 +1411,11 @@ impl<'a> Local<'a> {
         let lambda_norm = lambda_f.iter().map(|v| v * v).sum::<f64>().sqrt();
         let bound = s.max(lambda_norm).max(f64::MIN_POSITIVE);
         let ratio = if norm > 0.0 { s / norm } else { 0.0 };
+        let direction = slip_direction(&lambda_f, bound, &z_hat);
         for b in 1..dim {
             // Coefficient of ∂z_b in row a of (s/‖z‖)(I − λ̃ẑᵀ).
             let identity = if a == b { 1.0 } else { 0.0 };
-            let coefficient = ratio * (identity - lambda_f[a - 1] / bound * z_hat[b - 1]);
+            let coefficient = ratio * (identity - direction[a - 1] * z_hat[b - 1]);
             // ∂λ_f,b = −S_{τb,·} / w.
             terms.push(Term::Force(u[b], -(identity - coefficient) / w));
             terms.push(Term::Unknown(u[b], -coefficient * c));
@@ -1483,6 +1497,40 @@ mod tests {
         let drifting: Vec<Vec<f64>> =
             (0..40).map(|k| corners[k % 5].iter().map(|c| c + 1e-3 * k as f64).collect()).collect();
         assert_eq!(first_cycle(&drifting), None);
+    }
+
+    /// A slipping node's tangential block I − (s/‖z‖)(I − λ̃ẑᵀ) of the Jacobian (2 tangents),
+    /// for λ_f at every angle to z and every length against s: with [`slip_direction`] its
+    /// determinant (1 − s/‖z‖)(1 − s/‖z‖ + (s/‖z‖) λ̃·ẑ) stays positive; with λ_f / max(s, ‖λ_f‖)
+    /// throughout it vanishes or turns negative where λ_f points against z (so the test
+    /// tells); at a slip solution, λ_f = s ẑ, the direction is ẑ, the exact derivative's.
+    #[test]
+    fn a_slip_derivative_keeps_the_tangential_block_invertible() {
+        let (s, norm) = (1.0, 1.6);
+        let determinant = |direction: &[f64], z_hat: &[f64]| {
+            let ratio = s / norm;
+            let block = |a: usize, b: usize| {
+                let identity = if a == b { 1.0 } else { 0.0 };
+                identity - ratio * (identity - direction[a] * z_hat[b])
+            };
+            block(0, 0) * block(1, 1) - block(0, 1) * block(1, 0)
+        };
+        let mut singular_without = 0;
+        for angle in (0..36).map(|k| f64::from(k) * std::f64::consts::PI / 18.0) {
+            for length in [0.2, 1.0, 3.0] {
+                let z_hat = [0.6, 0.8];
+                let (sin, cos) = angle.sin_cos();
+                let lambda_f = [length * (cos * 0.6 - sin * 0.8), length * (sin * 0.6 + cos * 0.8)];
+                let bound = s.max(length);
+                let direction = slip_direction(&lambda_f, bound, &z_hat);
+                assert!(determinant(&direction, &z_hat) > 1e-3, "angle {angle}, |λ_f| {length}");
+                let relaxed: Vec<f64> = lambda_f.iter().map(|v| v / bound).collect();
+                singular_without += usize::from(determinant(&relaxed, &z_hat) <= 0.0);
+            }
+        }
+        assert!(singular_without > 0);
+        let at_solution = slip_direction(&[0.6 * s, 0.8 * s], s, &[0.6, 0.8]);
+        assert!((at_solution[0] - 0.6).abs() < 1e-15 && (at_solution[1] - 0.8).abs() < 1e-15);
     }
 
     /// Checks `Local::gradient` against central differences of `Local::evaluate` on every
