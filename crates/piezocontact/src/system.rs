@@ -17,7 +17,7 @@ use std::time::Instant;
 /// Wall-clock seconds spent in each phase, and what the linear solver counted.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Timings {
-    /// The sparsity pattern and its gather plan, once per run \[s\].
+    /// The sparsity pattern, once per run \[s\].
     pub pattern: f64,
     /// Element matrices summed into the pattern (every refill), and f̌ \[s\].
     pub assembly: f64,

@@ -8,9 +8,9 @@
 //! with the secant modulus g_n = g(‖ε^D(u_n)‖²) frozen per element at the previous iterate
 //! (Section 5). The work is split as it is used:
 //! - [`kernel`]: the element matrix of B̌ on one simplex;
-//! - [`Assembler`] (this module): the global matrix — the pattern and its gather plan once per
-//!   run, then every refill computes the element matrices in parallel and sums them into the
-//!   pattern, with the Dirichlet lifting alongside;
+//! - [`Assembler`] (this module): the global matrix — the pattern once per run, then every
+//!   refill computes the element matrices in parallel and sums them into the pattern, with
+//!   the Dirichlet lifting alongside;
 //! - [`load`]: the right-hand side f̌;
 //! - [`fields`]: strains, secant moduli, internal forces, σ and D, norms.
 //!
@@ -60,11 +60,11 @@ pub type NodalBlock = [[f64; 3]; 3];
 pub struct Assembler {
     dofs: DofMap,
     pattern: SymmetricPattern,
-    /// Where each value of cell c goes, in [`local_pairs`] order:
-    /// `cell_slots[cell_offsets[c]..cell_offsets[c + 1]]`. A slot below nnz is a matrix entry;
-    /// nnz + r is row r of the lifting.
-    cell_offsets: Vec<usize>,
-    cell_slots: Vec<u32>,
+    /// Whether the pattern holds the owned nodes' rows alone (a distributed assembler): a
+    /// cell's entry outside it is then left out, not an error. Where each entry of a cell
+    /// goes is found anew at every assembly ([`cell_positions`]) rather than kept: a slot
+    /// per cell entry would cost more memory than the lower triangle's values.
+    partial: bool,
     /// The cells in groups that share no node (nor, touching a floating electrode, its
     /// unknown), summed one group after the other; then the cells that found no group, in
     /// order on one thread.
@@ -78,7 +78,7 @@ pub struct Assembler {
 }
 
 /// A slot of an entry that a distributed assembler's pattern leaves out.
-const SKIPPED: u32 = u32::MAX;
+const SKIPPED: usize = usize::MAX;
 
 impl Assembler {
     /// Builds the sparsity pattern (once per run) on the DOFs of `dofs`, with room for nodal
@@ -95,30 +95,11 @@ impl Assembler {
         let assembled = owned.map(|o| assembled_nodes(o, &dofs));
         let pattern = lower_pattern(mesh, &dofs, assembled.as_deref())?;
         let kept = |c: usize| assembled.as_ref().is_none_or(|o| mesh.cell(c).iter().any(|&a| o[a]));
-        let (nnz, n_free) = (pattern.nnz(), dofs.n_free());
-        if nnz + n_free > u32::MAX as usize {
-            return Err(Error::LinearAlgebra(format!(
-                "{nnz} matrix entries are more than this build's limit of {}",
-                u32::MAX
-            )));
-        }
-        let counts: Vec<usize> =
-            (0..mesh.n_cells())
-                .into_par_iter()
-                .map(|c| {
-                    if kept(c) { with_simplex!(dim, cell_pair_count(problem, &dofs, c)) } else { 0 }
-                })
-                .collect();
-        let cell_offsets = offsets(&counts);
-        let mut cell_slots = vec![0u32; cell_offsets[mesh.n_cells()]];
         let partial = owned.is_some();
-        for_ranges(&cell_offsets, &mut cell_slots, |c, out| {
-            with_simplex!(dim, cell_slots_into(problem, &dofs, &pattern, c, (out, partial)))
-        })?;
         let mut block_slots = Vec::new();
         for &node in block_nodes {
             for (_, _, r, c) in nodal_pairs(&dofs, dim, node) {
-                let slot = pattern.position(r, c).or(partial.then_some(SKIPPED as usize));
+                let slot = pattern.position(r, c).or(partial.then_some(SKIPPED));
                 block_slots.push(slot.ok_or_else(missing(r, c))?);
             }
         }
@@ -132,8 +113,7 @@ impl Assembler {
         Ok(Self {
             dofs,
             pattern,
-            cell_offsets,
-            cell_slots,
+            partial,
             groups,
             alone,
             block_nodes: block_nodes.to_vec(),
@@ -209,9 +189,8 @@ impl Assembler {
             (0..self.pattern.nnz() + self.dofs.n_free()).map(|_| AtomicU64::new(0)).collect();
         let add_cells = |cells: &[usize]| {
             cells.iter().try_for_each(|&c| {
-                let slots = &self.cell_slots[self.cell_offsets[c]..self.cell_offsets[c + 1]];
                 let cell = Cell { c, modulus: moduli[c], tangent: linearisation.tangent.get(c) };
-                with_simplex!(dim, add_cell(problem, &self.dofs, &cell, slots, &sums))
+                with_simplex!(dim, add_cell(problem, self, &cell, &sums))
             })
         };
         for group in &self.groups {
@@ -229,7 +208,7 @@ impl Assembler {
                 .map(move |(i, j, ..)| turned.get(b).map_or(0.0, |k| k[i][j]))
         });
         for (&slot, value) in self.block_slots.iter().zip(block_values) {
-            if slot != SKIPPED as usize {
+            if slot != SKIPPED {
                 add(&sums[slot], value);
             }
         }
@@ -468,40 +447,6 @@ fn node_disjoint_groups(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<usize>>, Vec<usi
     (groups, crowded)
 }
 
-/// The number of [`local_pairs`] of cell `c`.
-fn cell_pair_count<const D: usize, const N: usize>(
-    problem: &Problem,
-    dofs: &DofMap,
-    c: usize,
-) -> usize {
-    local_pairs(dofs, local_dofs::<D, N>(dofs, problem.mesh.cell(c)), N * (D + 1)).count()
-}
-
-/// The slots of the [`local_pairs`] of cell `c`; with `partial`, an entry the pattern leaves
-/// out gets [`SKIPPED`].
-fn cell_slots_into<const D: usize, const N: usize>(
-    problem: &Problem,
-    dofs: &DofMap,
-    pattern: &SymmetricPattern,
-    c: usize,
-    (out, partial): (&mut [u32], bool),
-) -> Result<()> {
-    let (global, m) = (local_dofs::<D, N>(dofs, problem.mesh.cell(c)), N * (D + 1));
-    let table = cell_positions(dofs, pattern, &global[..m]);
-    for (slot, (p, q, r, col)) in out.iter_mut().zip(local_pairs(dofs, global, m)) {
-        *slot = if col == CONSTRAINED {
-            (pattern.nnz() + r) as u32
-        } else {
-            match table[p][q] {
-                SKIPPED if partial => SKIPPED,
-                SKIPPED => return Err(missing(r, col)()),
-                s => s,
-            }
-        };
-    }
-    Ok(())
-}
-
 /// The position in `pattern`'s values of each pair (p, q) of the element's DOFs `global`
 /// whose free row is at or below its free column ([`SKIPPED`] elsewhere, and where the
 /// pattern lacks it): for each column, one walk down its stored rows beside the element's
@@ -510,7 +455,7 @@ fn cell_positions(
     dofs: &DofMap,
     pattern: &SymmetricPattern,
     global: &[usize],
-) -> [[u32; kernel::M_MAX]; kernel::M_MAX] {
+) -> [[usize; kernel::M_MAX]; kernel::M_MAX] {
     let mut table = [[SKIPPED; kernel::M_MAX]; kernel::M_MAX];
     let (mut free, mut order, mut count) = ([CONSTRAINED; kernel::M_MAX], [0; kernel::M_MAX], 0);
     for (p, &g) in global.iter().enumerate() {
@@ -529,7 +474,7 @@ fn cell_positions(
                 at += 1;
             }
             if at < stored.len() && stored[at] == free[p] {
-                table[p][q] = (start + at) as u32;
+                table[p][q] = start + at;
             }
         }
     }
@@ -544,17 +489,18 @@ struct Cell<'a> {
     tangent: Option<&'a (f64, [[f64; 3]; 3])>,
 }
 
-/// Adds the element matrix of a cell at its `slots`: K_pq, times the prescribed value of the
-/// column where it is constrained (the lifting). With a tangent part |K| β a aᵀ (β = 4 g'),
-/// adds it to the uu block, and −|K| β t a (t = aᵀ u_e) to the lifting's slots, which the
-/// right-hand side takes with the opposite sign.
+/// Adds the element matrix of a cell to the assembler's pattern (nnz values, then the
+/// lifting's n_free): K_pq at its entry ([`cell_positions`]), times the prescribed value of
+/// the column where it is constrained (the lifting, row r at slot nnz + r). With a tangent
+/// part |K| β a aᵀ (β = 4 g'), adds it to the uu block, and −|K| β t a (t = aᵀ u_e) to the
+/// lifting's slots, which the right-hand side takes with the opposite sign.
 fn add_cell<const D: usize, const N: usize>(
     problem: &Problem,
-    dofs: &DofMap,
+    assembler: &Assembler,
     cell: &Cell,
-    slots: &[u32],
     sums: &[AtomicU64],
 ) -> Result<()> {
+    let (dofs, pattern) = (&assembler.dofs, &assembler.pattern);
     let s = simplex::<D, N>(problem, cell.c)?;
     let mut k = cell_matrix(problem, cell.c, &s, cell.modulus)?;
     let nodes = problem.mesh.cell(cell.c);
@@ -573,12 +519,19 @@ fn add_cell<const D: usize, const N: usize>(
             }
         }
     }
-    for (&slot, (p, q, _, col)) in slots.iter().zip(local_pairs(dofs, global, N * (D + 1))) {
-        if slot == SKIPPED {
-            continue;
+    let m = N * (D + 1);
+    let table = cell_positions(dofs, pattern, &global[..m]);
+    for (p, q, r, col) in local_pairs(dofs, global, m) {
+        let (slot, value) = if col == CONSTRAINED {
+            (pattern.nnz() + r, k[p][q] * dofs.prescribed(global[q]))
+        } else {
+            (table[p][q], k[p][q])
+        };
+        match slot {
+            SKIPPED if assembler.partial => {}
+            SKIPPED => return Err(missing(r, col)()),
+            slot => add(&sums[slot], value),
         }
-        let value = if col == CONSTRAINED { k[p][q] * dofs.prescribed(global[q]) } else { k[p][q] };
-        add(&sums[slot as usize], value);
     }
     Ok(())
 }
