@@ -59,12 +59,10 @@ pub type NodalBlock = [[f64; 3]; 3];
 #[derive(Debug)]
 pub struct Assembler {
     dofs: DofMap,
+    /// Where each entry of a cell goes is found anew at every assembly ([`cell_positions`])
+    /// rather than kept: a slot per cell entry would cost more memory than the lower
+    /// triangle's values.
     pattern: SymmetricPattern,
-    /// Whether the pattern holds the owned nodes' rows alone (a distributed assembler): a
-    /// cell's entry outside it is then left out, not an error. Where each entry of a cell
-    /// goes is found anew at every assembly ([`cell_positions`]) rather than kept: a slot
-    /// per cell entry would cost more memory than the lower triangle's values.
-    partial: bool,
     /// The cells in groups that share no node (nor, touching a floating electrode, its
     /// unknown), summed one group after the other; then the cells that found no group, in
     /// order on one thread.
@@ -73,7 +71,9 @@ pub struct Assembler {
     /// Nodes that carry a nodal block, and the slots of their [`nodal_pairs`].
     block_nodes: Vec<usize>,
     block_slots: Vec<usize>,
-    /// Per free unknown: whether its row is complete (its node owned); `None`: all are.
+    /// Per free unknown: whether its row is complete (its node owned); `None`: all are. Some
+    /// for a distributed assembler, whose pattern holds the owned nodes' rows alone: a cell's
+    /// entry outside it is then left out, not an error.
     complete: Option<Vec<bool>>,
 }
 
@@ -113,7 +113,6 @@ impl Assembler {
         Ok(Self {
             dofs,
             pattern,
-            partial,
             groups,
             alone,
             block_nodes: block_nodes.to_vec(),
@@ -528,7 +527,7 @@ fn add_cell<const D: usize, const N: usize>(
             (table[p][q], k[p][q])
         };
         match slot {
-            SKIPPED if assembler.partial => {}
+            SKIPPED if assembler.complete.is_some() => {}
             SKIPPED => return Err(missing(r, col)()),
             slot => add(&sums[slot], value),
         }
