@@ -250,6 +250,33 @@ fn the_exact_solver_on_the_iterative_route_is_the_serial_exact_solver() {
     let _ = std::fs::remove_dir_all(&serial);
 }
 
+/// `--petsc-options -log_view` prints PETSc's performance summary at exit, with the Krylov
+/// solver's and the multigrid's events, though the options reach PETSc after it started.
+#[test]
+fn log_view_prints_petsc_s_performance_summary() {
+    let out = out_dir("log-view");
+    let args = [
+        "run",
+        "cases/paper-7.2.toml",
+        "-q",
+        "--set",
+        "solver.backend=\"petsc\"",
+        "--set",
+        "solver.linear=\"iterative\"",
+        "--petsc-options",
+        "-log_view",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let result = run(1, &args);
+    let stdout = String::from_utf8_lossy(&result.stdout);
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    assert!(stdout.contains("PETSc Performance Summary"), "{stdout}");
+    assert!(stdout.lines().any(|l| l.starts_with("KSPSolve ")), "{stdout}");
+    assert!(stdout.lines().any(|l| l.starts_with("PCSetUp_GAMG")), "{stdout}");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
 /// A Krylov solve capped below what it needs ends the run with exit 4, the reason on stderr
 /// and an unconverged summary.json that lists the iterations made (the last at the cap).
 #[test]

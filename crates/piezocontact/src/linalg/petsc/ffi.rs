@@ -74,6 +74,7 @@ unsafe extern "C" {
     fn PetscInitializeNoArguments() -> Code;
     fn PetscFinalize() -> Code;
     fn PetscOptionsInsertString(options: Handle, text: *const c_char) -> Code;
+    fn PetscLogDefaultBegin() -> Code;
     fn PetscPushErrorHandler(handler: ErrorHandler, ctx: *mut c_void) -> Code;
     fn PetscErrorMessage(code: c_int, text: *mut *const c_char, more: *mut *mut c_char) -> Code;
     fn atexit(f: extern "C" fn()) -> c_int;
@@ -276,6 +277,17 @@ fn start(options: &str) -> Result<()> {
         check(PetscPushErrorHandler(return_error, null_mut()), "error handler")?;
         check(PetscOptionsInsertString(null_mut(), options.as_ptr()), "options")?;
         atexit(finalize);
+    }
+    start_log()
+}
+
+/// Starts PETSc's performance log when the options ask for its report (-log_view, printed
+/// by PetscFinalize at exit): PETSc starts it only for options present at its initialisation,
+/// and ours are inserted after.
+fn start_log() -> Result<()> {
+    if has_option("-log_view")? {
+        // SAFETY: PETSc is initialised and no event has been logged yet.
+        check(unsafe { PetscLogDefaultBegin() }, "PetscLogDefaultBegin")?;
     }
     Ok(())
 }
@@ -824,22 +836,27 @@ impl Drop for Krylov {
 
 /// Puts `name value` into PETSc's options database unless the run's options set `name`.
 fn default_option(name: &str, value: &str) -> Result<()> {
+    if has_option(name)? {
+        return Ok(());
+    }
     let (name, value) = (CString::new(name), CString::new(value));
     let (Ok(name), Ok(value)) = (name, value) else {
         return Err(Error::LinearAlgebra("a PETSc option with a NUL character".into()));
     };
-    let mut set = 0;
     // SAFETY: NUL-terminated strings; the global options database.
-    unsafe {
-        check(
-            PetscOptionsHasName(null_mut(), std::ptr::null(), name.as_ptr(), &mut set),
-            "options",
-        )?;
-        if set == 0 {
-            check(PetscOptionsSetValue(null_mut(), name.as_ptr(), value.as_ptr()), "options")?;
-        }
-    }
-    Ok(())
+    check(unsafe { PetscOptionsSetValue(null_mut(), name.as_ptr(), value.as_ptr()) }, "options")
+}
+
+/// Whether `name` is in PETSc's options database.
+fn has_option(name: &str) -> Result<bool> {
+    let name = CString::new(name)
+        .map_err(|_| Error::LinearAlgebra("a PETSc option with a NUL character".into()))?;
+    let mut set = 0;
+    // SAFETY: a NUL-terminated name; the global options database.
+    let code =
+        unsafe { PetscOptionsHasName(null_mut(), std::ptr::null(), name.as_ptr(), &mut set) };
+    check(code, "options")?;
+    Ok(set != 0)
 }
 
 /// The value of `name` in PETSc's options database (`None` where it is not set).
