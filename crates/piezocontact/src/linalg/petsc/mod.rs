@@ -167,6 +167,9 @@ impl Rows {
     }
 }
 
+/// A row of the distributed matrix kept aside: PETSc's row, its columns and values.
+type SavedRow = (PetscInt, Vec<PetscInt>, Vec<f64>);
+
 /// The PETSc objects of one analysis.
 #[derive(Debug)]
 struct Objects {
@@ -210,19 +213,19 @@ fn write_rows(
     Ok(())
 }
 
-/// Writes the owned rows of the unknowns (or [`HELD`]) that `only` takes of the seam's matrix
-/// (`lower`: its lower triangle) into `target`, scaled as [`write_rows`] does, column by
+/// Writes the owned rows (and [`HELD`] ones) of the seam's matrix (`lower`: its lower
+/// triangle) into `target`, scaled as [`write_rows`] does, column by
 /// column of the lower triangle (column j's entries are row j's right of its diagonal and,
 /// below it, an entry of each row i > j); a held row 1 on its diagonal (the scaled elastic
 /// diagonal is 1 on average: [`field_scaling`]).
 fn write_lower(
     target: &mut Matrix,
-    (rows, only): (&Rows, impl Fn(usize) -> bool),
+    rows: &Rows,
     (scaling, signs, iterative): (&[f64], &[i8], bool),
     lower: SparseColMatRef<'_, usize, f64>,
 ) -> Result<()> {
     let (symbolic, values) = (lower.symbolic(), lower.val());
-    let takes = |i: usize| rows.owns(i) && only(i);
+    let takes = |i: usize| rows.owns(i);
     let row_scale = |i: usize| scaling[i] * row_sign(iterative, signs[i]);
     let petsc = |i: usize| rows.petsc[i] as PetscInt;
     let (mut at, mut vals) = (Vec::new(), Vec::new());
@@ -248,7 +251,7 @@ fn write_lower(
             target.set_column(&at, petsc(j), &vals)?;
         }
     }
-    for p in (rows.start..rows.end).filter(|&p| rows.order[p] == HELD && only(HELD)) {
+    for p in (rows.start..rows.end).filter(|&p| rows.order[p] == HELD) {
         target.set_row(p as PetscInt, &[p as PetscInt], &[1.0])?;
     }
     Ok(())
@@ -400,22 +403,36 @@ impl PetscSolver {
             Some(_) => field_scaling(&diagonal, &self.signs),
             None => diagonal.iter().map(|d| 1.0 / d.abs().sqrt()).collect(),
         };
-        self.write_matrix_rows(matrix, |_| true)
-    }
-
-    /// Writes `matrix`'s owned rows of the unknowns (or [`HELD`]) that `only` takes into the
-    /// distributed matrix, scaled, and assembles it.
-    fn write_matrix_rows(
-        &mut self,
-        matrix: &SymmetricMatrix,
-        only: impl Fn(usize) -> bool,
-    ) -> Result<()> {
         let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
             return Err(unfilled());
         };
         let scaled = (&self.scaling[..], &self.signs[..], self.iterative.is_some());
-        write_lower(&mut d.matrix, (rows, only), scaled, matrix.lower().as_ref())?;
+        write_lower(&mut d.matrix, rows, scaled, matrix.lower().as_ref())?;
         d.matrix.assemble(self.iterative.is_none())
+    }
+
+    /// The owned rows of the distributed matrix that `patch` will overwrite, as they are
+    /// (PETSc's row, columns and values): what [`PetscSolver::restore_rows`] writes back.
+    fn save_rows(&self, patch: &RowMatrix) -> Result<Vec<SavedRow>> {
+        let (Some(rows), Some(d)) = (&self.rows, &self.distributed) else {
+            return Err(unfilled());
+        };
+        let patched = patched_rows(patch);
+        let saved = (rows.start..rows.end).filter(|&p| patched(rows.order[p])).map(|p| {
+            let row = d.matrix.row(p as PetscInt)?;
+            let columns = row.iter().map(|&(q, _)| q as PetscInt).collect();
+            Ok((p as PetscInt, columns, row.into_iter().map(|(_, v)| v).collect()))
+        });
+        saved.collect()
+    }
+
+    /// Writes `saved` rows back over the distributed matrix and assembles it.
+    fn restore_rows(&mut self, saved: &[SavedRow]) -> Result<()> {
+        let d = self.distributed.as_mut().ok_or_else(unfilled)?;
+        for (row, columns, values) in saved {
+            d.matrix.set_row(*row, columns, values)?;
+        }
+        d.matrix.assemble(false)
     }
 
     /// Writes the rows of `patch` (the seam's numbering, both triangles) over the owned rows
@@ -717,7 +734,8 @@ impl LinearSolver for PetscSolver {
 /// factorised matrix is written: scaled, ϕ rows negated), the preconditioner (field split,
 /// GAMG) set up for it, and J = P + (J − P) solved by the Krylov solver — J − P a matrix of
 /// the patched rows alone, J the sum of the two held as PETSc's composite matrix —; the
-/// factorised matrix's rows written back after. No other copy of the matrix is made.
+/// factorised matrix's rows, read before P overwrote them, written back after. No other copy
+/// of the matrix is made.
 impl UnsymmetricSolve for PetscSolver {
     fn solve_unsymmetric(&mut self, patched: Patched, rhs: &mut [f64], rtol: f64) -> Result<()> {
         let t = Instant::now();
@@ -728,13 +746,14 @@ impl UnsymmetricSolve for PetscSolver {
             return Err(unfilled());
         }
         let difference = self.difference(&patched)?;
+        let saved = self.save_rows(patched.preconditioner())?;
         self.write_patch(patched.preconditioner())?;
         let own = &self.distributed.as_ref().ok_or_else(unfilled)?.matrix;
         let operator = Matrix::sum(&[own, &difference])?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
         let solved = self.krylov_solve(rhs, Some((&operator, rtol)));
         // K's rows again, whether or not the solve converged.
-        self.write_matrix_rows(patched.matrix(), patched_rows(patched.preconditioner()))?;
+        self.restore_rows(&saved)?;
         solved?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(x, s)| *x *= s);
         self.stats.solve_seconds += t.elapsed().as_secs_f64();
