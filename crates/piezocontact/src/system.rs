@@ -50,12 +50,25 @@ impl Timings {
     }
 }
 
+/// Rows of K that a caller reads while the backend holds K ([`CoupledSystem::keep_rows`]).
+#[derive(Debug)]
+struct KeptRows {
+    /// Which rows: a flag per free unknown.
+    select: Vec<bool>,
+    /// Those rows and K's diagonal, as of the last factorisation.
+    rows: Option<(RowMatrix, Vec<f64>)>,
+}
+
 /// Assembler, factorisation and load vector of one problem.
 #[derive(Debug)]
 pub struct CoupledSystem {
     assembler: Assembler,
     solver: Box<dyn LinearSolver>,
+    /// K, the last factorised matrix, where the backend does not multiply with its own
+    /// ([`LinearSolver::unsymmetric`]): then no copy of it is kept here.
     matrix: Option<SymmetricMatrix>,
+    /// The rows of K a caller reads ([`CoupledSystem::keep_rows`]).
+    kept: Option<KeptRows>,
     /// f̌ on the free DOFs, the loads scaled by `factors`: it does not depend on x_n.
     load: Vec<f64>,
     /// The factors on the applied loads and electrodes that `load` holds.
@@ -136,6 +149,7 @@ impl CoupledSystem {
             assembler,
             solver,
             matrix: None,
+            kept: None,
             load,
             factors: Factors::from(1.0),
             lifting: Vec::new(),
@@ -184,8 +198,28 @@ impl CoupledSystem {
         self.assembly_seconds += t.elapsed().as_secs_f64();
         self.unloaded = None;
         self.solver.factorize(&matrix)?;
-        self.matrix = Some(matrix);
+        if let Some(KeptRows { select, rows }) = &mut self.kept {
+            *rows =
+                Some((RowMatrix::from_symmetric_rows(&matrix, |r| select[r]), matrix.diagonal()));
+        }
+        self.matrix = self.solver.unsymmetric().is_none().then_some(matrix);
         Ok(())
+    }
+
+    /// Keeps the rows of K that `select` takes (one flag per free unknown) and K's diagonal
+    /// at every factorisation from now on, for a caller that reads them while the backend
+    /// holds K ([`CoupledSystem::kept_rows`]).
+    pub fn keep_rows(&mut self, select: Vec<bool>) -> Result<()> {
+        check_length("rows to keep", self.dofs().n_free(), select.len())?;
+        self.kept = Some(KeptRows { select, rows: None });
+        Ok(())
+    }
+
+    /// The rows of K chosen by [`CoupledSystem::keep_rows`] and K's diagonal, as of the last
+    /// factorisation since.
+    pub fn kept_rows(&self) -> Option<(&RowMatrix, &[f64])> {
+        let (rows, diagonal) = self.kept.as_ref()?.rows.as_ref()?;
+        Some((rows, diagonal))
     }
 
     /// Keeps the factorisation of B̌ (made with an earlier linearisation, matrix M) and sets
@@ -201,13 +235,9 @@ impl CoupledSystem {
         x: &[f64],
     ) -> Result<()> {
         let t = Instant::now();
-        let frozen = self
-            .matrix
-            .as_ref()
-            .ok_or_else(|| Error::LinearAlgebra("a chord step needs a factorised matrix".into()))?;
         let (matrix, lifting) = self.assembler.linearised_matrix(problem, linearisation, blocks)?;
         let x_free = self.assembler.restrict(x);
-        let (m_x, k_x) = (frozen.mul(&x_free), matrix.mul(&x_free));
+        let (m_x, k_x) = (self.multiply(&x_free)?, matrix.mul(&x_free));
         self.lifting =
             lifting.iter().zip(m_x.iter().zip(&k_x)).map(|(l, (m, k))| l + m - k).collect();
         self.lifting_stale = false;
@@ -281,13 +311,13 @@ impl CoupledSystem {
         rhs: &mut [f64],
         rtol: f64,
     ) -> Result<()> {
-        let matrix = self.matrix.as_ref().ok_or_else(|| {
-            Error::LinearAlgebra("a solve with a patched matrix before the factorisation".into())
-        })?;
-        let patched = Patched::new(matrix, jacobian, preconditioner)?;
-        match self.solver.unsymmetric() {
-            Some(solver) => solver.solve_unsymmetric(patched, rhs, rtol),
-            None => self.row_lu.solve(&patched.whole_jacobian()?, rhs),
+        let patched = Patched::new(self.assembler.pattern(), jacobian, preconditioner)?;
+        match (self.solver.unsymmetric(), &self.matrix) {
+            (Some(solver), _) => solver.solve_unsymmetric(patched, rhs, rtol),
+            (None, Some(matrix)) => self.row_lu.solve(&patched.whole_jacobian(matrix)?, rhs),
+            (None, None) => Err(Error::LinearAlgebra(
+                "a solve with a patched matrix before the factorisation".into(),
+            )),
         }
     }
 
@@ -308,7 +338,8 @@ impl CoupledSystem {
         self.assembler.dofs()
     }
 
-    /// The last factorised matrix.
+    /// The last factorised matrix, where this system keeps it (not where the backend
+    /// multiplies with its own).
     pub fn matrix(&self) -> Option<&SymmetricMatrix> {
         self.matrix.as_ref()
     }
@@ -327,9 +358,7 @@ impl CoupledSystem {
     /// ‖B̌x − f̌‖ / ‖f̌‖ on the free DOFs for the global `x`, over the complete rows of every
     /// process.
     pub fn relative_residual(&mut self, x: &[f64]) -> Result<f64> {
-        let matrix =
-            self.matrix.as_ref().ok_or_else(|| Error::LinearAlgebra("no matrix".into()))?;
-        let ax = matrix.mul(&self.assembler.restrict(x));
+        let ax = self.multiply(&self.assembler.restrict(x))?;
         let complete = |k: usize| self.assembler.complete_rows().is_none_or(|c| c[k]);
         let (mut r2, mut b2) = (0.0, 0.0);
         for k in (0..ax.len()).filter(|&k| complete(k)) {
@@ -357,12 +386,24 @@ impl CoupledSystem {
 
     /// B̌ x on the free unknowns (`x` whole), whole on every process.
     pub fn product(&mut self, x: &[f64]) -> Result<Vec<f64>> {
-        let matrix =
-            self.matrix.as_ref().ok_or_else(|| Error::LinearAlgebra("no matrix".into()))?;
-        check_length("x", matrix.n(), x.len())?;
-        let mut product = matrix.mul(x);
+        let mut product = self.multiply(x)?;
         self.whole_rows(&mut product)?;
         Ok(product)
+    }
+
+    /// K x on the free unknowns (`x` whole): with this system's K, each process's complete
+    /// rows right; with the backend's, whole.
+    fn multiply(&mut self, x: &[f64]) -> Result<Vec<f64>> {
+        match (&self.matrix, self.solver.unsymmetric()) {
+            (Some(matrix), _) => {
+                check_length("x", matrix.n(), x.len())?;
+                Ok(matrix.mul(x))
+            }
+            (None, Some(backend)) => backend.product(x),
+            (None, None) => {
+                Err(Error::LinearAlgebra("a product with K before its assembly".into()))
+            }
+        }
     }
 
     /// The linear solver's counts, times, factor size and ordering.

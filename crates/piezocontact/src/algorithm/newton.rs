@@ -401,8 +401,11 @@ impl InnerMethod for Newton {
         self.c_factor = self.parameters.r / problem.materials.reference_modulus();
         self.whole = solver.schur().is_none();
         if self.whole {
-            self.condensed = Some(Condensed::whole(&dofs, surface, with_phi));
-            return CoupledSystem::new(problem, dofs, &[], solver);
+            let condensed = Condensed::whole(&dofs, surface, with_phi);
+            let mut system = CoupledSystem::new(problem, dofs, &[], solver)?;
+            system.keep_rows(rows_read(&system, &condensed))?;
+            self.condensed = Some(condensed);
+            return Ok(system);
         }
         let Parameters { max_condensed, guess, .. } = self.parameters;
         let frictionless = model.friction.is_none();
@@ -623,7 +626,7 @@ impl Semismooth<'_> {
         let x_hat = system.solve(None)?;
         let (operator, rhs) = match schur {
             Some(schur) => (Operator::Dense(schur.get(system, &cond.free)?), None),
-            None => whole_operator(&mut *system, cond)?,
+            None => whole_operator(&mut *system)?,
         };
         let mut local = Local::new(self, operator, (x_hat, rhs), system)?;
         let from = local
@@ -688,31 +691,36 @@ fn nodes_of(cond: &Condensed) -> Vec<usize> {
     node_of
 }
 
-/// The whole system's operator (K's rows that the Newton steps change — the kept Γ3 nodes'
-/// and their neighbours' — and K's diagonal, in the unknowns' frames) and its right-hand
-/// side, whole. On several processes the rows are this process's complete ones (its nodes')
-/// and, partial, the kept nodes' that others own: their columns are the neighbours whose
-/// rows turn with them ([`RowMatrix::turn`]); their own values are not used.
-fn whole_operator(
-    system: &mut CoupledSystem,
-    cond: &Condensed,
-) -> Result<(Operator, Option<Vec<f64>>)> {
-    let matrix = system.matrix().ok_or_else(|| {
+/// The whole system's operator (K's rows that the Newton steps change — [`rows_read`] — and
+/// K's diagonal, in the unknowns' frames, kept by the system at its factorisation) and its
+/// right-hand side, whole.
+fn whole_operator(system: &mut CoupledSystem) -> Result<(Operator, Option<Vec<f64>>)> {
+    let (rows, diagonal) = system.kept_rows().ok_or_else(|| {
         Error::LinearAlgebra("the whole system's Newton step before its matrix".into())
     })?;
-    let on_contact: Vec<bool> = nodes_of(cond).iter().map(|&i| i != INTERIOR).collect();
-    let mut touched = on_contact.clone();
-    for (i, j, _) in matrix.lower_entries() {
-        touched[i] |= on_contact[j];
-        touched[j] |= on_contact[i];
-    }
-    let complete = system.assembler().complete_rows();
-    let held = |r: usize| on_contact[r] || complete.is_none_or(|c| c[r]);
-    let rows = RowMatrix::from_symmetric_rows(matrix, |r| touched[r] && held(r));
-    let diagonal = matrix.diagonal();
+    let (rows, diagonal) = (rows.clone(), diagonal.to_vec());
     let mut rhs = system.rhs().to_vec();
     system.whole_rows(&mut rhs)?;
     Ok((Operator::Sparse { rows, diagonal }, Some(rhs)))
+}
+
+/// The rows of K that the whole system's Newton steps change: the kept Γ3 nodes' and their
+/// neighbours'. On several processes the rows are this process's complete ones (its nodes')
+/// and, partial, the kept nodes' that others own: their columns are the neighbours whose
+/// rows turn with them ([`RowMatrix::turn`]); their own values are not used.
+fn rows_read(system: &CoupledSystem, cond: &Condensed) -> Vec<bool> {
+    let pattern = system.assembler().pattern();
+    let on_contact: Vec<bool> = nodes_of(cond).iter().map(|&i| i != INTERIOR).collect();
+    let mut touched = on_contact.clone();
+    for j in 0..pattern.n() {
+        for &i in pattern.column(j).1 {
+            touched[i] |= on_contact[j];
+            touched[j] |= on_contact[i];
+        }
+    }
+    let complete = system.assembler().complete_rows();
+    let held = |r: usize| on_contact[r] || complete.is_none_or(|c| c[r]);
+    (0..pattern.n()).map(|r| touched[r] && held(r)).collect()
 }
 
 /// Node i's block of T: `q[a][b]`, from its free component b (in its unknowns' frame) to its
@@ -1729,7 +1737,7 @@ mod tests {
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
         let (operator, rhs) = if whole {
-            whole_operator(&mut system, &condensed).unwrap()
+            whole_operator(&mut system).unwrap()
         } else {
             (Operator::Dense(system.schur_complement().unwrap()), None)
         };

@@ -3,7 +3,7 @@
 //! Γ3 rows are the contact laws' combinations of the stiffness rows of their node, and its
 //! direct solve by faer's sparse LU.
 
-use super::sparse::SymmetricMatrix;
+use super::sparse::{SymmetricMatrix, SymmetricPattern};
 use super::vectors::{check_length, column};
 use crate::error::{Error, Result};
 use faer::linalg::solvers::SolveCore;
@@ -182,11 +182,11 @@ impl RowMatrix {
 /// each is K but on the rows its patch has ([`RowMatrix::has_row`]), which replace K's and
 /// have their pattern; the two patches share one pattern (the same rows, the same columns).
 /// No copy of K is made for them: a backend writes the patched rows over its own matrix, or
-/// adds them to it.
+/// adds them to it ([`Patched::whole_jacobian`] with K).
 #[derive(Clone, Copy, Debug)]
 pub struct Patched<'a> {
-    /// K.
-    matrix: &'a SymmetricMatrix,
+    /// K's pattern.
+    pattern: &'a SymmetricPattern,
     /// J's rows that differ from K's.
     jacobian: &'a RowMatrix,
     /// P's rows that differ from K's.
@@ -194,24 +194,25 @@ pub struct Patched<'a> {
 }
 
 impl<'a> Patched<'a> {
-    /// K with the patches of J and P, which must share their pattern and have K's order.
+    /// The patches of J and P over a matrix of `pattern`: they must share their pattern and
+    /// have its order.
     pub fn new(
-        matrix: &'a SymmetricMatrix,
+        pattern: &'a SymmetricPattern,
         jacobian: &'a RowMatrix,
         preconditioner: &'a RowMatrix,
     ) -> Result<Self> {
-        check_length("Jacobian's patch order", matrix.n(), jacobian.n())?;
+        check_length("Jacobian's patch order", pattern.n(), jacobian.n())?;
         if !jacobian.shares_pattern(preconditioner) {
             return Err(Error::LinearAlgebra(
                 "the Jacobian's and the preconditioner's patches have different patterns".into(),
             ));
         }
-        Ok(Self { matrix, jacobian, preconditioner })
+        Ok(Self { pattern, jacobian, preconditioner })
     }
 
-    /// K.
-    pub fn matrix(&self) -> &'a SymmetricMatrix {
-        self.matrix
+    /// K's pattern.
+    pub fn pattern(&self) -> &'a SymmetricPattern {
+        self.pattern
     }
 
     /// J's patch.
@@ -224,9 +225,10 @@ impl<'a> Patched<'a> {
         self.preconditioner
     }
 
-    /// J whole.
-    pub fn whole_jacobian(&self) -> Result<RowMatrix> {
-        let mut whole = RowMatrix::from_symmetric(self.matrix);
+    /// J whole, with K = `matrix` (of the pattern).
+    pub fn whole_jacobian(&self, matrix: &SymmetricMatrix) -> Result<RowMatrix> {
+        check_length("K's order", self.pattern.n(), matrix.n())?;
+        let mut whole = RowMatrix::from_symmetric(matrix);
         for r in (0..whole.n()).filter(|&r| self.jacobian.has_row(r)) {
             let ((columns, values), patch) = (whole.row_mut(r), self.jacobian.row(r));
             if columns != patch.0 {
@@ -402,10 +404,11 @@ mod tests {
             }
         }
         patch.row_mut(2).1.iter_mut().for_each(|v| *v = -1.0);
-        let patched = Patched::new(&s, &patch, &patch).unwrap();
+        let pattern = s.pattern();
+        let patched = Patched::new(&pattern, &patch, &patch).unwrap();
         let other = RowMatrix::from_symmetric_rows(&s, |r| keep[r]);
-        assert!(Patched::new(&s, &patch, &other).is_err(), "patches of two patterns");
-        let jacobian = dense(&patched.whole_jacobian().unwrap());
+        assert!(Patched::new(&pattern, &patch, &other).is_err(), "patches of two patterns");
+        let jacobian = dense(&patched.whole_jacobian(&s).unwrap());
         let original = dense(&whole);
         for r in 0..5 {
             for c in 0..5 {

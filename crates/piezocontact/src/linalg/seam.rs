@@ -129,6 +129,9 @@ pub trait UnsymmetricSolve {
     /// preconditioned as for P (K with the rows of `patched.preconditioner`: symmetric, near
     /// J). The factorised matrix stays the one [`LinearSolver::solve_in_place`] solves with.
     fn solve_unsymmetric(&mut self, patched: Patched, rhs: &mut [f64], rtol: f64) -> Result<()>;
+    /// K x with the factorised matrix K as the backend holds it (`x` whole, the product whole
+    /// on every process), so that the caller need not keep a copy of K of its own.
+    fn product(&mut self, x: &[f64]) -> Result<Vec<f64>>;
 }
 
 /// What a backend whose rows live on several processes tells the assembly, so that each

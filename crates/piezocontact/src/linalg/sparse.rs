@@ -132,6 +132,11 @@ impl SymmetricMatrix {
     }
 
     /// Order of the matrix.
+    /// Its pattern (shared with it, without groups).
+    pub fn pattern(&self) -> SymmetricPattern {
+        SymmetricPattern { symbolic: Arc::clone(&self.symbolic), groups: None }
+    }
+
     pub fn n(&self) -> usize {
         self.symbolic.nrows()
     }

@@ -456,7 +456,7 @@ impl PetscSolver {
         let (jacobian, preconditioner) = (patched.jacobian(), patched.preconditioner());
         let Some(rows) = &self.rows else { return Err(unfilled()) };
         let only = patched_rows(preconditioner);
-        let (diagonal, off) = rows.preallocation(patched.matrix().lower().symbolic(), &only);
+        let (diagonal, off) = rows.preallocation(patched.pattern().symbolic(), &only);
         let mut difference = Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?;
         let scaled = (&self.scaling[..], &self.signs[..], true);
         write_rows(&mut difference, (rows, only), scaled, |i, row| {
@@ -759,6 +759,27 @@ impl UnsymmetricSolve for PetscSolver {
         self.stats.solve_seconds += t.elapsed().as_secs_f64();
         self.stats.solve_count += 1;
         Ok(())
+    }
+
+    /// K x from the distributed matrix, which holds S D K D (D the scaling, S −1 on the ϕ
+    /// rows): K x = D⁻¹ S (S D K D) D⁻¹ x.
+    fn product(&mut self, x: &[f64]) -> Result<Vec<f64>> {
+        let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
+            return Err(unfilled());
+        };
+        check_length("x", rows.n, x.len())?;
+        let scaled: Vec<f64> = x.iter().zip(&self.scaling).map(|(x, s)| x / s).collect();
+        d.b.with_local(|b| rows.scatter(&scaled, b))?;
+        d.matrix.mult(&d.b, &mut d.x)?;
+        let mut gathered = vec![0.0; rows.total];
+        d.gather.run(&d.x, &mut gathered)?;
+        let mut product = vec![0.0; rows.n];
+        rows.unpermute(&gathered, &mut product);
+        let unscale = |(k, y): (usize, &mut f64)| {
+            *y *= row_sign(self.iterative.is_some(), self.signs[k]) / self.scaling[k];
+        };
+        product.iter_mut().enumerate().for_each(unscale);
+        Ok(product)
     }
 }
 
