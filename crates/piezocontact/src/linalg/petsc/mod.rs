@@ -421,7 +421,7 @@ impl PetscSolver {
         let saved = (rows.start..rows.end).filter(|&p| patched(rows.order[p])).map(|p| {
             let row = d.matrix.row(p as PetscInt)?;
             let columns = row.iter().map(|&(q, _)| q as PetscInt).collect();
-            Ok((p as PetscInt, columns, row.into_iter().map(|(_, v)| v).collect()))
+            Ok((p as PetscInt, columns, row.iter().map(|&(_, v)| v).collect()))
         });
         saved.collect()
     }
