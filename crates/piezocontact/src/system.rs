@@ -406,6 +406,12 @@ impl CoupledSystem {
         }
     }
 
+    /// Whether the systems are solved by a Krylov method (which, unlike a factorisation,
+    /// cannot see a pivot of the wrong sign: its solve fails instead).
+    pub fn is_iterative(&self) -> bool {
+        self.solver.route().kind == "iterative"
+    }
+
     /// The linear solver's counts, times, factor size and ordering.
     pub fn solver_stats(&self) -> SolverStats {
         self.solver.stats()

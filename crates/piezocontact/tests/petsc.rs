@@ -392,6 +392,29 @@ fn a_solve_with_a_patched_matrix_is_the_lu_s_and_leaves_k_as_it_was() {
     });
 }
 
+/// Hencky's whole tangent beyond e·t0 on the iterative route (Example 7.2, t0 = 1e−3, the
+/// exact solver): where B̌ loses its signs the Krylov solve fails (the iterative route cannot
+/// see a pivot of the wrong sign) and the floored tangent takes the step, as on faer's route,
+/// whose factorisation sees the sign: the same outer steps, floored alike, the same criteria
+/// to 1e−6 (four outer steps, short of convergence on both routes).
+#[test]
+fn hencky_s_tangent_falls_back_to_the_floor_on_the_iterative_route() {
+    on_processes("hencky_s_tangent_falls_back_to_the_floor_on_the_iterative_route", || {
+        let overrides = ["material.t0=1e-3", "solver.method=\"newton\"", "solver.max_outer=4"];
+        let built = case("paper-7.2.toml", &overrides).build().unwrap();
+        let run = |solver| match Run::solve(&built, solver, &|_| {}).unwrap() {
+            Run::Contact(run) => run.solution,
+            _ => panic!("not one contact run"),
+        };
+        let (faer, krylov) = (run(Box::new(LdltSolver::new())), run(krylov_solver()));
+        assert!(faer.floored_steps > 0, "the test must see the floor: {}", faer.floored_steps);
+        assert_eq!(krylov.floored_steps, faer.floored_steps);
+        let difference = relative_difference(&krylov.outer_history, &faer.outer_history);
+        assert!(difference < 1e-6, "outer criteria differ by {difference:e}");
+        assert_eq!(krylov.outer_history.len(), 4, "{:?}", krylov.outer_history);
+    });
+}
+
 /// Uzawa's method on the iterative route: Example 7.2's solution and Γ3 fields as with
 /// faer's LDLᵀ (to the Krylov tolerance carried through Uzawa's iterations).
 #[test]

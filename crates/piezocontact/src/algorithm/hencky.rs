@@ -4,7 +4,8 @@
 //! floor and its chord steps:
 //!
 //! - the whole tangent can cycle, or make a pivot of B̌ change sign, where the law is not
-//!   positive beyond e·t0; when its criterion grows, or B̌ loses its signs, it fails once, and
+//!   positive beyond e·t0; when its criterion grows, or B̌ loses its signs (on an iterative
+//!   route, which sees no pivots: when the first solve with it fails), it fails once, and
 //!   the floored tangent ([`Beyond::Floored`]) takes the next step;
 //! - after a second failure the floor stays, and the steps on a factorisation of the floored
 //!   tangent are chord steps (solves on the kept factor) while they contract.
@@ -174,10 +175,20 @@ impl Hencky {
     ) -> Result<()> {
         method.before_factorisation(system)?;
         let blocks = method.blocks();
-        let factorised = system.factorize_linearised(problem, &self.current, blocks);
+        let mut factorised = system.factorize_linearised(problem, &self.current, blocks);
+        let iterative = system.is_iterative();
+        if iterative && !self.secant && self.beyond == Beyond::Whole && factorised.is_ok() {
+            // An iterative route cannot see a pivot of the wrong sign: its solve fails
+            // instead. The first solve, kept by the system for the step that follows.
+            factorised = system.solve(None).map(|_| ());
+        }
         self.floored_factor = self.beyond == Beyond::Floored && factorised.is_ok();
-        if !matches!(factorised, Err(Error::SingularSystem { .. })) || self.beyond != Beyond::Whole
-        {
+        let lost_signs = match &factorised {
+            Err(Error::SingularSystem { .. }) => true,
+            Err(Error::LinearAlgebra(_)) => iterative,
+            _ => false,
+        };
+        if !lost_signs || self.beyond != Beyond::Whole {
             return factorised;
         }
         let floored = linearise(problem, system.dofs(), x, self.secant, Beyond::Floored)?;
