@@ -73,6 +73,14 @@ fn summary(dir: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
 }
 
+/// `run cases/paper-7.2.toml` on the iterative route (PETSc's GMRES with its field split)
+/// into `out`, with the arguments `extra` before `--out`.
+fn iterative_example_7_2<'a>(out: &'a Path, extra: &[&'a str]) -> Vec<&'a str> {
+    let route = ["--set", "solver.backend=\"petsc\"", "--set", "solver.linear=\"iterative\""];
+    let out = ["--out", out.to_str().unwrap()];
+    [&["run", "cases/paper-7.2.toml"][..], &route, extra, &out].concat()
+}
+
 /// The case run serially on faer and under mpirun on PETSc with 1, 2, 3 processes.
 fn same_as_serial(case: &str, sets: &[&str], name: &str, counts: &[usize]) {
     let serial = out_dir(&format!("{name}-faer"));
@@ -191,18 +199,7 @@ fn the_iterative_route_under_mpirun_is_the_serial_run() {
     assert_eq!(direct["krylov_iterations"], serde_json::json!([]));
     for n in [1, 2] {
         let out = out_dir(&format!("iterative-{n}"));
-        let args = [
-            "run",
-            "cases/paper-7.2.toml",
-            "-q",
-            "--set",
-            "solver.backend=\"petsc\"",
-            "--set",
-            "solver.linear=\"iterative\"",
-            "--out",
-            out.to_str().unwrap(),
-        ];
-        let result = run(n, &args);
+        let result = run(n, &iterative_example_7_2(&out, &["-q"]));
         assert!(result.status.success(), "-n {n}: {}", String::from_utf8_lossy(&result.stderr));
         assert_same_csv(&out.join("contact.csv"), &serial.join("contact.csv"), 1e-7);
         let s = summary(&out);
@@ -255,20 +252,7 @@ fn the_exact_solver_on_the_iterative_route_is_the_serial_exact_solver() {
 #[test]
 fn log_view_prints_petsc_s_performance_summary() {
     let out = out_dir("log-view");
-    let args = [
-        "run",
-        "cases/paper-7.2.toml",
-        "-q",
-        "--set",
-        "solver.backend=\"petsc\"",
-        "--set",
-        "solver.linear=\"iterative\"",
-        "--petsc-options",
-        "-log_view",
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    let result = run(1, &args);
+    let result = run(1, &iterative_example_7_2(&out, &["-q", "--petsc-options", "-log_view"]));
     let stdout = String::from_utf8_lossy(&result.stdout);
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     assert!(stdout.contains("PETSc Performance Summary"), "{stdout}");
@@ -282,19 +266,7 @@ fn log_view_prints_petsc_s_performance_summary() {
 #[test]
 fn a_krylov_solve_short_of_its_tolerance_ends_the_run_unconverged() {
     let out = out_dir("krylov-short");
-    let args = [
-        "run",
-        "cases/paper-7.2.toml",
-        "--set",
-        "solver.backend=\"petsc\"",
-        "--set",
-        "solver.linear=\"iterative\"",
-        "--petsc-options",
-        "-ksp_max_it 3",
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    let result = run(2, &args);
+    let result = run(2, &iterative_example_7_2(&out, &["--petsc-options", "-ksp_max_it 3"]));
     let stderr = String::from_utf8_lossy(&result.stderr);
     assert_eq!(result.status.code(), Some(4), "{stderr}");
     assert_eq!(stderr.matches("stopped after 3 iterations").count(), 1, "one message: {stderr}");
