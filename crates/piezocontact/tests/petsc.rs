@@ -6,7 +6,7 @@
 
 use piezocontact::assembly::Assembler;
 use piezocontact::assembly::secant_moduli;
-use piezocontact::case::Case;
+use piezocontact::case::{Built, Case};
 use piezocontact::dofs::DofMap;
 use piezocontact::linalg::petsc::{self, PetscSolver};
 use piezocontact::linalg::{
@@ -192,6 +192,14 @@ fn mumps_schur_complement_is_faers() {
     });
 }
 
+/// The one contact run of `built` with `solver`.
+fn contact_run(built: &Built, solver: Box<dyn LinearSolver>) -> ContactRun {
+    match Run::solve(built, solver, &|_| {}).unwrap() {
+        Run::Contact(run) => run,
+        _ => panic!("not one contact run"),
+    }
+}
+
 /// The contact run of `case` with both backends: the same Γ3 fields and KKT bound.
 fn same_contact(name: &str, overrides: &[&str], tolerance: f64) {
     same_contact_with(name, overrides, tolerance, petsc_solver);
@@ -206,10 +214,7 @@ fn same_contact_with(
     petsc: fn() -> Box<dyn LinearSolver>,
 ) {
     let built = case(name, overrides).build().unwrap();
-    let run = |solver| match Run::solve(&built, solver, &|_| {}).unwrap() {
-        Run::Contact(run) => run,
-        _ => panic!("{name}: not one contact run"),
-    };
+    let run = |solver| contact_run(&built, solver);
     let (faer, other) = (run(Box::new(LdltSolver::new())), run(petsc()));
     assert!(faer.solution.converged() && other.solution.converged());
     let distance = other.distance_to(&built, &faer).unwrap();
@@ -402,10 +407,7 @@ fn hencky_s_tangent_falls_back_to_the_floor_on_the_iterative_route() {
     on_processes("hencky_s_tangent_falls_back_to_the_floor_on_the_iterative_route", || {
         let overrides = ["material.t0=1e-3", "solver.method=\"newton\"", "solver.max_outer=4"];
         let built = case("paper-7.2.toml", &overrides).build().unwrap();
-        let run = |solver| match Run::solve(&built, solver, &|_| {}).unwrap() {
-            Run::Contact(run) => run.solution,
-            _ => panic!("not one contact run"),
-        };
+        let run = |solver| contact_run(&built, solver).solution;
         let (faer, krylov) = (run(Box::new(LdltSolver::new())), run(krylov_solver()));
         assert!(faer.floored_steps > 0, "the test must see the floor: {}", faer.floored_steps);
         assert_eq!(krylov.floored_steps, faer.floored_steps);

@@ -131,12 +131,12 @@ impl SymmetricMatrix {
         SparseColMatRef::new((*self.symbolic).as_ref(), &self.values)
     }
 
-    /// Order of the matrix.
     /// Its pattern (shared with it, without groups).
     pub fn pattern(&self) -> SymmetricPattern {
         SymmetricPattern { symbolic: Arc::clone(&self.symbolic), groups: None }
     }
 
+    /// Order of the matrix.
     pub fn n(&self) -> usize {
         self.symbolic.nrows()
     }

@@ -764,21 +764,15 @@ impl UnsymmetricSolve for PetscSolver {
     /// K x from the distributed matrix, which holds S D K D (D the scaling, S −1 on the ϕ
     /// rows): K x = D⁻¹ S (S D K D) D⁻¹ x.
     fn product(&mut self, x: &[f64]) -> Result<Vec<f64>> {
-        let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
+        let n = self.rows.as_ref().ok_or_else(unfilled)?.n;
+        check_length("x", n, x.len())?;
+        if self.distributed.is_none() {
             return Err(unfilled());
-        };
-        check_length("x", rows.n, x.len())?;
+        }
         let scaled: Vec<f64> = x.iter().zip(&self.scaling).map(|(x, s)| x / s).collect();
-        d.b.with_local(|b| rows.scatter(&scaled, b))?;
-        d.matrix.mult(&d.b, &mut d.x)?;
-        let mut gathered = vec![0.0; rows.total];
-        d.gather.run(&d.x, &mut gathered)?;
-        let mut product = vec![0.0; rows.n];
-        rows.unpermute(&gathered, &mut product);
-        let unscale = |(k, y): (usize, &mut f64)| {
-            *y *= row_sign(self.iterative.is_some(), self.signs[k]) / self.scaling[k];
-        };
-        product.iter_mut().enumerate().for_each(unscale);
+        let mut product = self.multiply(&scaled)?;
+        let sign = |k: usize| row_sign(self.iterative.is_some(), self.signs[k]);
+        product.iter_mut().enumerate().for_each(|(k, y)| *y *= sign(k) / self.scaling[k]);
         Ok(product)
     }
 }
