@@ -105,55 +105,67 @@ fn mumps_solves_the_coupled_system_as_faer_does() {
     });
 }
 
+/// Each process's rows of the distributed matrix are the serial matrix's, entry by entry: on
+/// the direct route (one AIJ matrix) and on the iterative one (the field blocks of PETSc's
+/// MATNEST, read back through them).
 #[test]
 fn each_process_holds_its_rows_of_the_same_matrix() {
     on_processes("each_process_holds_its_rows_of_the_same_matrix", || {
-        let problem = case("paper-7.2.toml", &[]).problem().unwrap();
-        let dofs = DofMap::new(&problem).unwrap();
-        let moduli = vec![1.0; problem.mesh.n_cells()];
-        let serial = || Box::new(LdltSolver::new()) as Box<dyn LinearSolver>;
-        let mut faer = CoupledSystem::new(&problem, dofs.clone(), &[], serial()).unwrap();
-        faer.factorize(&problem, &moduli, &[]).unwrap();
-        let mut solver = PetscSolver::new().unwrap();
-        let (ptr, neighbours) = piezocontact::assembly::node_neighbours(&problem.mesh);
-        let weights = dofs.free_per_node();
-        let owned =
-            solver.distributed().unwrap().owned_nodes(&weights, (&ptr, &neighbours)).unwrap();
-        // The assembly of this process's rows, then the backend fed with them.
-        let mine = Assembler::new(&problem, dofs.clone(), &[], owned.as_deref()).unwrap();
-        let (matrix, _) = mine.matrix(&problem, &moduli, &[]).unwrap();
-        solver.analyze(mine.pattern(), &dofs.signs()).unwrap();
-        solver.factorize(&matrix).unwrap();
-        let (rank, size) = petsc::rank_and_size();
-        let whole: &SymmetricMatrix = faer.matrix().unwrap();
-        let (n, nnz) = (whole.n(), whole.lower_entries().count());
-        let rows = solver.owned_unknowns();
-        assert!(rows.len().abs_diff(n / size) <= 4, "rank {rank}: {} of {n} rows", rows.len());
-        // No process holds the whole matrix: its rows and the entries that couple to them.
-        let held = matrix.lower_entries().count();
-        if size > 1 {
-            let bound = (1.0 / size as f64 + 0.15) * nnz as f64;
-            assert!((held as f64) < bound, "rank {rank}: {held} of {nnz} entries");
-        }
-        // Every entry of the owned rows, both triangles, as the serial matrix has it.
-        let mut serial_entries = std::collections::HashMap::new();
-        for (i, j, v) in whole.lower_entries() {
-            serial_entries.insert((i, j), v);
-            serial_entries.insert((j, i), v);
-        }
-        let owned_set: std::collections::HashSet<usize> = rows.iter().copied().collect();
-        let expected = serial_entries.keys().filter(|(i, _)| owned_set.contains(i)).count();
-        let entries = solver.owned_entries().unwrap();
-        assert_eq!(entries.len(), expected, "rank {rank}: stored entries");
-        for (i, j, v) in entries {
-            let e = serial_entries[&(i, j)];
-            assert!((v - e).abs() <= 1e-14 * e.abs(), "({i}, {j}): {v} vs {e}");
-        }
-        let covered = petsc::gather(rows.len() as f64).unwrap();
-        if rank == 0 {
-            assert_eq!(covered.iter().sum::<f64>() as usize, n, "rows of all processes");
+        for iterative in [false, true] {
+            let solver = match iterative {
+                false => PetscSolver::new().unwrap(),
+                true => PetscSolver::iterative(1e-10, 100).unwrap(),
+            };
+            holds_its_rows_of_the_same_matrix(solver, iterative);
         }
     });
+}
+
+fn holds_its_rows_of_the_same_matrix(mut solver: PetscSolver, blocks: bool) {
+    let problem = case("paper-7.2.toml", &[]).problem().unwrap();
+    let dofs = DofMap::new(&problem).unwrap();
+    let moduli = vec![1.0; problem.mesh.n_cells()];
+    let serial = || Box::new(LdltSolver::new()) as Box<dyn LinearSolver>;
+    let mut faer = CoupledSystem::new(&problem, dofs.clone(), &[], serial()).unwrap();
+    faer.factorize(&problem, &moduli, &[]).unwrap();
+    let (ptr, neighbours) = piezocontact::assembly::node_neighbours(&problem.mesh);
+    let weights = dofs.free_per_node();
+    let owned = solver.distributed().unwrap().owned_nodes(&weights, (&ptr, &neighbours)).unwrap();
+    // The assembly of this process's rows, then the backend fed with them.
+    let mine = Assembler::new(&problem, dofs.clone(), &[], owned.as_deref()).unwrap();
+    let (matrix, _) = mine.matrix(&problem, &moduli, &[]).unwrap();
+    solver.analyze(mine.pattern(), &dofs.signs()).unwrap();
+    solver.factorize(&matrix).unwrap();
+    assert_eq!(solver.stores_field_blocks(), blocks, "MATNEST on the iterative route alone");
+    let (rank, size) = petsc::rank_and_size();
+    let whole: &SymmetricMatrix = faer.matrix().unwrap();
+    let (n, nnz) = (whole.n(), whole.lower_entries().count());
+    let rows = solver.owned_unknowns();
+    assert!(rows.len().abs_diff(n / size) <= 4, "rank {rank}: {} of {n} rows", rows.len());
+    // No process holds the whole matrix: its rows and the entries that couple to them.
+    let held = matrix.lower_entries().count();
+    if size > 1 {
+        let bound = (1.0 / size as f64 + 0.15) * nnz as f64;
+        assert!((held as f64) < bound, "rank {rank}: {held} of {nnz} entries");
+    }
+    // Every entry of the owned rows, both triangles, as the serial matrix has it.
+    let mut serial_entries = std::collections::HashMap::new();
+    for (i, j, v) in whole.lower_entries() {
+        serial_entries.insert((i, j), v);
+        serial_entries.insert((j, i), v);
+    }
+    let owned_set: std::collections::HashSet<usize> = rows.iter().copied().collect();
+    let expected = serial_entries.keys().filter(|(i, _)| owned_set.contains(i)).count();
+    let entries = solver.owned_entries().unwrap();
+    assert_eq!(entries.len(), expected, "rank {rank}: stored entries");
+    for (i, j, v) in entries {
+        let e = serial_entries[&(i, j)];
+        assert!((v - e).abs() <= 1e-14 * e.abs(), "({i}, {j}): {v} vs {e}");
+    }
+    let covered = petsc::gather(rows.len() as f64).unwrap();
+    if rank == 0 {
+        assert_eq!(covered.iter().sum::<f64>() as usize, n, "rows of all processes");
+    }
 }
 
 #[test]

@@ -82,18 +82,29 @@ unsafe extern "C" {
 
 // Matrices and their factors.
 unsafe extern "C" {
-    fn MatCreateAIJ(
-        comm: MpiHandle,
-        m: PetscInt,
-        n: PetscInt,
-        big_m: PetscInt,
-        big_n: PetscInt,
+    fn MatCreate(comm: MpiHandle, mat: *mut Handle) -> Code;
+    fn MatSetSizes(mat: Handle, m: PetscInt, n: PetscInt, big_m: PetscInt, big_n: PetscInt)
+    -> Code;
+    fn MatSetBlockSize(mat: Handle, bs: PetscInt) -> Code;
+    fn MatSetType(mat: Handle, kind: *const c_char) -> Code;
+    fn MatSeqAIJSetPreallocation(mat: Handle, nz: PetscInt, nnz: *const PetscInt) -> Code;
+    fn MatMPIAIJSetPreallocation(
+        mat: Handle,
         d_nz: PetscInt,
         d_nnz: *const PetscInt,
         o_nz: PetscInt,
         o_nnz: *const PetscInt,
+    ) -> Code;
+    fn MatCreateNest(
+        comm: MpiHandle,
+        nr: PetscInt,
+        is_row: *const Handle,
+        nc: PetscInt,
+        is_col: *const Handle,
+        blocks: *const Handle,
         mat: *mut Handle,
     ) -> Code;
+    fn MatNestSetVecType(mat: Handle, kind: *const c_char) -> Code;
     fn MatSetOption(mat: Handle, option: c_int, flag: c_int) -> Code;
     fn MatSetValues(
         mat: Handle,
@@ -404,27 +415,75 @@ impl Matrix {
     /// An n × n AIJ matrix whose `local` rows are this process's, preallocated with
     /// `diagonal[k]` entries of owned row k in the owned columns and `off[k]` outside.
     pub fn new(local: usize, n: usize, diagonal: &[PetscInt], off: &[PetscInt]) -> Result<Self> {
-        let (local, n) = (index(local)?, index(n)?);
+        Self::rectangular([(local, n), (local, n)], (diagonal, off), 1)
+    }
+
+    /// An AIJ matrix of `sizes` = [(local, global) rows, (local, global) columns], this
+    /// process's rows and columns `local` of them, preallocated as [`Matrix::new`], with the
+    /// block size `block` (rows and columns; the local sizes its multiples).
+    pub fn rectangular(
+        sizes: [(usize, usize); 2],
+        (diagonal, off): (&[PetscInt], &[PetscInt]),
+        block: usize,
+    ) -> Result<Self> {
+        let [(m, big_m), (n, big_n)] = sizes;
+        let [m, big_m, n, big_n, block] = [m, big_m, n, big_n, block].map(index);
+        let (m, big_m, n, big_n, block) = (m?, big_m?, n?, big_n?, block?);
         let mut mat = null_mut();
-        // SAFETY: the preallocation arrays have one entry per local row.
+        // SAFETY: the preallocation arrays have one entry per local row; each call applies to
+        // the matrix just made (the preallocation of the other type is a no-op).
         unsafe {
-            check(
-                MatCreateAIJ(
-                    world(),
-                    local,
-                    local,
-                    n,
-                    n,
-                    0,
-                    diagonal.as_ptr(),
-                    0,
-                    off.as_ptr(),
-                    &mut mat,
-                ),
-                "MatCreateAIJ",
-            )?;
+            check(MatCreate(world(), &mut mat), "MatCreate")?;
             let this = Self(mat);
+            check(MatSetSizes(mat, m, n, big_m, big_n), "MatSetSizes")?;
+            check(MatSetBlockSize(mat, block), "MatSetBlockSize")?;
+            check(MatSetType(mat, c"aij".as_ptr()), "MatSetType")?;
+            let code = MatSeqAIJSetPreallocation(mat, 0, diagonal.as_ptr());
+            check(code, "MatSeqAIJSetPreallocation")?;
+            let code = MatMPIAIJSetPreallocation(mat, 0, diagonal.as_ptr(), 0, off.as_ptr());
+            check(code, "MatMPIAIJSetPreallocation")?;
             check(MatSetOption(mat, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption")?;
+            Ok(this)
+        }
+    }
+
+    /// PETSc's MATNEST of the four blocks `blocks[f][g]` (rows of field f, columns of field
+    /// g), field f's rows being this process's rows `fields[f]` of the whole matrix; it keeps
+    /// its own references to the blocks, which stay writable through theirs. Its vectors are
+    /// standard ones (not nested), as every vector of the backend is.
+    pub fn nest(fields: [&[PetscInt]; 2], blocks: [[&Matrix; 2]; 2]) -> Result<Self> {
+        let mut sets = [null_mut(); 2];
+        let mut made = Ok(());
+        for (set, rows) in sets.iter_mut().zip(fields) {
+            let n = index(rows.len())?;
+            // SAFETY: `rows` has n entries, copied.
+            let code =
+                unsafe { ISCreateGeneral(world(), n, rows.as_ptr(), PETSC_COPY_VALUES, set) };
+            made = made.and(check(code, "ISCreateGeneral"));
+        }
+        let handles = blocks.map(|row| row.map(|b| b.0));
+        let mut mat = null_mut();
+        // SAFETY: two index sets, a 2 × 2 row-major array of assembled-or-preallocated blocks
+        // of their sizes; the nest references the sets and blocks, so ours are released.
+        unsafe {
+            if made.is_ok() {
+                let code = MatCreateNest(
+                    world(),
+                    2,
+                    sets.as_ptr(),
+                    2,
+                    sets.as_ptr(),
+                    handles.as_ptr().cast(),
+                    &mut mat,
+                );
+                made = check(code, "MatCreateNest");
+            }
+            sets.iter_mut().filter(|s| !s.is_null()).for_each(|s| {
+                ISDestroy(s);
+            });
+            made?;
+            let this = Self(mat);
+            check(MatNestSetVecType(mat, c"standard".as_ptr()), "MatNestSetVecType")?;
             Ok(this)
         }
     }
@@ -860,7 +919,7 @@ fn has_option(name: &str) -> Result<bool> {
 }
 
 /// The value of `name` in PETSc's options database (`None` where it is not set).
-fn option(name: &str) -> Result<Option<String>> {
+pub fn option(name: &str) -> Result<Option<String>> {
     let name = CString::new(name)
         .map_err(|_| Error::LinearAlgebra("a PETSc option with a NUL character".into()))?;
     let (mut value, mut set) = ([0 as c_char; 256], 0);

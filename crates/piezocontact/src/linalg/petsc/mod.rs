@@ -24,9 +24,13 @@
 //! by PETSc's GMRES with a field split over the u and ϕ rows and algebraic multigrid on each
 //! (docs/distributed.md): its ϕ rows negated (both diagonal blocks then positive definite),
 //! each field scaled by one constant instead of row by row (the rigid-body modes of the
-//! elastic field, its multigrid's near null space, stay those of the unscaled matrix).
+//! elastic field, its multigrid's near null space, stay those of the unscaled matrix). With
+//! the field split the matrix is stored as its four field blocks (PETSc's MATNEST: the split
+//! takes its blocks by reference instead of copying them), written and read by the rows of
+//! the whole matrix (the private module `stored`).
 
 mod ffi;
+mod stored;
 
 pub use ffi::{abort, gather, initialize, rank_and_size, sum_over_processes};
 
@@ -39,8 +43,9 @@ use super::sparse::{SymmetricMatrix, SymmetricPattern};
 use super::vectors::check_length;
 use crate::error::{Error, Result};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use ffi::{Factor, Field, Gather, Krylov, KrylovSolve, Matrix, PetscInt, Vector};
+use ffi::{Factor, Field, Gather, Krylov, KrylovSolve, PetscInt, Vector};
 use std::time::Instant;
+use stored::{Preallocation, Split, Stored};
 
 /// The rows of the matrix this process owns. PETSc numbers
 /// the unknowns process by process and node by node (a node's u and ϕ together, in the order
@@ -115,21 +120,23 @@ impl Rows {
     }
 
     /// PETSc's preallocation for the seam's matrix of pattern `symbolic` (its lower triangle):
-    /// per owned row, entries in the owned columns and outside; none in the rows of the
-    /// unknowns (or [`HELD`]) that `only` leaves out, 1 on a held row's diagonal.
+    /// per owned row, entries in the owned columns and outside, by the field (`field` of a
+    /// PETSc row: 0 or 1) of their columns; none in the rows of the unknowns (or [`HELD`])
+    /// that `only` leaves out, 1 on a held row's diagonal (field 0).
     fn preallocation(
         &self,
         symbolic: SymbolicSparseColMatRef<'_, usize>,
         only: impl Fn(usize) -> bool,
-    ) -> (Vec<PetscInt>, Vec<PetscInt>) {
+        field: impl Fn(usize) -> usize,
+    ) -> Preallocation {
         let local = self.end - self.start;
-        let (mut diagonal, mut off) = (vec![0; local], vec![0; local]);
+        let [mut diagonal, mut off] = [(); 2].map(|()| [vec![0; local], vec![0; local]]);
         let mut count = |row: usize, column: usize| {
             if self.owns(row) && only(row) {
-                let k = self.petsc[row] - self.start;
+                let (k, f) = (self.petsc[row] - self.start, field(self.petsc[column]));
                 match self.owns(column) {
-                    true => diagonal[k] += 1,
-                    false => off[k] += 1,
+                    true => diagonal[f][k] += 1,
+                    false => off[f][k] += 1,
                 }
             }
         };
@@ -142,9 +149,16 @@ impl Rows {
             }
         }
         for p in (self.start..self.end).filter(|&p| self.order[p] == HELD && only(HELD)) {
-            diagonal[p - self.start] = 1;
+            diagonal[0][p - self.start] = 1;
         }
-        (diagonal, off)
+        Preallocation { diagonal, off }
+    }
+
+    /// The split of PETSc's rows into u (with the held rows) and ϕ (pivot sign −1 in
+    /// `signs`).
+    fn split(&self, signs: &[i8]) -> Split {
+        let field = |k: usize| u8::from(k != HELD && signs[k] < 0);
+        Split::new(self.order.iter().map(|&k| field(k)).collect())
     }
 
     /// Copies the owned rows of `whole` (the seam's numbering) into `local` (PETSc's), 0 at
@@ -175,7 +189,7 @@ type SavedRow = (PetscInt, Vec<PetscInt>, Vec<f64>);
 struct Objects {
     /// The factorised matrix (during a solve with a patched matrix, the preconditioning one:
     /// [`UnsymmetricSolve`]).
-    matrix: Matrix,
+    matrix: Stored,
     factor: Option<Factor>,
     krylov: Option<Krylov>,
     b: Vector,
@@ -188,7 +202,7 @@ struct Objects {
 /// pushes its (PETSc column, value) pairs, scaled D A D by `scaling` and, on the iterative
 /// route, negated on ϕ rows (`signs`).
 fn write_rows(
-    target: &mut Matrix,
+    target: &mut Stored,
     (rows, only): (&Rows, impl Fn(usize) -> bool),
     (scaling, signs, iterative): (&[f64], &[i8], bool),
     mut row: impl FnMut(usize, &mut Vec<(PetscInt, f64)>),
@@ -219,7 +233,7 @@ fn write_rows(
 /// below it, an entry of each row i > j); a held row 1 on its diagonal (the scaled elastic
 /// diagonal is 1 on average: [`field_scaling`]).
 fn write_lower(
-    target: &mut Matrix,
+    target: &mut Stored,
     rows: &Rows,
     (scaling, signs, iterative): (&[f64], &[i8], bool),
     lower: SparseColMatRef<'_, usize, f64>,
@@ -278,7 +292,7 @@ pub struct PetscSolver {
     iterative: Option<Iterative>,
     /// The mesh nodes' dimension and coordinates and the component of each unknown, from
     /// [`Distributed::node_layout`].
-    layout: Option<(usize, Vec<f64>, Vec<u8>)>,
+    layout: Option<Layout>,
     /// The Krylov iterations of each solve on the iterative route, in order.
     krylov_iterations: Vec<usize>,
 }
@@ -292,6 +306,9 @@ fn patched_rows(patch: &RowMatrix) -> impl Fn(usize) -> bool + '_ {
 fn unfilled() -> Error {
     Error::LinearAlgebra("PETSc backend: solve before factorize".into())
 }
+
+/// The mesh nodes' dimension and coordinates and the component of each unknown.
+type Layout = (usize, Vec<f64>, Vec<u8>);
 
 /// The iterative route's settings (defaults that PETSc's options override).
 #[derive(Clone, Copy, Debug, Default)]
@@ -330,8 +347,9 @@ impl PetscSolver {
         owned.into_iter().flatten().copied().filter(|&k| k != HELD).collect()
     }
 
-    /// The distributed matrix's owned rows as PETSc stores them: (row, column, value), for
-    /// the check that it is the seam's matrix.
+    /// The distributed matrix's owned rows as PETSc stores them, unscaled (and on the
+    /// iterative route the ϕ rows' negation undone): (row, column, value) of the seam's
+    /// unknowns, for the check that it is the seam's matrix.
     pub fn owned_entries(&self) -> Result<Vec<(usize, usize, f64)>> {
         let (Some(rows), Some(d)) = (&self.rows, &self.distributed) else {
             return Ok(Vec::new());
@@ -339,12 +357,19 @@ impl PetscSolver {
         let mut out = Vec::new();
         for p in (rows.start..rows.end).filter(|&p| rows.order[p] != HELD) {
             let i = rows.order[p];
+            let s = row_sign(self.iterative.is_some(), self.signs[i]) / self.scaling[i];
             for (q, v) in d.matrix.row(p as PetscInt)? {
                 let j = rows.order[q];
-                out.push((i, j, v / (self.scaling[i] * self.scaling[j])));
+                out.push((i, j, v * s / self.scaling[j]));
             }
         }
         Ok(out)
+    }
+
+    /// Whether the distributed matrix is stored as its field blocks (PETSc's MATNEST, which
+    /// the field split reads without copies), not as one AIJ matrix.
+    pub fn stores_field_blocks(&self) -> bool {
+        self.distributed.as_ref().is_some_and(|d| matches!(d.matrix, Stored::Blocks(_)))
     }
 
     fn analyze_rows(
@@ -382,8 +407,7 @@ impl PetscSolver {
         })?;
         check_length("matrix order", rows.n, matrix.n())?;
         if self.distributed.is_none() {
-            let (diagonal, off) = rows.preallocation(matrix.lower().symbolic(), |_| true);
-            let matrix = Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?;
+            let matrix = self.stored(rows, matrix.lower().symbolic())?;
             let (b, x) = (matrix.vector()?, matrix.vector()?);
             let gather = Gather::new(&x)?;
             self.distributed = Some(Objects { matrix, factor: None, krylov: None, b, x, gather });
@@ -409,6 +433,24 @@ impl PetscSolver {
         let scaled = (&self.scaling[..], &self.signs[..], self.iterative.is_some());
         write_lower(&mut d.matrix, rows, scaled, matrix.lower().as_ref())?;
         d.matrix.assemble(self.iterative.is_none())
+    }
+
+    /// The distributed matrix of `rows`, preallocated for `symbolic` (the seam's matrix's lower
+    /// triangle): on the iterative route with the field split (the default, or `-pc_type
+    /// fieldsplit`) PETSc's MATNEST of the u and ϕ blocks, else one AIJ matrix.
+    fn stored(&self, rows: &Rows, symbolic: SymbolicSparseColMatRef<'_, usize>) -> Result<Stored> {
+        let range = (rows.start, rows.end);
+        let split = self.iterative.is_some()
+            && ffi::option("-pc_type")?.is_none_or(|kind| kind == "fieldsplit");
+        if !split {
+            let counts = rows.preallocation(symbolic, |_| true, |_| 0);
+            return Stored::whole(range, rows.total, &counts);
+        }
+        let split = rows.split(&self.signs);
+        let counts = rows.preallocation(symbolic, |_| true, |p| split.field(p));
+        let u = rows.field(&self.signs, 1);
+        let block = rigid_modes(self.layout.as_ref(), rows, &u).map_or(1, |(dim, _)| dim);
+        Stored::blocks(range, split, &counts, block)
     }
 
     /// The owned rows of the distributed matrix that `patch` will overwrite, as they are
@@ -452,12 +494,12 @@ impl PetscSolver {
 
     /// J − P, scaled as the distributed matrix: a matrix of the layout with entries only in
     /// the patched rows (the two patches share their pattern: [`Patched::new`]).
-    fn difference(&self, patched: &Patched) -> Result<Matrix> {
+    fn difference(&self, patched: &Patched) -> Result<Stored> {
         let (jacobian, preconditioner) = (patched.jacobian(), patched.preconditioner());
         let Some(rows) = &self.rows else { return Err(unfilled()) };
         let only = patched_rows(preconditioner);
-        let (diagonal, off) = rows.preallocation(patched.pattern().symbolic(), &only);
-        let mut difference = Matrix::new(rows.end - rows.start, rows.total, &diagonal, &off)?;
+        let counts = rows.preallocation(patched.pattern().symbolic(), &only, |_| 0);
+        let mut difference = Stored::whole((rows.start, rows.end), rows.total, &counts)?;
         let scaled = (&self.scaling[..], &self.signs[..], true);
         write_rows(&mut difference, (rows, only), scaled, |i, row| {
             let ((columns, p), j) = (preconditioner.row(i), jacobian.row(i).1);
@@ -478,26 +520,27 @@ impl PetscSolver {
         };
         if d.krylov.is_none() {
             let (u, phi) = (rows.field(&self.signs, 1), rows.field(&self.signs, -1));
-            let rigid = self
-                .layout
-                .as_ref()
-                .and_then(|(dim, c, _)| Some((*dim, rigid(rows, &u, *dim, c)?)));
+            let rigid = rigid_modes(self.layout.as_ref(), rows, &u);
             let petsc = |rows: Vec<usize>| rows.into_iter().map(|p| p as PetscInt).collect();
             let fields = [
                 Field { name: c"u", rows: petsc(u), rigid },
                 Field { name: c"phi", rows: petsc(phi), rigid: None },
             ];
             let (rtol, most) = (iterative.rtol, iterative.max_iterations);
-            d.krylov = Some(Krylov::new(&d.matrix, &fields, rtol, most)?);
+            d.krylov = Some(Krylov::new(d.matrix.operator(), &fields, rtol, most)?);
         }
-        d.krylov.as_mut().expect("made above").set_up(&d.matrix)
+        d.krylov.as_mut().expect("made above").set_up(d.matrix.operator())
     }
 
     /// One Krylov solve of the scaled system (ϕ rows negated) — with the factorised matrix, or
     /// with `general` = (an operator, the relative residual), preconditioned as for the
     /// distributed matrix's current values —: `rhs` whole in, the whole solution out; a solve
     /// that does not converge is an error with its numbers and the options to change.
-    fn krylov_solve(&mut self, rhs: &mut [f64], general: Option<(&Matrix, f64)>) -> Result<()> {
+    fn krylov_solve(
+        &mut self,
+        rhs: &mut [f64],
+        general: Option<(&ffi::Matrix, f64)>,
+    ) -> Result<()> {
         rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(true, sign));
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("set up");
@@ -506,7 +549,7 @@ impl PetscSolver {
         let solve = match general {
             None => krylov.solve(&d.b, &mut d.x)?,
             Some((operator, rtol)) => {
-                krylov.solve_operator((operator, &d.matrix), rtol, &d.b, &mut d.x)?
+                krylov.solve_operator((operator, d.matrix.operator()), rtol, &d.b, &mut d.x)?
             }
         };
         self.krylov_iterations.push(solve.iterations);
@@ -533,7 +576,8 @@ impl PetscSolver {
                 }
                 _ => Vec::new(),
             };
-            let factor = Factor::analyse(&d.matrix, (!self.last.is_empty()).then_some(&schur[..]))?;
+            let schur = (!self.last.is_empty()).then_some(&schur[..]);
+            let factor = Factor::analyse(d.matrix.operator(), schur)?;
             // INFOG(17): the memory MUMPS's analysis estimates for the factorisation, summed
             // over the processes [MB].
             self.stats.factor_bytes = f64::from(factor.infog(17)?) * 1e6;
@@ -542,7 +586,7 @@ impl PetscSolver {
             self.stats.symbolic_seconds += analysis;
         }
         let factor = d.factor.as_mut().expect("analysed");
-        factor.factorize(&d.matrix, !self.last.is_empty())?;
+        factor.factorize(d.matrix.operator(), !self.last.is_empty())?;
         // INFOG(29): entries of the factor (negative: millions of entries).
         let entries = factor.infog(29)?;
         self.stats.factor_len = if entries < 0 {
@@ -610,7 +654,7 @@ impl PetscSolver {
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("filled");
         d.b.with_local(|b| rows.scatter(x, b))?;
-        d.matrix.mult(&d.b, &mut d.x)?;
+        d.matrix.operator().mult(&d.b, &mut d.x)?;
         let (mut gathered, mut y) = (vec![0.0; rows.total], vec![0.0; rows.n]);
         d.gather.run(&d.x, &mut gathered)?;
         rows.unpermute(&gathered, &mut y);
@@ -748,8 +792,8 @@ impl UnsymmetricSolve for PetscSolver {
         let difference = self.difference(&patched)?;
         let saved = self.save_rows(patched.preconditioner())?;
         self.write_patch(patched.preconditioner())?;
-        let own = &self.distributed.as_ref().ok_or_else(unfilled)?.matrix;
-        let operator = Matrix::sum(&[own, &difference])?;
+        let own = self.distributed.as_ref().ok_or_else(unfilled)?.matrix.operator();
+        let operator = ffi::Matrix::sum(&[own, difference.operator()])?;
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
         let solved = self.krylov_solve(rhs, Some((&operator, rtol)));
         // K's rows again, whether or not the solve converged.
@@ -880,6 +924,14 @@ fn rigid(rows: &Rows, u: &[usize], dim: usize, coordinates: &[f64]) -> Option<Ve
     Some(out)
 }
 
+/// The rigid-body modes of the elastic rows `u` (this process's, PETSc's numbering) from the
+/// nodes' `layout` ([`Distributed::node_layout`]): the dimension and the nodes' coordinates
+/// (see [`rigid`]).
+fn rigid_modes(layout: Option<&Layout>, rows: &Rows, u: &[usize]) -> Option<(usize, Vec<f64>)> {
+    let (dim, coordinates, _) = layout?;
+    Some((*dim, rigid(rows, u, *dim, coordinates)?))
+}
+
 /// The factor on a row of pivot sign `sign`: on the iterative route −1 for a ϕ row, whose
 /// negation makes the matrix positive real with both diagonal blocks positive definite (K_uu
 /// and +K_ϕϕ, each for its multigrid); else 1.
@@ -923,11 +975,17 @@ mod tests {
         assert_eq!(rows.nodes, vec![0, 0, 0, 1, 1, 1, 2]);
         // The held row an identity row; every other row full: the 6 × 6 pattern's 21 stored
         // entries give 6 a row; all on this process.
-        let (diagonal, off) = rows.preallocation(pattern.symbolic(), |_| true);
-        assert_eq!(diagonal, vec![6, 6, 6, 1, 6, 6, 6]);
-        assert_eq!(off, vec![0; 7]);
-        let (diagonal, _) = rows.preallocation(pattern.symbolic(), |i| i == 4);
-        assert_eq!(diagonal, vec![0, 0, 6, 0, 0, 0, 0], "the rows `only` takes alone");
+        let counts = rows.preallocation(pattern.symbolic(), |_| true, |_| 0);
+        assert_eq!(counts.diagonal[0], vec![6, 6, 6, 1, 6, 6, 6]);
+        assert_eq!(counts.off, [vec![0; 7], vec![0; 7]]);
+        let counts = rows.preallocation(pattern.symbolic(), |i| i == 4, |_| 0);
+        assert_eq!(counts.diagonal[0], vec![0, 0, 6, 0, 0, 0, 0], "the rows `only` takes alone");
+        // By the columns' field: each full row has 3 u columns and 3 ϕ ones, the held row its
+        // diagonal alone.
+        let split = rows.split(&signs);
+        let counts = rows.preallocation(pattern.symbolic(), |_| true, |p| split.field(p));
+        assert_eq!(counts.diagonal, [vec![3, 3, 3, 1, 3, 3, 3], vec![3, 3, 3, 0, 3, 3, 3]]);
+        assert_eq!((0..7).map(|p| split.field(p)).collect::<Vec<_>>(), vec![0, 0, 1, 0, 0, 1, 1]);
         let u = rows.field(&signs, 1);
         assert_eq!(u, vec![0, 1, 3, 4]);
         // One point per node of the field: nodes 0 and 1.
