@@ -215,9 +215,11 @@ pub enum Beyond {
 pub struct Linearisation {
     /// g_e(‖ε^D(u_n)‖²) \[stress\].
     pub moduli: Vec<f64>,
-    /// Per element: (4 g'(t) \[stress\], ε^D(u_n) padded to 3 × 3); empty for the secant, and
-    /// a zero coefficient where the element keeps its secant.
-    pub tangent: Vec<(f64, [[f64; 3]; 3])>,
+    /// The elements that use the rank-one part, in increasing order: (element, 4 g'(t) or
+    /// the floored coefficient \[stress\], ε^D(u_n) padded to 3 × 3); empty for the secant.
+    /// The others keep their secant: where the law is linear (t ≤ t0) the list is empty, so
+    /// that it costs nothing on a mesh whose law softens near the contact alone.
+    pub tangent: Vec<(usize, f64, [[f64; 3]; 3])>,
 }
 
 impl Linearisation {
@@ -230,7 +232,7 @@ impl Linearisation {
     /// it is not positive along ε^D.
     pub fn tangent(problem: &Problem, dofs: &DofMap, x: &[f64], beyond: Beyond) -> Result<Self> {
         let mut moduli = Vec::with_capacity(problem.mesh.n_cells());
-        let mut tangent = Vec::with_capacity(problem.mesh.n_cells());
+        let mut tangent = Vec::new();
         for c in 0..problem.mesh.n_cells() {
             let deviator = with_simplex!(problem.mesh.dim(), deviator_tensor(problem, dofs, x, c))?;
             let t: f64 = deviator.iter().flatten().map(|v| v * v).sum();
@@ -241,14 +243,23 @@ impl Linearisation {
             // means unchanged moduli wherever the law is linear.
             let floored = beyond == Beyond::Floored && g + 2.0 * dg * t <= 0.0;
             let coefficient = if floored { -2.0 * (1.0 - FLOOR) * g / t } else { 4.0 * dg };
-            tangent.push(if dg != 0.0 { (coefficient, deviator) } else { (0.0, [[0.0; 3]; 3]) });
+            if dg != 0.0 && coefficient != 0.0 {
+                tangent.push((c, coefficient, deviator));
+            }
         }
         Ok(Self { moduli, tangent })
     }
 
     /// Whether a rank-one part is used on some element (the law softens there).
     pub fn is_tangent(&self) -> bool {
-        self.tangent.iter().any(|(coefficient, _)| *coefficient != 0.0)
+        !self.tangent.is_empty()
+    }
+
+    /// Element c's rank-one part (its coefficient \[stress\] and ε^D), if it uses one.
+    pub fn tangent_of(&self, c: usize) -> Option<(f64, &[[f64; 3]; 3])> {
+        let at = self.tangent.binary_search_by_key(&c, |(cell, _, _)| *cell).ok()?;
+        let (_, coefficient, deviator) = &self.tangent[at];
+        Some((*coefficient, deviator))
     }
 }
 
@@ -401,7 +412,7 @@ mod tests {
         let x = solve_contact(problem, model, &built.settings).unwrap().x;
         let dofs = DofMap::new(problem).unwrap();
         let whole = Linearisation::tangent(problem, &dofs, &x, Beyond::Whole).unwrap();
-        let used = whole.tangent.iter().filter(|(b, _)| *b != 0.0).count();
+        let used = whole.tangent.len();
         assert!(used > problem.mesh.n_cells() / 10, "the law softens in {used} elements");
         let assembler = Assembler::new(problem, dofs.clone(), &[], None).unwrap();
         let (matrix, _) = assembler.linearised_matrix(problem, &whole, &[]).unwrap();

@@ -188,7 +188,7 @@ impl Assembler {
             (0..self.pattern.nnz() + self.dofs.n_free()).map(|_| AtomicU64::new(0)).collect();
         let add_cells = |cells: &[usize]| {
             cells.iter().try_for_each(|&c| {
-                let cell = Cell { c, modulus: moduli[c], tangent: linearisation.tangent.get(c) };
+                let cell = Cell { c, modulus: moduli[c], tangent: linearisation.tangent_of(c) };
                 with_simplex!(dim, add_cell(problem, self, &cell, &sums))
             })
         };
@@ -485,7 +485,7 @@ fn cell_positions(
 struct Cell<'a> {
     c: usize,
     modulus: f64,
-    tangent: Option<&'a (f64, [[f64; 3]; 3])>,
+    tangent: Option<(f64, &'a [[f64; 3]; 3])>,
 }
 
 /// Adds the element matrix of a cell to the assembler's pattern (nnz values, then the
@@ -505,8 +505,8 @@ fn add_cell<const D: usize, const N: usize>(
     let nodes = problem.mesh.cell(cell.c);
     turn_element::<D, N>(dofs, nodes, &mut k);
     let global = local_dofs::<D, N>(dofs, nodes);
-    if let Some(&(beta, deviator)) = cell.tangent.filter(|(beta, _)| *beta != 0.0) {
-        let mut a = tangent_vector::<D, N>(&s, &deviator);
+    if let Some((beta, deviator)) = cell.tangent {
+        let mut a = tangent_vector::<D, N>(&s, deviator);
         turn_vector::<D, N>(dofs, nodes, &mut a);
         let t: f64 = deviator.iter().flatten().map(|v| v * v).sum();
         let lifting_start = sums.len() - dofs.n_free();
