@@ -190,14 +190,56 @@ impl CoupledSystem {
         linearisation: &Linearisation,
         blocks: &[NodalBlock],
     ) -> Result<()> {
+        self.factorize_with(problem, (linearisation, None), blocks)
+    }
+
+    /// [`CoupledSystem::factorize_linearised`] on a route that solves with an operator other
+    /// than its preconditioner ([`crate::linalg::UnsymmetricSolve`]): B̌ made with
+    /// `linearisation` is the operator of every solve and product, B̌ made with
+    /// `preconditioning` (Hencky's floored tangent, positive where the whole one is not) is
+    /// factorised — set up as the preconditioner — and the backend holds their difference on
+    /// the rows where they differ. Elsewhere the same as `factorize_linearised`.
+    pub fn factorize_preconditioned(
+        &mut self,
+        problem: &Problem,
+        (linearisation, preconditioning): (&Linearisation, &Linearisation),
+        blocks: &[NodalBlock],
+    ) -> Result<()> {
+        if self.solver.unsymmetric().is_none() {
+            return self.factorize_linearised(problem, linearisation, blocks);
+        }
+        self.factorize_with(problem, (linearisation, Some(preconditioning)), blocks)
+    }
+
+    /// The factorisation of B̌ made with the first linearisation, or of B̌ made with the
+    /// second, corrected to the first ([`CoupledSystem::factorize_preconditioned`]).
+    fn factorize_with(
+        &mut self,
+        problem: &Problem,
+        (linearisation, preconditioning): (&Linearisation, Option<&Linearisation>),
+        blocks: &[NodalBlock],
+    ) -> Result<()> {
         let t = Instant::now();
         let (matrix, lifting) = self.assembler.linearised_matrix(problem, linearisation, blocks)?;
+        let preconditioner = match preconditioning {
+            Some(p) => Some(self.assembler.linearised_matrix(problem, p, blocks)?.0),
+            None => None,
+        };
         self.lifting = lifting;
         self.lifting_stale = false;
         self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
         self.assembly_seconds += t.elapsed().as_secs_f64();
         self.unloaded = None;
-        self.solver.factorize(&matrix)?;
+        match &preconditioner {
+            None => self.solver.factorize(&matrix)?,
+            Some(preconditioner) => {
+                self.solver.factorize(preconditioner)?;
+                // On every process (the backend's work is collective), whatever its rows.
+                let correction = RowMatrix::difference(&matrix, preconditioner)?;
+                let backend = self.solver.unsymmetric().expect("checked by the caller");
+                backend.correct(self.assembler.pattern(), correction)?;
+            }
+        }
         if let Some(KeptRows { select, rows }) = &mut self.kept {
             *rows =
                 Some((RowMatrix::from_symmetric_rows(&matrix, |r| select[r]), matrix.diagonal()));

@@ -6,7 +6,9 @@
 //! - the whole tangent can cycle, or make a pivot of B̌ change sign, where the law is not
 //!   positive beyond e·t0; when its criterion grows, or B̌ loses its signs (on an iterative
 //!   route, which sees no pivots: when the first solve with it fails), it fails once, and
-//!   the floored tangent ([`Beyond::Floored`]) takes the next step;
+//!   the floored tangent ([`Beyond::Floored`]) takes the next step. On an iterative route
+//!   the floored tangent is the whole one's preconditioner where they differ (the operator
+//!   stays the whole tangent: [`CoupledSystem::factorize_preconditioned`]);
 //! - after a second failure the floor stays, and the steps on a factorisation of the floored
 //!   tangent are chord steps (solves on the kept factor) while they contract.
 
@@ -175,9 +177,22 @@ impl Hencky {
     ) -> Result<()> {
         method.before_factorisation(system)?;
         let blocks = method.blocks();
-        let mut factorised = system.factorize_linearised(problem, &self.current, blocks);
         let iterative = system.is_iterative();
-        if iterative && !self.secant && self.beyond == Beyond::Whole && factorised.is_ok() {
+        let whole = iterative && !self.secant && self.beyond == Beyond::Whole;
+        // On an iterative route the floored tangent preconditions the whole one where they
+        // differ.
+        let floored = match whole {
+            true => Some(linearise(problem, system.dofs(), x, self.secant, Beyond::Floored)?),
+            false => None,
+        };
+        let mut factorised = match floored.filter(|floored| *floored != self.current) {
+            Some(floored) => {
+                let pair = (&self.current, &floored);
+                system.factorize_preconditioned(problem, pair, blocks)
+            }
+            None => system.factorize_linearised(problem, &self.current, blocks),
+        };
+        if whole && factorised.is_ok() {
             // An iterative route cannot see a pivot of the wrong sign: its solve fails
             // instead. The first solve, kept by the system for the step that follows.
             factorised = system.solve(None).map(|_| ());

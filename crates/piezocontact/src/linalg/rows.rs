@@ -64,6 +64,26 @@ impl RowMatrix {
         Self { pattern: Arc::new(RowPattern(transposed)), values }
     }
 
+    /// `a − b` on the rows where two matrices of one pattern differ (both triangles' entries,
+    /// a's pattern), the others empty (all of them where the matrices are equal).
+    pub fn difference(a: &SymmetricMatrix, b: &SymmetricMatrix) -> Result<Self> {
+        check_length(
+            "the matrices' entries",
+            a.lower_entries().count(),
+            b.lower_entries().count(),
+        )?;
+        let mut differs = vec![false; a.n()];
+        for ((i, j, x), (_, _, y)) in a.lower_entries().zip(b.lower_entries()) {
+            if x != y {
+                (differs[i], differs[j]) = (true, true);
+            }
+        }
+        let mut difference = Self::from_symmetric_rows(a, |r| differs[r]);
+        let subtrahend = Self::from_symmetric_rows(b, |r| differs[r]);
+        difference.values.iter_mut().zip(&subtrahend.values).for_each(|(x, y)| *x -= y);
+        Ok(difference)
+    }
+
     /// Order of the matrix.
     pub fn n(&self) -> usize {
         self.pattern.0.ncols()

@@ -4,7 +4,7 @@
 //! shaped.
 
 use super::dense::DenseMatrix;
-use super::rows::Patched;
+use super::rows::{Patched, RowMatrix};
 use super::sparse::{SymmetricMatrix, SymmetricPattern};
 use super::vectors::column_count;
 use crate::error::Result;
@@ -132,6 +132,12 @@ pub trait UnsymmetricSolve {
     /// K x with the factorised matrix K as the backend holds it (`x` whole, the product whole
     /// on every process), so that the caller need not keep a copy of K of its own.
     fn product(&mut self, x: &[f64]) -> Result<Vec<f64>>;
+    /// From now to the next factorisation, the operator of every solve and product is the
+    /// factorised matrix plus `correction` (rows of the factorised matrix's pattern `pattern`,
+    /// in the seam's numbering; a process may hold only the rows it owns), while the
+    /// preconditioner stays the factorised matrix's: a positive matrix preconditions an
+    /// operator that is not (Hencky's whole tangent beyond e·t0, model §13).
+    fn correct(&mut self, pattern: &SymmetricPattern, correction: RowMatrix) -> Result<()>;
 }
 
 /// What a backend whose rows live on several processes tells the assembly, so that each

@@ -295,6 +295,9 @@ pub struct PetscSolver {
     layout: Option<Layout>,
     /// The Krylov iterations of each solve on the iterative route, in order.
     krylov_iterations: Vec<usize>,
+    /// The operator's correction since the last factorisation ([`UnsymmetricSolve::correct`]):
+    /// its rows, and the matrix of the layout that holds them as the factorised one is held.
+    correction: Option<(RowMatrix, Stored)>,
 }
 
 /// Whether unknown i (or [`HELD`]) has a row in `patch`: a held row never has.
@@ -493,18 +496,26 @@ impl PetscSolver {
     }
 
     /// J − P, scaled as the distributed matrix: a matrix of the layout with entries only in
-    /// the patched rows (the two patches share their pattern: [`Patched::new`]).
+    /// the patched rows (the two patches share their pattern: [`Patched::new`]) and, with a
+    /// correction, the correction's rows outside them (J's rows hold it already).
     fn difference(&self, patched: &Patched) -> Result<Stored> {
         let (jacobian, preconditioner) = (patched.jacobian(), patched.preconditioner());
         let Some(rows) = &self.rows else { return Err(unfilled()) };
-        let only = patched_rows(preconditioner);
-        let counts = rows.preallocation(patched.pattern().symbolic(), &only, |_| 0);
+        let in_patch = patched_rows(preconditioner);
+        let correction = self.correction.as_ref().map(|(rows, _)| rows);
+        let corrected = |i: usize| correction.filter(|c| patched_rows(c)(i) && !in_patch(i));
+        let only = |i: usize| in_patch(i) || corrected(i).is_some();
+        let counts = rows.preallocation(patched.pattern().symbolic(), only, |_| 0);
         let mut difference = Stored::whole((rows.start, rows.end), rows.total, &counts)?;
         let scaled = (&self.scaling[..], &self.signs[..], true);
         write_rows(&mut difference, (rows, only), scaled, |i, row| {
+            let petsc = |c: &usize| rows.petsc[*c] as PetscInt;
+            if let Some(correction) = corrected(i) {
+                let (columns, values) = correction.row(i);
+                return row.extend(columns.iter().map(petsc).zip(values.iter().copied()));
+            }
             let ((columns, p), j) = (preconditioner.row(i), jacobian.row(i).1);
-            let petsc = columns.iter().map(|&c| rows.petsc[c] as PetscInt);
-            row.extend(petsc.zip(j.iter().zip(p).map(|(j, p)| j - p)));
+            row.extend(columns.iter().map(petsc).zip(j.iter().zip(p).map(|(j, p)| j - p)));
         })?;
         difference.assemble(false)?;
         Ok(difference)
@@ -546,9 +557,14 @@ impl PetscSolver {
         let d = self.distributed.as_mut().expect("set up");
         let krylov = d.krylov.as_ref().expect("set up");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
-        let solve = match general {
-            None => krylov.solve(&d.b, &mut d.x)?,
-            Some((operator, rtol)) => {
+        let solve = match (general, &self.correction) {
+            (None, None) => krylov.solve(&d.b, &mut d.x)?,
+            (None, Some((_, correction))) => {
+                let (own, rtol) = (d.matrix.operator(), krylov.tolerances()?.0);
+                let operator = ffi::Matrix::sum(&[own, correction.operator()])?;
+                krylov.solve_operator((&operator, own), rtol, &d.b, &mut d.x)?
+            }
+            (Some((operator, rtol)), _) => {
                 krylov.solve_operator((operator, d.matrix.operator()), rtol, &d.b, &mut d.x)?
             }
         };
@@ -649,12 +665,19 @@ impl PetscSolver {
         Ok(())
     }
 
-    /// y = A x of the scaled matrix, whole vectors on every process.
+    /// y = A x of the scaled matrix (with the correction, if any), whole vectors on every
+    /// process.
     fn multiply(&mut self, x: &[f64]) -> Result<Vec<f64>> {
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("filled");
         d.b.with_local(|b| rows.scatter(x, b))?;
-        d.matrix.operator().mult(&d.b, &mut d.x)?;
+        match &self.correction {
+            None => d.matrix.operator().mult(&d.b, &mut d.x)?,
+            Some((_, correction)) => {
+                let operator = ffi::Matrix::sum(&[d.matrix.operator(), correction.operator()])?;
+                operator.mult(&d.b, &mut d.x)?;
+            }
+        }
         let (mut gathered, mut y) = (vec![0.0; rows.total], vec![0.0; rows.n]);
         d.gather.run(&d.x, &mut gathered)?;
         rows.unpermute(&gathered, &mut y);
@@ -694,6 +717,7 @@ impl LinearSolver for PetscSolver {
 
     fn factorize(&mut self, matrix: &SymmetricMatrix) -> Result<()> {
         let t = Instant::now();
+        self.correction = None;
         self.fill(matrix)?;
         if self.iterative.is_some() {
             self.set_up_krylov()?;
@@ -818,6 +842,31 @@ impl UnsymmetricSolve for PetscSolver {
         let sign = |k: usize| row_sign(self.iterative.is_some(), self.signs[k]);
         product.iter_mut().enumerate().for_each(|(k, y)| *y *= sign(k) / self.scaling[k]);
         Ok(product)
+    }
+
+    /// The correction's rows written into a matrix of the layout, scaled and signed as the
+    /// factorised matrix is (its preallocation from the factorised matrix's pattern).
+    fn correct(&mut self, pattern: &SymmetricPattern, correction: RowMatrix) -> Result<()> {
+        let Some(rows) = &self.rows else { return Err(unfilled()) };
+        check_length("correction order", rows.n, correction.n())?;
+        if self.distributed.is_none() {
+            return Err(unfilled());
+        }
+        let matrix = {
+            let only = patched_rows(&correction);
+            let counts = rows.preallocation(pattern.symbolic(), &only, |_| 0);
+            let mut matrix = Stored::whole((rows.start, rows.end), rows.total, &counts)?;
+            let scaled = (&self.scaling[..], &self.signs[..], true);
+            write_rows(&mut matrix, (rows, &only), scaled, |i, row| {
+                let (columns, values) = correction.row(i);
+                let petsc = columns.iter().map(|&c| rows.petsc[c] as PetscInt);
+                row.extend(petsc.zip(values.iter().copied()));
+            })?;
+            matrix.assemble(false)?;
+            matrix
+        };
+        self.correction = Some((correction, matrix));
+        Ok(())
     }
 }
 
