@@ -14,6 +14,13 @@ use crate::linalg::{
 use crate::problem::{Factors, Problem};
 use std::time::Instant;
 
+/// The cap of [`CoupledSystem::check_solve`] in multiples of the most Krylov iterations of a
+/// solve so far.
+pub const CHECK_ITERATIONS: usize = 10;
+
+/// The least cap of [`CoupledSystem::check_solve`].
+pub const CHECK_FLOOR: usize = 100;
+
 /// Wall-clock seconds spent in each phase, and what the linear solver counted.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Timings {
@@ -341,6 +348,20 @@ impl CoupledSystem {
             self.unloaded = Some(x.clone());
         }
         Ok(x)
+    }
+
+    /// The first solve after a factorisation on an iterative route, as the check that B̌ kept
+    /// its signs (a Krylov method sees no pivots: a solve that fails stands in for a pivot of
+    /// the wrong sign), capped at [`CHECK_ITERATIONS`] times the most iterations of a solve
+    /// so far (at least [`CHECK_FLOOR`]), so that a failing check does not spend a whole
+    /// solve's budget; its solution kept as [`CoupledSystem::solve`] keeps it.
+    pub fn check_solve(&mut self) -> Result<Vec<f64>> {
+        let most = self.solver.route().krylov_iterations.iter().max().copied();
+        if let (None, Some(most), Some(backend)) = (&self.unloaded, most, self.solver.unsymmetric())
+        {
+            backend.cap_next_solve((CHECK_ITERATIONS * most).max(CHECK_FLOOR));
+        }
+        self.solve(None)
     }
 
     /// Solves J x = b in place (free DOFs) for J the factorised matrix B̌ but on the rows of

@@ -195,7 +195,7 @@ impl Hencky {
         if whole && factorised.is_ok() {
             // An iterative route cannot see a pivot of the wrong sign: its solve fails
             // instead. The first solve, kept by the system for the step that follows.
-            factorised = system.solve(None).map(|_| ());
+            factorised = system.check_solve().map(|_| ());
         }
         self.floored_factor = self.beyond == Beyond::Floored && factorised.is_ok();
         let lost_signs = match &factorised {

@@ -138,6 +138,9 @@ pub trait UnsymmetricSolve {
     /// preconditioner stays the factorised matrix's: a positive matrix preconditions an
     /// operator that is not (Hencky's whole tangent beyond e·t0, model §13).
     fn correct(&mut self, pattern: &SymmetricPattern, correction: RowMatrix) -> Result<()>;
+    /// Stops the next solve alone after at most `iterations` Krylov iterations (an error if
+    /// it has not converged by then): a check that need not cost a whole solve's budget.
+    fn cap_next_solve(&mut self, iterations: usize);
 }
 
 /// What a backend whose rows live on several processes tells the assembly, so that each

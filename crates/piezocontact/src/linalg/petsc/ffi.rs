@@ -709,6 +709,8 @@ pub struct KrylovSolve {
     pub residual: f64,
     /// The relative tolerance it was asked for.
     pub rtol: f64,
+    /// The most iterations it was allowed.
+    pub most: usize,
 }
 
 /// One field of a field split: its name, this process's rows of it (PETSc's numbering) and,
@@ -822,23 +824,24 @@ impl Krylov {
             check(KSPGetConvergedReason(self.0, &mut reason), "KSPGetConvergedReason")?;
             check(KSPGetResidualNorm(self.0, &mut residual), "KSPGetResidualNorm")?;
         }
-        let rtol = self.tolerances()?.0;
-        Ok(KrylovSolve { iterations: iterations.max(0) as usize, reason, residual, rtol })
+        let (rtol, most) = self.tolerances()?;
+        Ok(KrylovSolve { iterations: iterations.max(0) as usize, reason, residual, rtol, most })
     }
 
     /// x = A⁻¹ b from x = 0 with A = `operator` (of the layout of the solver's own matrix
-    /// `own`), preconditioned as for `own`'s current values, to the relative residual `rtol`;
-    /// the solver's operators and tolerance are its own again afterwards.
+    /// `own`), preconditioned as for `own`'s current values, to the relative residual `rtol`
+    /// in at most `most` iterations (`None`: the solver's own); the solver's operators and
+    /// tolerances are its own again afterwards.
     pub fn solve_operator(
         &self,
         (operator, own): (&Matrix, &Matrix),
-        rtol: f64,
+        (rtol, most): (f64, Option<usize>),
         b: &Vector,
         x: &mut Vector,
     ) -> Result<KrylovSolve> {
-        let (own_rtol, most) = self.tolerances()?;
-        let most = index(most)?;
-        let set = |a: &Matrix, p: &Matrix, rtol: f64| {
+        let (own_rtol, own_most) = self.tolerances()?;
+        let set = |a: &Matrix, p: &Matrix, rtol: f64, most: usize| {
+            let most = index(most)?;
             // SAFETY: valid matrices of the solver's layout.
             unsafe {
                 check(KSPSetOperators(self.0, a.0, p.0), "KSPSetOperators")?;
@@ -846,9 +849,9 @@ impl Krylov {
                 check(code, "KSPSetTolerances")
             }
         };
-        set(operator, own, rtol)?;
+        set(operator, own, rtol, most.unwrap_or(own_most))?;
         let solve = self.solve(b, x);
-        set(own, own, own_rtol)?;
+        set(own, own, own_rtol, own_most)?;
         solve
     }
 

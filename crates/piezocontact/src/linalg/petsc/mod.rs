@@ -295,6 +295,8 @@ pub struct PetscSolver {
     layout: Option<Layout>,
     /// The Krylov iterations of each solve on the iterative route, in order.
     krylov_iterations: Vec<usize>,
+    /// The most Krylov iterations of the next solve alone ([`UnsymmetricSolve::cap_next_solve`]).
+    cap: Option<usize>,
     /// The operator's correction since the last factorisation ([`UnsymmetricSolve::correct`]):
     /// its rows, and the matrix of the layout that holds them as the factorised one is held.
     correction: Option<(RowMatrix, Stored)>,
@@ -557,15 +559,20 @@ impl PetscSolver {
         let d = self.distributed.as_mut().expect("set up");
         let krylov = d.krylov.as_ref().expect("set up");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
+        let (own, cap) = (d.matrix.operator(), self.cap.take());
         let solve = match (general, &self.correction) {
-            (None, None) => krylov.solve(&d.b, &mut d.x)?,
+            (None, None) if cap.is_none() => krylov.solve(&d.b, &mut d.x)?,
+            (None, None) => {
+                let rtol = krylov.tolerances()?.0;
+                krylov.solve_operator((own, own), (rtol, cap), &d.b, &mut d.x)?
+            }
             (None, Some((_, correction))) => {
-                let (own, rtol) = (d.matrix.operator(), krylov.tolerances()?.0);
+                let rtol = krylov.tolerances()?.0;
                 let operator = ffi::Matrix::sum(&[own, correction.operator()])?;
-                krylov.solve_operator((&operator, own), rtol, &d.b, &mut d.x)?
+                krylov.solve_operator((&operator, own), (rtol, cap), &d.b, &mut d.x)?
             }
             (Some((operator, rtol)), _) => {
-                krylov.solve_operator((operator, d.matrix.operator()), rtol, &d.b, &mut d.x)?
+                krylov.solve_operator((operator, own), (rtol, cap), &d.b, &mut d.x)?
             }
         };
         self.krylov_iterations.push(solve.iterations);
@@ -844,6 +851,10 @@ impl UnsymmetricSolve for PetscSolver {
         Ok(product)
     }
 
+    fn cap_next_solve(&mut self, iterations: usize) {
+        self.cap = Some(iterations);
+    }
+
     /// The correction's rows written into a matrix of the layout, scaled and signed as the
     /// factorised matrix is (its preallocation from the factorised matrix's pattern).
     fn correct(&mut self, pattern: &SymmetricPattern, correction: RowMatrix) -> Result<()> {
@@ -994,8 +1005,7 @@ fn not_converged(krylov: &Krylov, solve: &KrylovSolve) -> Error {
     let [method, preconditioner] = krylov
         .kinds()
         .unwrap_or_else(|_| ["the Krylov method".into(), "its preconditioner".into()]);
-    let most = krylov.tolerances().map_or(0, |(_, most)| most);
-    let rtol = solve.rtol;
+    let (rtol, most) = (solve.rtol, solve.most);
     Error::LinearAlgebra(format!(
         "the Krylov solve ({method}, preconditioner {preconditioner}) stopped after {} iterations with PETSc's reason {} and a residual of {:.3e} (relative tolerance {:e}, at most {} iterations): give it more iterations or another tolerance with --petsc-options \"-ksp_max_it N -ksp_rtol R\", another preconditioner (-fieldsplit_u_pc_type, -fieldsplit_phi_pc_type), or use solver.linear = \"direct\"",
         solve.iterations, solve.reason, solve.residual, rtol, most
