@@ -72,6 +72,27 @@ pub struct Blocks {
     scratch: [(Vec<PetscInt>, Vec<f64>); 2],
 }
 
+impl Blocks {
+    /// Puts the (whole matrix's index, value) pairs `at`, `values` into the scratch by their
+    /// field, as indices of that field's blocks; the field and index of `line` (the row or
+    /// column they lie on).
+    fn sort_by_field(
+        &mut self,
+        line: PetscInt,
+        at: &[PetscInt],
+        values: &[f64],
+    ) -> (usize, PetscInt) {
+        let Self { split, scratch, .. } = self;
+        scratch.iter_mut().for_each(|(a, v)| (a.clear(), v.clear()).1);
+        for (&p, &v) in at.iter().zip(values) {
+            let (indices, values) = &mut scratch[split.field(p as usize)];
+            indices.push(split.index[p as usize]);
+            values.push(v);
+        }
+        (split.field(line as usize), split.index[line as usize])
+    }
+}
+
 /// The distributed matrix: [`Stored::Whole`] one AIJ matrix, [`Stored::Blocks`] the MATNEST.
 #[derive(Debug)]
 pub enum Stored {
@@ -139,18 +160,10 @@ impl Stored {
             Self::Whole(matrix) => return matrix.set_row(row, cols, values),
             Self::Blocks(blocks) => blocks,
         };
-        let Blocks { blocks, split, scratch, .. } = &mut **blocks;
-        scratch.iter_mut().for_each(|(c, v)| (c.clear(), v.clear()).1);
-        for (&q, &v) in cols.iter().zip(values) {
-            let (columns, values) = &mut scratch[split.field(q as usize)];
-            columns.push(split.index[q as usize]);
-            values.push(v);
-        }
-        let (f, r) = (split.field(row as usize), split.index[row as usize]);
-        for (g, (columns, values)) in scratch.iter().enumerate() {
-            if !columns.is_empty() {
-                blocks[f][g].set_row(r, columns, values)?;
-            }
+        let (f, r) = blocks.sort_by_field(row, cols, values);
+        let Blocks { blocks, scratch, .. } = &mut **blocks;
+        for (g, (columns, values)) in scratch.iter().enumerate().filter(|(_, s)| !s.0.is_empty()) {
+            blocks[f][g].set_row(r, columns, values)?;
         }
         Ok(())
     }
@@ -161,18 +174,10 @@ impl Stored {
             Self::Whole(matrix) => return matrix.set_column(rows, col, values),
             Self::Blocks(blocks) => blocks,
         };
-        let Blocks { blocks, split, scratch, .. } = &mut **blocks;
-        scratch.iter_mut().for_each(|(c, v)| (c.clear(), v.clear()).1);
-        for (&p, &v) in rows.iter().zip(values) {
-            let (at, values) = &mut scratch[split.field(p as usize)];
-            at.push(split.index[p as usize]);
-            values.push(v);
-        }
-        let (g, c) = (split.field(col as usize), split.index[col as usize]);
-        for (f, (at, values)) in scratch.iter().enumerate() {
-            if !at.is_empty() {
-                blocks[f][g].set_column(at, c, values)?;
-            }
+        let (g, c) = blocks.sort_by_field(col, rows, values);
+        let Blocks { blocks, scratch, .. } = &mut **blocks;
+        for (f, (at, values)) in scratch.iter().enumerate().filter(|(_, s)| !s.0.is_empty()) {
+            blocks[f][g].set_column(at, c, values)?;
         }
         Ok(())
     }
