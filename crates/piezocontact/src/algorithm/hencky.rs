@@ -185,10 +185,9 @@ impl Hencky {
             true => Some(linearise(problem, system.dofs(), x, self.secant, Beyond::Floored)?),
             false => None,
         };
-        let mut factorised = match floored.filter(|floored| *floored != self.current) {
+        let mut factorised = match floored.as_ref().filter(|floored| **floored != self.current) {
             Some(floored) => {
-                let pair = (&self.current, &floored);
-                system.factorize_preconditioned(problem, pair, blocks)
+                system.factorize_preconditioned(problem, (&self.current, floored), blocks)
             }
             None => system.factorize_linearised(problem, &self.current, blocks),
         };
@@ -206,7 +205,11 @@ impl Hencky {
         if !lost_signs || self.beyond != Beyond::Whole {
             return factorised;
         }
-        let floored = linearise(problem, system.dofs(), x, self.secant, Beyond::Floored)?;
+        // The floored tangent made above on an iterative route, else made now.
+        let floored = match floored {
+            Some(floored) => floored,
+            None => linearise(problem, system.dofs(), x, self.secant, Beyond::Floored)?,
+        };
         if floored == self.current {
             return factorised;
         }

@@ -67,11 +67,9 @@ impl RowMatrix {
     /// `a − b` on the rows where two matrices of one pattern differ (both triangles' entries,
     /// a's pattern), the others empty (all of them where the matrices are equal).
     pub fn difference(a: &SymmetricMatrix, b: &SymmetricMatrix) -> Result<Self> {
-        check_length(
-            "the matrices' entries",
-            a.lower_entries().count(),
-            b.lower_entries().count(),
-        )?;
+        if !a.shares_pattern(b) {
+            return Err(Error::LinearAlgebra("a difference of matrices of two patterns".into()));
+        }
         let mut differs = vec![false; a.n()];
         for ((i, j, x), (_, _, y)) in a.lower_entries().zip(b.lower_entries()) {
             if x != y {
@@ -326,6 +324,29 @@ mod tests {
         let mut values = vec![0.0; pattern.nnz()];
         entries.iter().for_each(|&(r, c, v)| values[pattern.position(r, c).unwrap()] = v);
         pattern.matrix(values).unwrap()
+    }
+
+    /// The difference of two matrices of one pattern that differ in entry (4, 2) alone: rows
+    /// 2 and 4 hold it (both triangles), the others are empty; matrices of two patterns are
+    /// refused.
+    #[test]
+    fn the_difference_holds_the_rows_where_two_matrices_differ() {
+        let s = symmetric();
+        let pattern = s.pattern();
+        let mut values: Vec<f64> = s.lower_entries().map(|(_, _, v)| v).collect();
+        values[pattern.position(4, 2).unwrap()] += 0.75;
+        let other = pattern.matrix(values).unwrap();
+        let difference = RowMatrix::difference(&other, &s).unwrap();
+        let rows: Vec<usize> = (0..5).filter(|&r| difference.has_row(r)).collect();
+        assert_eq!(rows, vec![2, 4]);
+        let d = dense(&difference);
+        for (r, row) in d.iter().enumerate() {
+            for (c, &v) in row.iter().enumerate() {
+                let expected = if (r, c) == (4, 2) || (r, c) == (2, 4) { 0.75 } else { 0.0 };
+                assert_eq!(v, expected, "({r}, {c})");
+            }
+        }
+        assert!(RowMatrix::difference(&symmetric(), &s).is_err(), "two patterns");
     }
 
     fn dense(a: &RowMatrix) -> Vec<Vec<f64>> {

@@ -131,6 +131,12 @@ impl SymmetricMatrix {
         SparseColMatRef::new((*self.symbolic).as_ref(), &self.values)
     }
 
+    /// Whether `other` is a matrix of the same pattern (one made by the same
+    /// [`SymmetricPattern`]).
+    pub fn shares_pattern(&self, other: &SymmetricMatrix) -> bool {
+        Arc::ptr_eq(&self.symbolic, &other.symbolic)
+    }
+
     /// Its pattern (shared with it, without groups).
     pub fn pattern(&self) -> SymmetricPattern {
         SymmetricPattern { symbolic: Arc::clone(&self.symbolic), groups: None }

@@ -297,9 +297,29 @@ pub struct PetscSolver {
     krylov_iterations: Vec<usize>,
     /// The most Krylov iterations of the next solve alone ([`UnsymmetricSolve::cap_next_solve`]).
     cap: Option<usize>,
-    /// The operator's correction since the last factorisation ([`UnsymmetricSolve::correct`]):
-    /// its rows, and the matrix of the layout that holds them as the factorised one is held.
-    correction: Option<(RowMatrix, Stored)>,
+    /// The operator's correction since the last factorisation ([`UnsymmetricSolve::correct`]).
+    correction: Option<Correction>,
+}
+
+/// Row i of `patch` as (PETSc column, value) pairs.
+fn petsc_row<'a>(
+    rows: &'a Rows,
+    patch: &'a RowMatrix,
+    i: usize,
+) -> impl Iterator<Item = (PetscInt, f64)> + 'a {
+    let (columns, values) = patch.row(i);
+    columns.iter().map(|&c| rows.petsc[c] as PetscInt).zip(values.iter().copied())
+}
+
+/// The operator's correction ([`UnsymmetricSolve::correct`]): its rows, the matrix of the
+/// layout that holds them as the factorised matrix is held, and the operator, PETSc's
+/// composite of the factorised matrix and that one.
+#[derive(Debug)]
+struct Correction {
+    rows: RowMatrix,
+    /// Held for the composite (which references it too).
+    _matrix: Stored,
+    operator: ffi::Matrix,
 }
 
 /// Whether unknown i (or [`HELD`]) has a row in `patch`: a held row never has.
@@ -490,9 +510,7 @@ impl PetscSolver {
         };
         let scaled = (&self.scaling[..], &self.signs[..], true);
         write_rows(&mut d.matrix, (rows, patched_rows(patch)), scaled, |i, row| {
-            let (columns, values) = patch.row(i);
-            let petsc = columns.iter().map(|&j| rows.petsc[j] as PetscInt);
-            row.extend(petsc.zip(values.iter().copied()));
+            row.extend(petsc_row(rows, patch, i));
         })?;
         d.matrix.assemble(false)
     }
@@ -504,20 +522,19 @@ impl PetscSolver {
         let (jacobian, preconditioner) = (patched.jacobian(), patched.preconditioner());
         let Some(rows) = &self.rows else { return Err(unfilled()) };
         let in_patch = patched_rows(preconditioner);
-        let correction = self.correction.as_ref().map(|(rows, _)| rows);
+        let correction = self.correction.as_ref().map(|c| &c.rows);
         let corrected = |i: usize| correction.filter(|c| patched_rows(c)(i) && !in_patch(i));
         let only = |i: usize| in_patch(i) || corrected(i).is_some();
         let counts = rows.preallocation(patched.pattern().symbolic(), only, |_| 0);
         let mut difference = Stored::whole((rows.start, rows.end), rows.total, &counts)?;
         let scaled = (&self.scaling[..], &self.signs[..], true);
         write_rows(&mut difference, (rows, only), scaled, |i, row| {
-            let petsc = |c: &usize| rows.petsc[*c] as PetscInt;
             if let Some(correction) = corrected(i) {
-                let (columns, values) = correction.row(i);
-                return row.extend(columns.iter().map(petsc).zip(values.iter().copied()));
+                return row.extend(petsc_row(rows, correction, i));
             }
-            let ((columns, p), j) = (preconditioner.row(i), jacobian.row(i).1);
-            row.extend(columns.iter().map(petsc).zip(j.iter().zip(p).map(|(j, p)| j - p)));
+            let (j, p) = (jacobian.row(i).1, preconditioner.row(i).1);
+            let pairs = petsc_row(rows, preconditioner, i).map(|(c, _)| c);
+            row.extend(pairs.zip(j.iter().zip(p).map(|(j, p)| j - p)));
         })?;
         difference.assemble(false)?;
         Ok(difference)
@@ -559,22 +576,13 @@ impl PetscSolver {
         let d = self.distributed.as_mut().expect("set up");
         let krylov = d.krylov.as_ref().expect("set up");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
-        let (own, cap) = (d.matrix.operator(), self.cap.take());
-        let solve = match (general, &self.correction) {
-            (None, None) if cap.is_none() => krylov.solve(&d.b, &mut d.x)?,
-            (None, None) => {
-                let rtol = krylov.tolerances()?.0;
-                krylov.solve_operator((own, own), (rtol, cap), &d.b, &mut d.x)?
-            }
-            (None, Some((_, correction))) => {
-                let rtol = krylov.tolerances()?.0;
-                let operator = ffi::Matrix::sum(&[own, correction.operator()])?;
-                krylov.solve_operator((&operator, own), (rtol, cap), &d.b, &mut d.x)?
-            }
-            (Some((operator, rtol)), _) => {
-                krylov.solve_operator((operator, own), (rtol, cap), &d.b, &mut d.x)?
-            }
+        let own = d.matrix.operator();
+        let (operator, rtol) = match general {
+            Some(general) => general,
+            None => (self.correction.as_ref().map_or(own, |c| &c.operator), krylov.tolerances()?.0),
         };
+        let most = self.cap.take();
+        let solve = krylov.solve_operator((operator, own), (rtol, most), &d.b, &mut d.x)?;
         self.krylov_iterations.push(solve.iterations);
         if solve.reason <= 0 {
             return Err(not_converged(krylov, &solve));
@@ -678,13 +686,8 @@ impl PetscSolver {
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("filled");
         d.b.with_local(|b| rows.scatter(x, b))?;
-        match &self.correction {
-            None => d.matrix.operator().mult(&d.b, &mut d.x)?,
-            Some((_, correction)) => {
-                let operator = ffi::Matrix::sum(&[d.matrix.operator(), correction.operator()])?;
-                operator.mult(&d.b, &mut d.x)?;
-            }
-        }
+        let operator = self.correction.as_ref().map_or(d.matrix.operator(), |c| &c.operator);
+        operator.mult(&d.b, &mut d.x)?;
         let (mut gathered, mut y) = (vec![0.0; rows.total], vec![0.0; rows.n]);
         d.gather.run(&d.x, &mut gathered)?;
         rows.unpermute(&gathered, &mut y);
@@ -856,27 +859,27 @@ impl UnsymmetricSolve for PetscSolver {
     }
 
     /// The correction's rows written into a matrix of the layout, scaled and signed as the
-    /// factorised matrix is (its preallocation from the factorised matrix's pattern).
+    /// factorised matrix is (its preallocation from the factorised matrix's pattern), and the
+    /// composite of the two made once for every solve and product until the next
+    /// factorisation.
     fn correct(&mut self, pattern: &SymmetricPattern, correction: RowMatrix) -> Result<()> {
-        let Some(rows) = &self.rows else { return Err(unfilled()) };
-        check_length("correction order", rows.n, correction.n())?;
-        if self.distributed.is_none() {
+        let (Some(rows), Some(d)) = (&self.rows, &self.distributed) else {
             return Err(unfilled());
-        }
-        let matrix = {
+        };
+        check_length("correction order", rows.n, correction.n())?;
+        let mut matrix = {
             let only = patched_rows(&correction);
             let counts = rows.preallocation(pattern.symbolic(), &only, |_| 0);
             let mut matrix = Stored::whole((rows.start, rows.end), rows.total, &counts)?;
             let scaled = (&self.scaling[..], &self.signs[..], true);
             write_rows(&mut matrix, (rows, &only), scaled, |i, row| {
-                let (columns, values) = correction.row(i);
-                let petsc = columns.iter().map(|&c| rows.petsc[c] as PetscInt);
-                row.extend(petsc.zip(values.iter().copied()));
+                row.extend(petsc_row(rows, &correction, i));
             })?;
-            matrix.assemble(false)?;
             matrix
         };
-        self.correction = Some((correction, matrix));
+        matrix.assemble(false)?;
+        let operator = ffi::Matrix::sum(&[d.matrix.operator(), matrix.operator()])?;
+        self.correction = Some(Correction { rows: correction, _matrix: matrix, operator });
         Ok(())
     }
 }
