@@ -510,6 +510,12 @@ impl CoupledSystem {
         }
     }
 
+    /// Frees what the linear solver makes again at its next solve
+    /// ([`LinearSolver::release_work`]): at the end of a contact solve, before its assessment.
+    pub fn release_work(&mut self) -> Result<()> {
+        self.solver.release_work()
+    }
+
     /// Gives up the DOF map (at the end of a solve, for its result).
     pub fn into_dofs(self) -> DofMap {
         self.assembler.into_dofs()

@@ -414,12 +414,15 @@ fn a_solve_with_a_patched_matrix_is_the_lu_s_and_leaves_k_as_it_was() {
 /// entry whose row and column are ≡ 0 (mod 5) times 1.1 (K′ quasi-definite as K is; the
 /// correction K′ − K on those rows, [`RowMatrix::difference`]). Solves are the sparse LU's of K′ to 1e−8 and products K′ x to
 /// 1e−12; a patched solve (J's rows from K′ on every seventh row, unsymmetric) is the LU's of
-/// K′ with J's rows — the correction's rows outside the patch kept — to 1e−8. On one process,
-/// as the LU it is checked against is whole.
+/// K′ with J's rows — the correction's rows outside the patch kept — to 1e−8. With the Krylov
+/// solver freed ([`LinearSolver::release_work`]), the next solve makes it again: the LU's of
+/// K′ still, the solver's names kept. On one process, as the LU it is checked against is
+/// whole; on the 3D indentation's coarse mesh, as two sparse LUs of the bar took 45 s.
 #[test]
 fn a_corrected_operator_is_solved_and_multiplied_as_the_lu_of_it() {
     on(&[1], "a_corrected_operator_is_solved_and_multiplied_as_the_lu_of_it", || {
-        let problem = case("bar-3d.toml", &[]).problem().unwrap();
+        let coarse = ["mesh.file=\"../meshes/indent-3d-h0.05.msh\""];
+        let problem = case("indentation-3d.toml", &coarse).problem().unwrap();
         let dofs = DofMap::new(&problem).unwrap();
         let moduli = secant_moduli(&problem, &dofs, &vec![0.0; dofs.n_total()]).unwrap();
         let assembler = Assembler::new(&problem, dofs.clone(), &[], None).unwrap();
@@ -449,10 +452,24 @@ fn a_corrected_operator_is_solved_and_multiplied_as_the_lu_of_it() {
         let product = solver.unsymmetric().unwrap().product(&b).unwrap();
         let difference = relative_difference(&product, &corrected.mul(&b));
         assert!(difference < 1e-12, "PETSc's K′ x against K′ x: {difference:e}");
-        let mut x = b.clone();
-        solver.solve_in_place(&mut x).unwrap();
-        let difference = relative_difference(&x, &expected);
+        let solve = |solver: &mut PetscSolver| {
+            let mut x = b.clone();
+            solver.solve_in_place(&mut x).unwrap();
+            relative_difference(&x, &expected)
+        };
+        let difference = solve(&mut solver);
         assert!(difference < 1e-8, "‖x − x_LU(K′)‖/‖x_LU(K′)‖ = {difference:e}");
+        let route = solver.route();
+        solver.release_work().unwrap();
+        let difference = solve(&mut solver);
+        assert!(
+            difference < 1e-8,
+            "after release_work: ‖x − x_LU(K′)‖/‖x_LU(K′)‖ = {difference:e}"
+        );
+        assert_eq!(
+            (solver.route().krylov, solver.route().preconditioner),
+            (route.krylov, route.preconditioner)
+        );
         let patched = |r: usize| r.is_multiple_of(7);
         let mut jacobian = RowMatrix::from_symmetric_rows(&corrected, patched);
         let preconditioner = jacobian.clone();

@@ -250,9 +250,10 @@ impl ContactSolver {
         Ok(criterion)
     }
 
-    /// The end of a solve: timings, the residuals, and the method's last word on them.
+    /// The end of a solve: timings, the residuals (with the linear solver's work freed), and
+    /// the method's last word on them.
     fn finish(
-        &self,
+        &mut self,
         problem: &Problem,
         model: &ContactModel,
         mut solution: ContactSolution,
@@ -265,6 +266,7 @@ impl ContactSolver {
         let steps = self.hencky.steps();
         (solution.floored_steps, solution.chord_steps) = (steps.floored, steps.chords);
         let constant = method.complementarity_constant();
+        self.system.release_work()?;
         let start = std::time::Instant::now();
         (solution.kkt, solution.balance) =
             residual::assess(problem, model, constant, &solution.view())?;

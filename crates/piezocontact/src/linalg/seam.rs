@@ -117,6 +117,13 @@ pub trait LinearSolver: std::fmt::Debug + Send {
     fn unsymmetric(&mut self) -> Option<&mut dyn UnsymmetricSolve> {
         None
     }
+    /// Frees what the backend makes again at its next solve — a Krylov solver's work vectors
+    /// and its preconditioner's setup —, keeping the matrix and its factorisation: called
+    /// when the solves of a contact solve are done, so that its assessment does not add to
+    /// them. By default nothing (a factorisation is not made again). Collective.
+    fn release_work(&mut self) -> Result<()> {
+        Ok(())
+    }
 }
 
 /// What a backend with its own solver of general matrices does: solve with a matrix of the

@@ -299,6 +299,9 @@ pub struct PetscSolver {
     cap: Option<usize>,
     /// The operator's correction since the last factorisation ([`UnsymmetricSolve::correct`]).
     correction: Option<Correction>,
+    /// The Krylov method's and the preconditioner's names, read at the last setup: they stay
+    /// known when [`LinearSolver::release_work`] has freed the solver.
+    kinds: Option<[String; 2]>,
 }
 
 /// Row i of `patch` as (PETSc column, value) pairs.
@@ -559,7 +562,13 @@ impl PetscSolver {
             let (rtol, most) = (iterative.rtol, iterative.max_iterations);
             d.krylov = Some(Krylov::new(d.matrix.operator(), &fields, rtol, most)?);
         }
-        d.krylov.as_mut().expect("made above").set_up(d.matrix.operator())
+        let krylov = d.krylov.as_mut().expect("made above");
+        krylov.set_up(d.matrix.operator())?;
+        self.kinds = Some(match krylov.kinds() {
+            Ok(kinds) => kinds,
+            Err(e) => [(); 2].map(|()| format!("unknown ({e})")),
+        });
+        Ok(())
     }
 
     /// One Krylov solve of the scaled system (ϕ rows negated) — with the factorised matrix, or
@@ -572,6 +581,9 @@ impl PetscSolver {
         general: Option<(&ffi::Matrix, f64)>,
     ) -> Result<()> {
         rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(true, sign));
+        if self.distributed.as_ref().is_some_and(|d| d.krylov.is_none()) {
+            self.set_up_krylov()?;
+        }
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("set up");
         let krylov = d.krylov.as_ref().expect("set up");
@@ -748,7 +760,11 @@ impl LinearSolver for PetscSolver {
         let t = Instant::now();
         let n = self.rows.as_ref().map_or(0, |r| r.n);
         check_length("right-hand side", n, rhs.len())?;
-        if self.distributed.as_ref().is_none_or(|d| d.factor.is_none() && d.krylov.is_none()) {
+        let factorised = match &self.distributed {
+            Some(d) => self.iterative.is_some() || d.factor.is_some(),
+            None => false,
+        };
+        if !factorised {
             return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
         }
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
@@ -775,12 +791,10 @@ impl LinearSolver for PetscSolver {
         }
         // Before the first factorisation there is no solver to name; an unreadable name says
         // why rather than pass for the direct route's "none".
-        let krylov = self.distributed.as_ref().and_then(|d| d.krylov.as_ref());
-        let [method, preconditioner] = match krylov.map(Krylov::kinds) {
-            Some(Ok(kinds)) => kinds,
-            Some(Err(e)) => [(); 2].map(|()| format!("unknown ({e})")),
-            None => [(); 2].map(|()| "not set up (no factorisation yet)".to_string()),
-        };
+        let [method, preconditioner] = self
+            .kinds
+            .clone()
+            .unwrap_or_else(|| [(); 2].map(|()| "not set up (no factorisation yet)".to_string()));
         LinearRoute {
             kind: "iterative",
             krylov: Some(method),
@@ -806,6 +820,16 @@ impl LinearSolver for PetscSolver {
             None => None,
         }
     }
+
+    /// On the iterative route, the Krylov solver goes (GMRES's vectors, each of the size of
+    /// the unknowns, and GAMG's hierarchy); the next solve makes it again for the matrix's
+    /// values then.
+    fn release_work(&mut self) -> Result<()> {
+        if let (Some(_), Some(d)) = (&self.iterative, self.distributed.as_mut()) {
+            d.krylov = None;
+        }
+        Ok(())
+    }
 }
 
 /// On the iterative route: P written over the distributed matrix's patched rows (as the
@@ -820,7 +844,7 @@ impl UnsymmetricSolve for PetscSolver {
         let n = self.rows.as_ref().map_or(0, |r| r.n);
         check_length("right-hand side", n, rhs.len())?;
         check_length("Jacobian's patch order", n, patched.jacobian().n())?;
-        if self.distributed.as_ref().is_none_or(|d| d.krylov.is_none()) {
+        if self.distributed.is_none() {
             return Err(unfilled());
         }
         let difference = self.difference(&patched)?;
