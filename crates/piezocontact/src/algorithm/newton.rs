@@ -32,6 +32,7 @@ use crate::error::{Error, Result};
 use crate::linalg::{DenseMatrix, LinearSolver, RowMatrix, TransposedLu, max_distance, max_norm};
 use crate::system::CoupledSystem;
 use rayon::prelude::*;
+use std::collections::VecDeque;
 use std::sync::Mutex;
 
 /// A relative Newton step below this, with unchanged sets, is round-off.
@@ -258,11 +259,16 @@ struct Iteration {
 
 /// The last iterates of a Newton iteration, to tell when it cycles: a semismooth iteration
 /// can go round a loop of active sets for ever (model §11), and each step spent there is a
-/// dense factorisation.
+/// dense factorisation. It keeps [`LONGEST_CYCLE`] iterates (of the size of the unknowns on
+/// the whole system) and, for the last 2 × [`LONGEST_CYCLE`], the distances to the ones
+/// before them: a period's test reads those numbers alone.
 #[derive(Default)]
 struct Cycles {
-    /// The last 2 × [`LONGEST_CYCLE`] iterates, the newest last.
-    recent: Vec<Vec<f64>>,
+    /// The last [`LONGEST_CYCLE`] iterates, the newest last.
+    recent: VecDeque<Vec<f64>>,
+    /// Per iterate, the newest last: its max-norm distance to the iterate q before it at
+    /// index q − 1 (as far back as there were iterates).
+    distances: VecDeque<Vec<f64>>,
 }
 
 impl Cycles {
@@ -272,20 +278,21 @@ impl Cycles {
     /// the sum of the p steps between them, which for a converging iteration is about the
     /// first of them, the longest: they coincide only when the steps go back and forth.
     fn period(&mut self, y: &[f64]) -> Option<usize> {
-        if self.recent.len() == 2 * LONGEST_CYCLE {
-            self.recent.remove(0);
+        let row = self.recent.iter().rev().map(|before| max_distance(y, before)).collect();
+        if self.recent.len() == LONGEST_CYCLE {
+            self.recent.pop_front();
         }
-        self.recent.push(y.to_vec());
-        let n = self.recent.len();
+        self.recent.push_back(y.to_vec());
+        if self.distances.len() == 2 * LONGEST_CYCLE {
+            self.distances.pop_front();
+        }
+        self.distances.push_back(row);
+        let n = self.distances.len();
+        // The distance from the iterate at index k (of the last n) to the one q before it.
+        let distance = |k: usize, q: usize| self.distances[k][q - 1];
         (2..=LONGEST_CYCLE).filter(|p| 2 * p <= n).find(|&p| {
-            let window = &self.recent[n - 2 * p..];
-            let longest = window.windows(2).fold(0.0_f64, |l, w| l.max(max_distance(&w[0], &w[1])));
-            let (before, last) = window.split_at(p);
-            longest > 0.0
-                && before
-                    .iter()
-                    .zip(last)
-                    .all(|(a, b)| max_distance(a, b) <= CYCLE_TOLERANCE * longest)
+            let longest = (n - 2 * p + 1..n).fold(0.0_f64, |l, k| l.max(distance(k, 1)));
+            longest > 0.0 && (n - p..n).all(|k| distance(k, p) <= CYCLE_TOLERANCE * longest)
         })
     }
 }
