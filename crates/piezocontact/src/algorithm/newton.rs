@@ -720,7 +720,7 @@ fn rows_read(system: &CoupledSystem, cond: &Condensed) -> Vec<bool> {
     let on_contact: Vec<bool> = nodes_of(cond).iter().map(|&i| i != INTERIOR).collect();
     let mut touched = on_contact.clone();
     for j in 0..pattern.n() {
-        for &i in pattern.column(j).1 {
+        for i in pattern.column(j).1.iter().map(|&i| i as usize) {
             touched[i] |= on_contact[j];
             touched[j] |= on_contact[i];
         }

@@ -31,7 +31,7 @@ pub use load::load_vector;
 
 use crate::dofs::{CONSTRAINED, DofMap};
 use crate::error::{Error, Result};
-use crate::linalg::{SymmetricMatrix, SymmetricPattern};
+use crate::linalg::{PatternIndex, SymmetricMatrix, SymmetricPattern};
 use crate::mesh::Mesh;
 use crate::problem::Problem;
 use axisymmetric::cell_matrix;
@@ -402,19 +402,27 @@ fn lower_pattern(mesh: &Mesh, dofs: &DofMap, owned: Option<&[bool]>) -> Result<S
 }
 
 /// The columns (`col_ptr`, `row_idx`) of a pattern of order `n` whose column j holds the rows
-/// `rows_of(j)`, in that order.
+/// `rows_of(j)`, in that order; refused when its entries are more than the pattern's indices
+/// count.
 fn columns<I: Iterator<Item = usize>>(
     n: usize,
     rows_of: impl Fn(usize) -> I + Sync,
-) -> Result<(Vec<usize>, Vec<usize>)> {
+) -> Result<(Vec<PatternIndex>, Vec<PatternIndex>)> {
     let counts: Vec<usize> = (0..n).into_par_iter().map(|j| rows_of(j).count()).collect();
     let col_ptr = offsets(&counts);
-    let mut row_idx = vec![0usize; col_ptr[n]];
+    if PatternIndex::try_from(col_ptr[n]).is_err() {
+        return Err(Error::Input(format!(
+            "the matrix of {n} unknowns has {} stored entries, more than the {} its pattern holds; use a coarser mesh or several processes",
+            col_ptr[n],
+            PatternIndex::MAX
+        )));
+    }
+    let mut row_idx = vec![0; col_ptr[n]];
     for_ranges(&col_ptr, &mut row_idx, |j, out| {
-        out.iter_mut().zip(rows_of(j)).for_each(|(slot, k)| *slot = k);
+        out.iter_mut().zip(rows_of(j)).for_each(|(slot, k)| *slot = k as PatternIndex);
         Ok(())
     })?;
-    Ok((col_ptr, row_idx))
+    Ok((col_ptr.into_iter().map(|k| k as PatternIndex).collect(), row_idx))
 }
 
 /// Splits the cells into groups in which no two cells share a node, the nodes of a floating
@@ -469,10 +477,10 @@ fn cell_positions(
         let (start, stored) = pattern.column(free[q]);
         let mut at = 0;
         for &p in rows.iter().filter(|&&p| free[p] >= free[q]) {
-            while at < stored.len() && stored[at] < free[p] {
+            while at < stored.len() && (stored[at] as usize) < free[p] {
                 at += 1;
             }
-            if at < stored.len() && stored[at] == free[p] {
+            if at < stored.len() && stored[at] as usize == free[p] {
                 table[p][q] = start + at;
             }
         }

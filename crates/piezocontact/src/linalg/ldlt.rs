@@ -16,6 +16,7 @@ use faer::sparse::linalg::cholesky::supernodal::SupernodalLdltRef;
 use faer::sparse::linalg::cholesky::{
     LdltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Accum, Conj, MatMut, Par, Side};
 use rayon::iter::ParallelExtend;
 use std::time::Instant;
@@ -30,6 +31,9 @@ const PIVOT_MARKER: f64 = 1e300;
 #[derive(Debug, Default)]
 pub struct LdltSolver {
     symbolic: Option<SymbolicCholesky<usize>>,
+    /// The analysed pattern with faer's `usize` indices, which its factorisation of a matrix
+    /// of that pattern takes (the stored pattern's indices are 32 bits).
+    wide: Option<SymbolicSparseColMat<usize>>,
     /// +1 for u rows, −1 for ϕ rows.
     signs: Vec<i8>,
     /// S = diag(|a_ii|^{-1/2}) of the last factorised matrix.
@@ -141,9 +145,11 @@ impl LdltSolver {
         let n = pattern.n();
         check_length("pivot signs", n, signs.len())?;
         let t = Instant::now();
-        (self.symbolic, self.l_values, self.factorized) = (None, Vec::new(), false);
+        (self.symbolic, self.wide, self.l_values, self.factorized) =
+            (None, None, Vec::new(), false);
         self.last = last.len();
-        let (symbolic, name) = self.ordered_symbolic(pattern, last)?;
+        let wide = pattern.wide();
+        let (symbolic, name) = self.ordered_symbolic(pattern, wide.as_ref(), last)?;
         self.three_dimensional = ordering::three_dimensional(pattern);
         let bytes = self.predicted_bytes(&symbolic, pattern);
         let what = format!(
@@ -164,6 +170,7 @@ impl LdltSolver {
         self.l_values = l_values;
         self.stats.symbolic_seconds += t.elapsed().as_secs_f64();
         self.symbolic = Some(symbolic);
+        self.wide = Some(wide);
         self.signs = signs.to_vec();
         self.scaling = vec![1.0; n];
         self.stats.factor_len = self.l_values.len();
@@ -179,6 +186,7 @@ impl LdltSolver {
     fn ordered_symbolic(
         &self,
         pattern: &SymmetricPattern,
+        wide: SymbolicSparseColMatRef<'_, usize>,
         last: &[usize],
     ) -> Result<(SymbolicCholesky<usize>, &'static str)> {
         let n = pattern.n();
@@ -186,13 +194,13 @@ impl LdltSolver {
         let custom = |order: &[usize]| -> Result<SymbolicCholesky<usize>> {
             let (forward, inverse) = permutation(order, n)?;
             let perm = PermRef::new_checked(&forward, &inverse, n);
-            symbolic_cholesky(pattern.symbolic(), SymmetricOrdering::Custom(perm), schur)
+            symbolic_cholesky(wide, SymmetricOrdering::Custom(perm), schur)
         };
         let amd = || -> Result<SymbolicCholesky<usize>> {
             if schur {
-                custom(&ordering::amd_with_last(pattern, last)?)
+                custom(&ordering::amd_with_last(wide, last)?)
             } else {
-                symbolic_cholesky(pattern.symbolic(), SymmetricOrdering::Amd, false)
+                symbolic_cholesky(wide, SymmetricOrdering::Amd, false)
             }
         };
         let nd = || custom(&ordering::nested_dissection(pattern, last)?);
@@ -211,7 +219,7 @@ impl LdltSolver {
     }
 
     /// The bytes a numeric factorisation with `symbolic` needs: the factor, its workspace,
-    /// and the scaled copy of the matrix.
+    /// the scaled copy of the matrix and the pattern with `usize` indices.
     fn predicted_bytes(
         &self,
         symbolic: &SymbolicCholesky<usize>,
@@ -220,8 +228,18 @@ impl LdltSolver {
         let scratch = symbolic
             .factorize_numeric_ldlt_scratch::<f64>(self.numeric_par(), Default::default())
             .size_bytes();
-        8.0 * symbolic.len_val() as f64 + scratch as f64 + 16.0 * pattern.nnz() as f64
+        8.0 * symbolic.len_val() as f64 + scratch as f64 + 24.0 * pattern.nnz() as f64
     }
+}
+
+/// The analysed pattern with `usize` indices (the solver's `wide`), or the error of a
+/// factorisation before the analysis.
+fn analysed(
+    wide: &Option<SymbolicSparseColMat<usize>>,
+) -> Result<SymbolicSparseColMatRef<'_, usize>> {
+    wide.as_ref()
+        .map(|w| w.as_ref())
+        .ok_or_else(|| Error::LinearAlgebra("factorisation before the symbolic analysis".into()))
 }
 
 /// The floating-point operations of a numeric factorisation with `symbolic`, counted per
@@ -268,15 +286,16 @@ impl LinearSolver for LdltSolver {
             }
         }
         self.scaling = diagonal.iter().map(|d| 1.0 / d.abs().sqrt()).collect();
-        let symbolic = matrix.lower().symbolic();
+        // The field alone, not `self`: the factor's fields are written beside it.
+        let symbolic = analysed(&self.wide)?;
         let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
-        let mut values = matrix.lower().val().to_vec();
+        let mut values = matrix.values().to_vec();
         for j in 0..matrix.n() {
             for k in col_ptr[j]..col_ptr[j + 1] {
                 values[k] *= self.scaling[row_idx[k]] * self.scaling[j];
             }
         }
-        let scaled = faer::sparse::SparseColMatRef::new(symbolic, &values);
+        let scaled = SparseColMatRef::new(symbolic, &values);
         let (params, par) = (Default::default(), self.numeric_par());
         let symbolic = self.symbolic.take().ok_or_else(|| {
             Error::LinearAlgebra("factorisation before the symbolic analysis".into())
@@ -454,7 +473,7 @@ impl LdltSolver {
         symbolic
             .factorize_numeric_ldlt(
                 &mut l_values,
-                matrix.lower().as_ref(),
+                SparseColMatRef::new(analysed(&self.wide)?, matrix.values()),
                 Side::Lower,
                 LdltRegularization::default(),
                 par,

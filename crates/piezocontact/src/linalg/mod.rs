@@ -66,7 +66,7 @@ pub use seam::{
     Distributed, LinearRoute, LinearSolver, Ordering, SchurComplement, SolverStats,
     UnsymmetricSolve,
 };
-pub use sparse::{SymmetricMatrix, SymmetricPattern};
+pub use sparse::{PatternIndex, SymmetricMatrix, SymmetricPattern};
 pub(crate) use vectors::check_length;
 pub use vectors::parallelism;
 

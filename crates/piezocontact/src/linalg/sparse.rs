@@ -15,11 +15,15 @@ use faer::sparse::{
 use faer::{Par, Side};
 use std::sync::Arc;
 
+/// The index of the stored patterns: 32 bits, half the memory of `usize` (the pattern of a
+/// 3D mesh's matrix is about 30 entries per unknown); up to 2³² − 1 stored entries.
+pub type PatternIndex = u32;
+
 /// The lower-triangle sparsity pattern of a symmetric matrix.
 #[derive(Debug)]
 pub struct SymmetricPattern {
     /// Shared with every matrix made of it ([`SymmetricPattern::matrix`]).
-    symbolic: Arc<SymbolicSparseColMat<usize>>,
+    symbolic: Arc<SymbolicSparseColMat<PatternIndex>>,
     /// The group of each unknown (the mesh node it belongs to), for orderings that keep a
     /// group's unknowns together; `None`: each unknown its own group.
     groups: Option<Vec<usize>>,
@@ -28,17 +32,26 @@ pub struct SymmetricPattern {
 impl SymmetricPattern {
     /// The pattern of an n × n matrix from its columns: the rows of column j are
     /// `row_idx[col_ptr[j]..col_ptr[j + 1]]`, strictly increasing, each ≥ j and < n.
-    pub fn from_columns(n: usize, col_ptr: Vec<usize>, row_idx: Vec<usize>) -> Result<Self> {
+    pub fn from_columns(
+        n: usize,
+        col_ptr: Vec<PatternIndex>,
+        row_idx: Vec<PatternIndex>,
+    ) -> Result<Self> {
         let bad = |what: String| Error::LinearAlgebra(format!("sparsity pattern: {what}"));
-        if col_ptr.len() != n + 1 || col_ptr[0] != 0 || col_ptr[n] != row_idx.len() {
+        let at = |j: usize| col_ptr[j] as usize;
+        if PatternIndex::try_from(n).is_err() {
+            return Err(bad(format!("{n} columns, more than {} indices hold", PatternIndex::MAX)));
+        }
+        if col_ptr.len() != n + 1 || at(0) != 0 || at(n) != row_idx.len() {
             return Err(bad(format!("{} column pointers for {n} columns", col_ptr.len())));
         }
         for j in 0..n {
-            if col_ptr[j] > col_ptr[j + 1] {
+            if at(j) > at(j + 1) {
                 return Err(bad(format!("column {j} ends before it starts")));
             }
-            let rows = &row_idx[col_ptr[j]..col_ptr[j + 1]];
-            if rows.iter().any(|&r| r < j || r >= n) || rows.windows(2).any(|w| w[0] >= w[1]) {
+            let rows = &row_idx[at(j)..at(j + 1)];
+            let outside = |&r: &PatternIndex| (r as usize) < j || r as usize >= n;
+            if rows.iter().any(outside) || rows.windows(2).any(|w| w[0] >= w[1]) {
                 return Err(bad(format!("the rows of column {j} are not increasing in {j}..{n}")));
             }
         }
@@ -53,15 +66,22 @@ impl SymmetricPattern {
                 "position ({r}, {c}) is outside the lower triangle of a {n} × {n} matrix"
             )));
         }
+        let index = |i: usize| {
+            PatternIndex::try_from(i).map_err(|_| {
+                Error::LinearAlgebra(format!("sparsity pattern: {i} is beyond its indices"))
+            })
+        };
         let mut columns = vec![Vec::new(); n];
-        positions.iter().for_each(|&(r, c)| columns[c].push(r));
+        for &(r, c) in positions {
+            columns[c].push(index(r)?);
+        }
         let mut col_ptr = vec![0];
         let mut row_idx = Vec::new();
         for mut rows in columns {
             rows.sort_unstable();
             rows.dedup();
             row_idx.extend(rows);
-            col_ptr.push(row_idx.len());
+            col_ptr.push(index(row_idx.len())?);
         }
         Self::from_columns(n, col_ptr, row_idx)
     }
@@ -83,8 +103,16 @@ impl SymmetricPattern {
     }
 
     /// faer's view, for the backends of this module.
-    pub(super) fn symbolic(&self) -> SymbolicSparseColMatRef<'_, usize> {
+    pub(super) fn symbolic(&self) -> SymbolicSparseColMatRef<'_, PatternIndex> {
         (*self.symbolic).as_ref()
+    }
+
+    /// The pattern with `usize` indices, for faer's factorisations (whose symbolic analysis
+    /// takes the matrix's index type): a copy that a direct solver keeps beside its factor.
+    pub(super) fn wide(&self) -> SymbolicSparseColMat<usize> {
+        let widen = |v: &[PatternIndex]| v.iter().map(|&i| i as usize).collect();
+        let (n, a) = (self.n(), &self.symbolic);
+        SymbolicSparseColMat::new_checked(n, n, widen(a.col_ptr()), None, widen(a.row_idx()))
     }
 
     /// Stored entries of the lower triangle.
@@ -94,7 +122,7 @@ impl SymmetricPattern {
 
     /// Column `col`'s stored rows (increasing, from the diagonal down) and the index of the
     /// first of them in the matrix's values.
-    pub fn column(&self, col: usize) -> (usize, &[usize]) {
+    pub fn column(&self, col: usize) -> (usize, &[PatternIndex]) {
         let range = self.symbolic.col_range(col);
         (range.start, &self.symbolic.row_idx()[range])
     }
@@ -106,6 +134,7 @@ impl SymmetricPattern {
         }
         let range = self.symbolic.col_range(col);
         let rows = &self.symbolic.row_idx()[range.clone()];
+        let row = PatternIndex::try_from(row).ok()?;
         rows.binary_search(&row).ok().map(|k| range.start + k)
     }
 
@@ -120,15 +149,20 @@ impl SymmetricPattern {
 #[derive(Clone, Debug)]
 pub struct SymmetricMatrix {
     /// The lower triangle's pattern, shared with the [`SymmetricPattern`] it was made of.
-    symbolic: Arc<SymbolicSparseColMat<usize>>,
+    symbolic: Arc<SymbolicSparseColMat<PatternIndex>>,
     /// The lower triangle's values, column by column.
     values: Vec<f64>,
 }
 
 impl SymmetricMatrix {
     /// faer's matrix, for the backends of this module.
-    pub(super) fn lower(&self) -> SparseColMatRef<'_, usize, f64> {
+    pub(super) fn lower(&self) -> SparseColMatRef<'_, PatternIndex, f64> {
         SparseColMatRef::new((*self.symbolic).as_ref(), &self.values)
+    }
+
+    /// The lower triangle's values, column by column.
+    pub(super) fn values(&self) -> &[f64] {
+        &self.values
     }
 
     /// Whether `other` is a matrix of the same pattern (one made by the same
@@ -155,7 +189,7 @@ impl SymmetricMatrix {
             symbolic.row_idx()[range.clone()]
                 .iter()
                 .zip(&values[range])
-                .map(move |(&i, &v)| (i, j, v))
+                .map(move |(&i, &v)| (i as usize, j, v))
         })
     }
 
@@ -176,9 +210,9 @@ impl SymmetricMatrix {
         let (symbolic, values) = ((*self.symbolic).as_ref(), &self.values[..]);
         (0..self.n())
             .map(|j| {
-                let k = symbolic.col_ptr()[j];
-                if k < symbolic.col_ptr()[j + 1] && symbolic.row_idx()[k] == j {
-                    values[k]
+                let range = symbolic.col_range(j);
+                if !range.is_empty() && symbolic.row_idx()[range.start] as usize == j {
+                    values[range.start]
                 } else {
                     0.0
                 }
@@ -188,10 +222,11 @@ impl SymmetricMatrix {
 
     /// The principal sub-matrix of rows and columns `range`, multiplied by `factor`.
     pub fn block(&self, range: std::ops::Range<usize>, factor: f64) -> Result<Self> {
-        let triplets: Vec<Triplet<usize, usize, f64>> = self
+        let index = |i: usize| (i - range.start) as PatternIndex;
+        let triplets: Vec<Triplet<PatternIndex, PatternIndex, f64>> = self
             .lower_entries()
             .filter(|(i, j, _)| range.contains(i) && range.contains(j))
-            .map(|(i, j, v)| Triplet::new(i - range.start, j - range.start, factor * v))
+            .map(|(i, j, v)| Triplet::new(index(i), index(j), factor * v))
             .collect();
         let lower = SparseColMat::try_new_from_triplets(range.len(), range.len(), &triplets)
             .map_err(|e| Error::LinearAlgebra(format!("block: {e:?}")))?;
@@ -248,11 +283,11 @@ impl SymmetricMatrix {
     }
 }
 
-pub(super) fn symbolic_cholesky(
-    pattern: faer::sparse::SymbolicSparseColMatRef<'_, usize>,
-    ordering: SymmetricOrdering<'_, usize>,
+pub(super) fn symbolic_cholesky<I: faer::Index>(
+    pattern: faer::sparse::SymbolicSparseColMatRef<'_, I>,
+    ordering: SymmetricOrdering<'_, I>,
     supernodal: bool,
-) -> Result<SymbolicCholesky<usize>> {
+) -> Result<SymbolicCholesky<I>> {
     let params = CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: if supernodal {
             SupernodalThreshold::FORCE_SUPERNODAL

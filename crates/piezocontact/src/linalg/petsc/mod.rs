@@ -39,7 +39,7 @@ use super::rows::{Patched, RowMatrix};
 use super::seam::{
     Distributed, LinearRoute, LinearSolver, SchurComplement, SolverStats, UnsymmetricSolve,
 };
-use super::sparse::{SymmetricMatrix, SymmetricPattern};
+use super::sparse::{PatternIndex, SymmetricMatrix, SymmetricPattern};
 use super::vectors::check_length;
 use crate::error::{Error, Result};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
@@ -125,7 +125,7 @@ impl Rows {
     /// that `only` leaves out, 1 on a held row's diagonal (field 0).
     fn preallocation(
         &self,
-        symbolic: SymbolicSparseColMatRef<'_, usize>,
+        symbolic: SymbolicSparseColMatRef<'_, PatternIndex>,
         only: impl Fn(usize) -> bool,
         field: impl Fn(usize) -> usize,
     ) -> Preallocation {
@@ -141,7 +141,7 @@ impl Rows {
             }
         };
         for j in 0..self.n {
-            for &i in &symbolic.row_idx()[symbolic.col_range(j)] {
+            for i in symbolic.row_idx()[symbolic.col_range(j)].iter().map(|&i| i as usize) {
                 count(i, j);
                 if i != j {
                     count(j, i);
@@ -236,7 +236,7 @@ fn write_lower(
     target: &mut Stored,
     rows: &Rows,
     (scaling, signs, iterative): (&[f64], &[i8], bool),
-    lower: SparseColMatRef<'_, usize, f64>,
+    lower: SparseColMatRef<'_, PatternIndex, f64>,
 ) -> Result<()> {
     let (symbolic, values) = (lower.symbolic(), lower.val());
     let takes = |i: usize| rows.owns(i);
@@ -249,7 +249,7 @@ fn write_lower(
         if takes(j) {
             at.clear();
             vals.clear();
-            for (&i, &v) in below.iter().zip(column) {
+            for (i, &v) in below.iter().map(|&i| i as usize).zip(column) {
                 at.push(petsc(i));
                 vals.push(v * row_scale(j) * scaling[i]);
             }
@@ -257,7 +257,8 @@ fn write_lower(
         }
         at.clear();
         vals.clear();
-        for (&i, &v) in below.iter().zip(column).filter(|(i, _)| **i != j && takes(**i)) {
+        let others = below.iter().map(|&i| i as usize).zip(column);
+        for (i, &v) in others.filter(|&(i, _)| i != j && takes(i)) {
             at.push(petsc(i));
             vals.push(v * row_scale(i) * scaling[j]);
         }
@@ -466,7 +467,11 @@ impl PetscSolver {
     /// The distributed matrix of `rows`, preallocated for `symbolic` (the seam's matrix's lower
     /// triangle): on the iterative route with the field split (the default, or `-pc_type
     /// fieldsplit`) PETSc's MATNEST of the u and ϕ blocks, else one AIJ matrix.
-    fn stored(&self, rows: &Rows, symbolic: SymbolicSparseColMatRef<'_, usize>) -> Result<Stored> {
+    fn stored(
+        &self,
+        rows: &Rows,
+        symbolic: SymbolicSparseColMatRef<'_, PatternIndex>,
+    ) -> Result<Stored> {
         let range = (rows.start, rows.end);
         let split = self.iterative.is_some()
             && ffi::option("-pc_type")?.is_none_or(|kind| kind == "fieldsplit");
