@@ -111,9 +111,7 @@ impl LdltSolver {
     }
 
     fn symbolic(&self) -> Result<&SymbolicCholesky<usize>> {
-        self.symbolic.as_ref().ok_or_else(|| {
-            Error::LinearAlgebra("factorisation before the symbolic analysis".into())
-        })
+        self.symbolic.as_ref().ok_or_else(unanalysed)
     }
 }
 
@@ -232,14 +230,17 @@ impl LdltSolver {
     }
 }
 
+/// The error of a factorisation before the symbolic analysis.
+fn unanalysed() -> Error {
+    Error::LinearAlgebra("factorisation before the symbolic analysis".into())
+}
+
 /// The analysed pattern with `usize` indices (the solver's `wide`), or the error of a
 /// factorisation before the analysis.
 fn analysed(
     wide: &Option<SymbolicSparseColMat<usize>>,
 ) -> Result<SymbolicSparseColMatRef<'_, usize>> {
-    wide.as_ref()
-        .map(|w| w.as_ref())
-        .ok_or_else(|| Error::LinearAlgebra("factorisation before the symbolic analysis".into()))
+    wide.as_ref().map(|w| w.as_ref()).ok_or_else(unanalysed)
 }
 
 /// The floating-point operations of a numeric factorisation with `symbolic`, counted per
@@ -297,9 +298,7 @@ impl LinearSolver for LdltSolver {
         }
         let scaled = SparseColMatRef::new(symbolic, &values);
         let (params, par) = (Default::default(), self.numeric_par());
-        let symbolic = self.symbolic.take().ok_or_else(|| {
-            Error::LinearAlgebra("factorisation before the symbolic analysis".into())
-        })?;
+        let symbolic = self.symbolic.take().ok_or_else(unanalysed)?;
         let result = (|| {
             let mut mem =
                 MemBuffer::try_new(symbolic.factorize_numeric_ldlt_scratch::<f64>(par, params))
