@@ -402,27 +402,20 @@ fn lower_pattern(mesh: &Mesh, dofs: &DofMap, owned: Option<&[bool]>) -> Result<S
 }
 
 /// The columns (`col_ptr`, `row_idx`) of a pattern of order `n` whose column j holds the rows
-/// `rows_of(j)`, in that order; refused when its entries are more than the pattern's indices
-/// count.
+/// `rows_of(j)`, in that order (rows narrowed to [`PatternIndex`] unchecked: the pattern
+/// refuses an n they miss).
 fn columns<I: Iterator<Item = usize>>(
     n: usize,
     rows_of: impl Fn(usize) -> I + Sync,
-) -> Result<(Vec<PatternIndex>, Vec<PatternIndex>)> {
+) -> Result<(Vec<usize>, Vec<PatternIndex>)> {
     let counts: Vec<usize> = (0..n).into_par_iter().map(|j| rows_of(j).count()).collect();
     let col_ptr = offsets(&counts);
-    if PatternIndex::try_from(col_ptr[n]).is_err() {
-        return Err(Error::Input(format!(
-            "the matrix of {n} unknowns has {} stored entries, more than the {} its pattern holds; use a coarser mesh or several processes",
-            col_ptr[n],
-            PatternIndex::MAX
-        )));
-    }
     let mut row_idx = vec![0; col_ptr[n]];
     for_ranges(&col_ptr, &mut row_idx, |j, out| {
         out.iter_mut().zip(rows_of(j)).for_each(|(slot, k)| *slot = k as PatternIndex);
         Ok(())
     })?;
-    Ok((col_ptr.into_iter().map(|k| k as PatternIndex).collect(), row_idx))
+    Ok((col_ptr, row_idx))
 }
 
 /// Splits the cells into groups in which no two cells share a node, the nodes of a floating

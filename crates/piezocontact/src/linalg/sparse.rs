@@ -31,30 +31,32 @@ pub struct SymmetricPattern {
 
 impl SymmetricPattern {
     /// The pattern of an n × n matrix from its columns: the rows of column j are
-    /// `row_idx[col_ptr[j]..col_ptr[j + 1]]`, strictly increasing, each ≥ j and < n.
-    pub fn from_columns(
-        n: usize,
-        col_ptr: Vec<PatternIndex>,
-        row_idx: Vec<PatternIndex>,
-    ) -> Result<Self> {
+    /// `row_idx[col_ptr[j]..col_ptr[j + 1]]`, strictly increasing, each ≥ j and < n. Refused
+    /// when n or the entries are more than [`PatternIndex`] counts (checked before any row is
+    /// read, so a caller may narrow rows below n to it unchecked).
+    pub fn from_columns(n: usize, col_ptr: Vec<usize>, row_idx: Vec<PatternIndex>) -> Result<Self> {
         let bad = |what: String| Error::LinearAlgebra(format!("sparsity pattern: {what}"));
-        let at = |j: usize| col_ptr[j] as usize;
-        if PatternIndex::try_from(n).is_err() {
-            return Err(bad(format!("{n} columns, more than {} indices hold", PatternIndex::MAX)));
-        }
-        if col_ptr.len() != n + 1 || at(0) != 0 || at(n) != row_idx.len() {
+        if col_ptr.len() != n + 1 || col_ptr[0] != 0 || col_ptr[n] != row_idx.len() {
             return Err(bad(format!("{} column pointers for {n} columns", col_ptr.len())));
         }
+        if PatternIndex::try_from(n.max(col_ptr[n])).is_err() {
+            return Err(Error::Input(format!(
+                "the matrix of {n} unknowns has {} stored entries, more than the {} its pattern's indices count; use a coarser mesh or several processes",
+                col_ptr[n],
+                PatternIndex::MAX
+            )));
+        }
         for j in 0..n {
-            if at(j) > at(j + 1) {
+            if col_ptr[j] > col_ptr[j + 1] {
                 return Err(bad(format!("column {j} ends before it starts")));
             }
-            let rows = &row_idx[at(j)..at(j + 1)];
+            let rows = &row_idx[col_ptr[j]..col_ptr[j + 1]];
             let outside = |&r: &PatternIndex| (r as usize) < j || r as usize >= n;
             if rows.iter().any(outside) || rows.windows(2).any(|w| w[0] >= w[1]) {
                 return Err(bad(format!("the rows of column {j} are not increasing in {j}..{n}")));
             }
         }
+        let col_ptr = col_ptr.into_iter().map(|k| k as PatternIndex).collect();
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         Ok(Self { symbolic: Arc::new(symbolic), groups: None })
     }
@@ -66,22 +68,16 @@ impl SymmetricPattern {
                 "position ({r}, {c}) is outside the lower triangle of a {n} × {n} matrix"
             )));
         }
-        let index = |i: usize| {
-            PatternIndex::try_from(i).map_err(|_| {
-                Error::LinearAlgebra(format!("sparsity pattern: {i} is beyond its indices"))
-            })
-        };
         let mut columns = vec![Vec::new(); n];
-        for &(r, c) in positions {
-            columns[c].push(index(r)?);
-        }
+        // Rows below n: narrowed unchecked, as from_columns refuses an n its indices miss.
+        positions.iter().for_each(|&(r, c)| columns[c].push(r as PatternIndex));
         let mut col_ptr = vec![0];
         let mut row_idx = Vec::new();
         for mut rows in columns {
             rows.sort_unstable();
             rows.dedup();
             row_idx.extend(rows);
-            col_ptr.push(index(row_idx.len())?);
+            col_ptr.push(row_idx.len());
         }
         Self::from_columns(n, col_ptr, row_idx)
     }

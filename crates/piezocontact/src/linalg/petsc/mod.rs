@@ -533,19 +533,32 @@ impl PetscSolver {
         let correction = self.correction.as_ref().map(|c| &c.rows);
         let corrected = |i: usize| correction.filter(|c| patched_rows(c)(i) && !in_patch(i));
         let only = |i: usize| in_patch(i) || corrected(i).is_some();
-        let counts = rows.preallocation(patched.pattern().symbolic(), only, |_| 0);
-        let mut difference = Stored::whole((rows.start, rows.end), rows.total, &counts)?;
-        let scaled = (&self.scaling[..], &self.signs[..], true);
-        write_rows(&mut difference, (rows, only), scaled, |i, row| {
+        self.rows_matrix(patched.pattern(), only, |i, row| {
             if let Some(correction) = corrected(i) {
                 return row.extend(petsc_row(rows, correction, i));
             }
             let (j, p) = (jacobian.row(i).1, preconditioner.row(i).1);
             let pairs = petsc_row(rows, preconditioner, i).map(|(c, _)| c);
             row.extend(pairs.zip(j.iter().zip(p).map(|(j, p)| j - p)));
-        })?;
-        difference.assemble(false)?;
-        Ok(difference)
+        })
+    }
+
+    /// A matrix of the layout with this process's rows of the unknowns that `only` takes
+    /// alone, preallocated from `pattern` and written by `row` scaled and signed as the
+    /// factorised matrix ([`write_rows`]), assembled.
+    fn rows_matrix(
+        &self,
+        pattern: &SymmetricPattern,
+        only: impl Fn(usize) -> bool,
+        row: impl FnMut(usize, &mut Vec<(PetscInt, f64)>),
+    ) -> Result<Stored> {
+        let rows = self.rows.as_ref().ok_or_else(unfilled)?;
+        let counts = rows.preallocation(pattern.symbolic(), &only, |_| 0);
+        let mut matrix = Stored::whole((rows.start, rows.end), rows.total, &counts)?;
+        let scaled = (&self.scaling[..], &self.signs[..], true);
+        write_rows(&mut matrix, (rows, &only), scaled, row)?;
+        matrix.assemble(false)?;
+        Ok(matrix)
     }
 
     /// The Krylov solver of the filled matrix, made after the first fill of an analysis, and
@@ -830,7 +843,7 @@ impl LinearSolver for PetscSolver {
     /// the unknowns, and GAMG's hierarchy); the next solve makes it again for the matrix's
     /// values then.
     fn release_work(&mut self) -> Result<()> {
-        if let (Some(_), Some(d)) = (&self.iterative, self.distributed.as_mut()) {
+        if let Some(d) = self.distributed.as_mut() {
             d.krylov = None;
         }
         Ok(())
@@ -896,17 +909,9 @@ impl UnsymmetricSolve for PetscSolver {
             return Err(unfilled());
         };
         check_length("correction order", rows.n, correction.n())?;
-        let mut matrix = {
-            let only = patched_rows(&correction);
-            let counts = rows.preallocation(pattern.symbolic(), &only, |_| 0);
-            let mut matrix = Stored::whole((rows.start, rows.end), rows.total, &counts)?;
-            let scaled = (&self.scaling[..], &self.signs[..], true);
-            write_rows(&mut matrix, (rows, &only), scaled, |i, row| {
-                row.extend(petsc_row(rows, &correction, i));
-            })?;
-            matrix
-        };
-        matrix.assemble(false)?;
+        let matrix = self.rows_matrix(pattern, patched_rows(&correction), |i, row| {
+            row.extend(petsc_row(rows, &correction, i));
+        })?;
         let operator = ffi::Matrix::sum(&[d.matrix.operator(), matrix.operator()])?;
         self.correction = Some(Correction { rows: correction, _matrix: matrix, operator });
         Ok(())
