@@ -247,6 +247,51 @@ fn the_exact_solver_on_the_iterative_route_is_the_serial_exact_solver() {
     let _ = std::fs::remove_dir_all(&serial);
 }
 
+/// The multigrid's setups (PETSc's `PCSetUp_GAMG` event, its count in `-log_view`'s table).
+fn gamg_setups(stdout: &str) -> usize {
+    let line = stdout.lines().find(|l| l.starts_with("PCSetUp_GAMG"));
+    let count = line.and_then(|l| l.split_whitespace().nth(1)).and_then(|c| c.parse().ok());
+    count.unwrap_or_else(|| panic!("no PCSetUp_GAMG count in -log_view's table: {stdout}"))
+}
+
+/// The Newton steps of the exact solver on the iterative route keep the preconditioner of an
+/// earlier step while its iterations per decade of the residual stay within the ratio
+/// (`-piezocontact_pc_rebuild_ratio`, 2 by default) under mpirun -n 2: fewer setups of the
+/// multigrid than with the ratio 0 (a setup at every step), the same Γ3 table to 1e−8 and a
+/// KKT residual within solver.tol; a ratio that is not a number ≥ 0 is refused, naming the
+/// option.
+#[test]
+fn newton_steps_keep_the_preconditioner_while_its_iterations_hold() {
+    let mesh = "mesh.file=\"../meshes/indent-3d-h0.05.msh\"";
+    let iterative = ["--set", "solver.backend=\"petsc\"", "--set", "solver.linear=\"iterative\""];
+    let args =
+        [&["run", "cases/indentation-3d.toml", "-q", "--set", mesh][..], &iterative].concat();
+    let mut setups = Vec::new();
+    for (name, options) in
+        [("lagged", "-log_view"), ("every", "-log_view -piezocontact_pc_rebuild_ratio 0")]
+    {
+        let out = out_dir(&format!("lag-{name}"));
+        let extra = ["--petsc-options", options, "--out", out.to_str().unwrap()];
+        let result = run(2, &[&args[..], &extra].concat());
+        let stdout = String::from_utf8_lossy(&result.stdout);
+        assert!(result.status.success(), "{name}: {}", String::from_utf8_lossy(&result.stderr));
+        let kkt = summary(&out)["kkt_residual"]["max"].as_f64().unwrap();
+        assert!(kkt <= 1e-10, "{name}: KKT residual {kkt:e}");
+        setups.push((gamg_setups(&stdout), out));
+    }
+    let [(lagged, kept), (every, set_up)] = <[_; 2]>::try_from(setups).unwrap();
+    assert!(lagged < every, "GAMG's setups: {lagged} lagged against {every} at every step");
+    assert_same_csv(&kept.join("contact.csv"), &set_up.join("contact.csv"), 1e-8);
+    let out = out_dir("lag-bad");
+    let option = "-piezocontact_pc_rebuild_ratio x";
+    let extra = ["--petsc-options", option, "--out", out.to_str().unwrap()];
+    let bad = run(1, &[&args[..], &extra].concat());
+    let stderr = String::from_utf8_lossy(&bad.stderr);
+    assert_eq!(bad.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains(&format!("{option}: give a number")), "{stderr}");
+    [kept, set_up, out].iter().for_each(|dir| drop(std::fs::remove_dir_all(dir)));
+}
+
 /// `--petsc-options -log_view` prints PETSc's performance summary at exit, with the Krylov
 /// solver's and the multigrid's events, though the options reach PETSc after it started.
 #[test]

@@ -202,6 +202,11 @@ unsafe extern "C" {
         its: *mut PetscInt,
     ) -> Code;
     fn KSPDestroy(ksp: *mut Handle) -> Code;
+    fn KSPSetReusePreconditioner(ksp: Handle, reuse: c_int) -> Code;
+    fn PCFieldSplitGetSubKSP(pc: Handle, n: *mut PetscInt, sub: *mut *mut Handle) -> Code;
+    /// PETSc's free (what its PetscFree macro calls).
+    static PetscTrFree:
+        unsafe extern "C" fn(*mut c_void, c_int, *const c_char, *const c_char) -> Code;
     fn PCSetType(pc: Handle, kind: *const c_char) -> Code;
     fn VecCreateMPI(comm: MpiHandle, local: PetscInt, n: PetscInt, v: *mut Handle) -> Code;
     fn VecSetBlockSize(v: Handle, bs: PetscInt) -> Code;
@@ -750,7 +755,14 @@ unsafe fn near_null_space(is: Handle, dim: usize, coordinates: &[f64]) -> Result
 /// A Krylov solver of a [`Matrix`] (PETSc's KSP) with a field-split preconditioner over the
 /// named fields.
 #[derive(Debug)]
-pub struct Krylov(Handle, Vec<&'static CStr>);
+pub struct Krylov {
+    ksp: Handle,
+    /// The fields' names.
+    fields: Vec<&'static CStr>,
+    /// Whether the solves keep the preconditioner of the last setup
+    /// ([`Krylov::reuse_preconditioner`]).
+    reusing: bool,
+}
 
 // SAFETY: as for Matrix.
 unsafe impl Send for Krylov {}
@@ -778,7 +790,8 @@ impl Krylov {
         // field split keeps its own reference to each.
         unsafe {
             check(KSPCreate(world(), &mut ksp), "KSPCreate")?;
-            let this = Self(ksp, fields.iter().map(|f| f.name).collect());
+            let this =
+                Self { ksp, fields: fields.iter().map(|f| f.name).collect(), reusing: false };
             check(KSPSetOperators(ksp, matrix.0, matrix.0), "KSPSetOperators")?;
             check(KSPSetType(ksp, c"gmres".as_ptr()), "KSPSetType")?;
             check(KSPSetPCSide(ksp, PC_RIGHT), "KSPSetPCSide")?;
@@ -807,11 +820,41 @@ impl Krylov {
 
     /// Sets the preconditioner up for the matrix's current values (GAMG's hierarchy).
     pub fn set_up(&mut self, matrix: &Matrix) -> Result<()> {
+        self.reuse_preconditioner(false)?;
         // SAFETY: the matrix this solver was made with, refilled; collective.
         unsafe {
-            check(KSPSetOperators(self.0, matrix.0, matrix.0), "KSPSetOperators")?;
-            check(KSPSetUp(self.0), "KSPSetUp (the preconditioner's setup)")
+            check(KSPSetOperators(self.ksp, matrix.0, matrix.0), "KSPSetOperators")?;
+            check(KSPSetUp(self.ksp), "KSPSetUp (the preconditioner's setup)")
         }
+    }
+
+    /// Whether the next solves keep the preconditioner of the last setup though the matrix's
+    /// values change (`KSPSetReusePreconditioner`), or set it up again for them as by default:
+    /// a field split's sub-solvers too, whose operators — the blocks of the matrix — change
+    /// with it. Keeping it needs a setup made (a solve or [`Krylov::set_up`]).
+    pub fn reuse_preconditioner(&mut self, keep: bool) -> Result<()> {
+        if keep == self.reusing {
+            return Ok(());
+        }
+        let (mut pc, mut kind) = (null_mut(), std::ptr::null());
+        // SAFETY: a valid solver, set up when `keep` is first asked (the field split's
+        // sub-solvers exist then); PETSc allocates the array of sub-solvers, freed here.
+        unsafe {
+            check(KSPSetReusePreconditioner(self.ksp, c_int::from(keep)), "reuse")?;
+            check(KSPGetPC(self.ksp, &mut pc), "KSPGetPC")?;
+            check(PCGetType(pc, &mut kind), "PCGetType")?;
+            if CStr::from_ptr(kind) == c"fieldsplit" {
+                let (mut n, mut sub) = (0, null_mut());
+                check(PCFieldSplitGetSubKSP(pc, &mut n, &mut sub), "PCFieldSplitGetSubKSP")?;
+                let set = (0..n.max(0) as usize).try_for_each(|k| {
+                    check(KSPSetReusePreconditioner(*sub.add(k), c_int::from(keep)), "reuse")
+                });
+                PetscTrFree(sub.cast(), line!() as c_int, c"reuse".as_ptr(), c"ffi.rs".as_ptr());
+                set?;
+            }
+        }
+        self.reusing = keep;
+        Ok(())
     }
 
     /// x = A⁻¹ b to the tolerance, from x = 0; what the solve did, converged or not.
@@ -819,10 +862,10 @@ impl Krylov {
         let (mut iterations, mut reason, mut residual) = (0, 0, 0.0);
         // SAFETY: vectors of the matrix's layout; the outputs are plain numbers.
         unsafe {
-            check(KSPSolve(self.0, b.0, x.0), "KSPSolve")?;
-            check(KSPGetIterationNumber(self.0, &mut iterations), "KSPGetIterationNumber")?;
-            check(KSPGetConvergedReason(self.0, &mut reason), "KSPGetConvergedReason")?;
-            check(KSPGetResidualNorm(self.0, &mut residual), "KSPGetResidualNorm")?;
+            check(KSPSolve(self.ksp, b.0, x.0), "KSPSolve")?;
+            check(KSPGetIterationNumber(self.ksp, &mut iterations), "KSPGetIterationNumber")?;
+            check(KSPGetConvergedReason(self.ksp, &mut reason), "KSPGetConvergedReason")?;
+            check(KSPGetResidualNorm(self.ksp, &mut residual), "KSPGetResidualNorm")?;
         }
         let (rtol, most) = self.tolerances()?;
         Ok(KrylovSolve { iterations: iterations.max(0) as usize, reason, residual, rtol, most })
@@ -844,8 +887,8 @@ impl Krylov {
             let most = index(most)?;
             // SAFETY: valid matrices of the solver's layout.
             unsafe {
-                check(KSPSetOperators(self.0, a.0, p.0), "KSPSetOperators")?;
-                let code = KSPSetTolerances(self.0, rtol, PETSC_DEFAULT, PETSC_DEFAULT, most);
+                check(KSPSetOperators(self.ksp, a.0, p.0), "KSPSetOperators")?;
+                let code = KSPSetTolerances(self.ksp, rtol, PETSC_DEFAULT, PETSC_DEFAULT, most);
                 check(code, "KSPSetTolerances")
             }
         };
@@ -859,7 +902,7 @@ impl Krylov {
     pub fn tolerances(&self) -> Result<(f64, usize)> {
         let (mut rtol, mut atol, mut dtol, mut its) = (0.0, 0.0, 0.0, 0);
         // SAFETY: a valid solver; the outputs are plain numbers.
-        let code = unsafe { KSPGetTolerances(self.0, &mut rtol, &mut atol, &mut dtol, &mut its) };
+        let code = unsafe { KSPGetTolerances(self.ksp, &mut rtol, &mut atol, &mut dtol, &mut its) };
         check(code, "KSPGetTolerances")?;
         Ok((rtol, its.max(0) as usize))
     }
@@ -871,15 +914,15 @@ impl Krylov {
             (std::ptr::null(), null_mut(), std::ptr::null());
         // SAFETY: the names are static strings owned by PETSc.
         let [krylov, preconditioner] = unsafe {
-            check(KSPGetType(self.0, &mut krylov), "KSPGetType")?;
-            check(KSPGetPC(self.0, &mut pc), "KSPGetPC")?;
+            check(KSPGetType(self.ksp, &mut krylov), "KSPGetType")?;
+            check(KSPGetPC(self.ksp, &mut pc), "KSPGetPC")?;
             check(PCGetType(pc, &mut preconditioner), "PCGetType")?;
             [krylov, preconditioner].map(|p| CStr::from_ptr(p).to_string_lossy().into_owned())
         };
         if preconditioner != "fieldsplit" {
             return Ok([krylov, preconditioner]);
         }
-        let split = self.1.iter().map(|name| {
+        let split = self.fields.iter().map(|name| {
             let name = name.to_string_lossy();
             let kind = option(&format!("-fieldsplit_{name}_pc_type"))?;
             Ok(format!("{name}: {}", kind.as_deref().unwrap_or("PETSc's default")))
@@ -892,7 +935,7 @@ impl Krylov {
 impl Drop for Krylov {
     fn drop(&mut self) {
         // SAFETY: made by KSPCreate, destroyed once.
-        unsafe { KSPDestroy(&mut self.0) };
+        unsafe { KSPDestroy(&mut self.ksp) };
     }
 }
 

@@ -30,6 +30,7 @@
 //! the whole matrix (the private module `stored`).
 
 mod ffi;
+mod lag;
 mod stored;
 
 pub use ffi::{abort, gather, initialize, rank_and_size, sum_over_processes};
@@ -44,6 +45,7 @@ use super::vectors::check_length;
 use crate::error::{Error, Result};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use ffi::{Factor, Field, Gather, Krylov, KrylovSolve, PetscInt, Vector};
+use lag::Lag;
 use std::time::Instant;
 use stored::{Preallocation, Split, Stored};
 
@@ -303,6 +305,8 @@ pub struct PetscSolver {
     /// The Krylov method's and the preconditioner's names, read at the last setup: they stay
     /// known when [`LinearSolver::release_work`] has freed the solver.
     kinds: Option<[String; 2]>,
+    /// Whether a Newton step's solve keeps the preconditioner of an earlier step's.
+    lag: Lag,
 }
 
 /// Row i of `patch` as (PETSc column, value) pairs.
@@ -367,7 +371,8 @@ impl PetscSolver {
     /// relative tolerance `rtol` in at most `max_iterations` per solve; no Schur complement.
     pub fn iterative(rtol: f64, max_iterations: usize) -> Result<Self> {
         initialize("")?;
-        Ok(Self { iterative: Some(Iterative { rtol, max_iterations }), ..Self::default() })
+        let lag = Lag::from_options()?;
+        Ok(Self { iterative: Some(Iterative { rtol, max_iterations }), lag, ..Self::default() })
     }
 
     /// The unknowns whose rows this process owns, after an analysis.
@@ -582,6 +587,7 @@ impl PetscSolver {
         }
         let krylov = d.krylov.as_mut().expect("made above");
         krylov.set_up(d.matrix.operator())?;
+        self.lag.reset();
         self.kinds = Some(match krylov.kinds() {
             Ok(kinds) => kinds,
             Err(e) => [(); 2].map(|()| format!("unknown ({e})")),
@@ -591,8 +597,10 @@ impl PetscSolver {
 
     /// One Krylov solve of the scaled system (ϕ rows negated) — with the factorised matrix, or
     /// with `general` = (an operator, the relative residual), preconditioned as for the
-    /// distributed matrix's current values —: `rhs` whole in, the whole solution out; a solve
-    /// that does not converge is an error with its numbers and the options to change.
+    /// distributed matrix's current values or, where [`Lag`] says so, as for an earlier
+    /// Newton step's (and again as for the current values if the solve does not converge so)
+    /// —: `rhs` whole in, the whole solution out; a solve that does not converge is an error
+    /// with its numbers and the options to change.
     fn krylov_solve(
         &mut self,
         rhs: &mut [f64],
@@ -604,15 +612,28 @@ impl PetscSolver {
         }
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("set up");
-        let krylov = d.krylov.as_ref().expect("set up");
+        let krylov = d.krylov.as_mut().expect("set up");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
         let own = d.matrix.operator();
+        let keep = general.is_some() && self.lag.keep();
         let (operator, rtol) = match general {
             Some(general) => general,
             None => (self.correction.as_ref().map_or(own, |c| &c.operator), krylov.tolerances()?.0),
         };
         let most = self.cap.take();
-        let solve = krylov.solve_operator((operator, own), (rtol, most), &d.b, &mut d.x)?;
+        krylov.reuse_preconditioner(keep)?;
+        let mut solve = krylov.solve_operator((operator, own), (rtol, most), &d.b, &mut d.x)?;
+        let mut kept = keep;
+        if keep && solve.reason <= 0 {
+            krylov.reuse_preconditioner(false)?;
+            let again = krylov.solve_operator((operator, own), (rtol, most), &d.b, &mut d.x)?;
+            (solve, kept) =
+                (KrylovSolve { iterations: solve.iterations + again.iterations, ..again }, false);
+        }
+        match general {
+            Some(_) => self.lag.record(kept, solve.iterations, rtol),
+            None => self.lag.reset(),
+        }
         self.krylov_iterations.push(solve.iterations);
         if solve.reason <= 0 {
             return Err(not_converged(krylov, &solve));
@@ -846,6 +867,7 @@ impl LinearSolver for PetscSolver {
         if let Some(d) = self.distributed.as_mut() {
             d.krylov = None;
         }
+        self.lag.reset();
         Ok(())
     }
 }
