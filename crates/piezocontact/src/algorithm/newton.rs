@@ -136,6 +136,10 @@ struct Local<'a> {
     scale: Vec<f64>,
     /// The global vector of the solve without contact (for prescribed ϕ).
     x_hat: Vec<f64>,
+    /// The positions whose iterates the loop detection keeps ([`Local::watched`]): `None`,
+    /// every one (the condensed problem's, all Γ3 unknowns); on the whole system the Γ3
+    /// unknowns.
+    watched: Option<Vec<usize>>,
     /// Where the slip is measured from, in local coordinates (the tangential slots matter):
     /// 0, or the previous step of a path with incremental friction.
     origin: Vec<f64>,
@@ -259,9 +263,9 @@ struct Iteration {
 
 /// The last iterates of a Newton iteration, to tell when it cycles: a semismooth iteration
 /// can go round a loop of active sets for ever (model §11), and each step spent there is a
-/// dense factorisation. It keeps [`LONGEST_CYCLE`] iterates (of the size of the unknowns on
-/// the whole system) and, for the last 2 × [`LONGEST_CYCLE`], the distances to the ones
-/// before them: a period's test reads those numbers alone.
+/// dense factorisation. It keeps [`LONGEST_CYCLE`] iterates — of the unknowns it is given,
+/// the Γ3 unknowns ([`Local::watched`]) — and, for the last 2 × [`LONGEST_CYCLE`], the
+/// distances to the ones before them: a period's test reads those numbers alone.
 #[derive(Default)]
 struct Cycles {
     /// The last [`LONGEST_CYCLE`] iterates, the newest last.
@@ -804,8 +808,10 @@ impl<'a> Local<'a> {
         let (frames, turned) = unknown_frames(surface, system.dofs());
         let (m, node_of) = (cond.len(), nodes_of(cond));
         let mut operator = turned_operator(operator, cond, &frames)?;
+        let mut watched = None;
         if let Operator::Sparse { diagonal, .. } = &mut operator {
             system.whole_rows(diagonal)?;
+            watched = Some((0..m).filter(|&k| node_of[k] != INTERIOR).collect());
         }
         let mut this = Self {
             semismooth,
@@ -818,6 +824,7 @@ impl<'a> Local<'a> {
             c: Vec::new(),
             scale: Vec::new(),
             x_hat,
+            watched,
             origin: vec![0.0; m],
             conduction: 1.0,
             first_merit: std::sync::OnceLock::new(),
@@ -894,7 +901,7 @@ impl<'a> Local<'a> {
                 (stop, iterations) = (Stop::Converged, k + 1);
                 break;
             }
-            if let Some(period) = cycles.period(&y) {
+            if let Some(period) = cycles.period(&self.watched(&y)) {
                 (stop, iterations) = (Stop::Cycle(period), k + 1);
                 break;
             }
@@ -1001,6 +1008,17 @@ impl<'a> Local<'a> {
         }
         self.conduction = 1.0;
         (Iteration { y: solved, ..done }, theta)
+    }
+
+    /// The unknowns of y that tell a cycle: on the whole system its Γ3 unknowns, the laws'
+    /// arguments — within a Newton iteration the others follow them by linear equations (K's,
+    /// fixed), so that a loop of the sets shows there — and not a whole vector per iterate;
+    /// the condensed problem's whole y.
+    fn watched<'y>(&self, y: &'y [f64]) -> std::borrow::Cow<'y, [f64]> {
+        match &self.watched {
+            Some(positions) => positions.iter().map(|&k| y[k]).collect(),
+            None => std::borrow::Cow::Borrowed(y),
+        }
     }
 
     /// y = 0 when it solves every equation exactly — no load and no foundation inside the
@@ -1664,6 +1682,25 @@ mod tests {
         solved_step_on(fixture, whole, |local, result| {
             let start = local.gather(&local.x_hat);
             let solution = local.gather(&result.x);
+            // The loop detection keeps the Γ3 unknowns of the whole system's iterates: each
+            // kept node's u slots and the ϕ unknowns they read.
+            let cond = local.semismooth.condensed;
+            let kept = (0..cond.kept.len()).filter(|&i| cond.kept[i]);
+            let mut contact: Vec<usize> = kept.flat_map(|i| cond.slots(i).0.to_vec()).collect();
+            contact.extend(cond.phi.iter().filter_map(|phi| match phi {
+                Phi::Unknown(p) => Some(*p),
+                _ => None,
+            }));
+            contact.sort_unstable();
+            contact.dedup();
+            let watched = local.watched(&solution);
+            if whole {
+                assert!(contact.len() < solution.len());
+                let expected: Vec<f64> = contact.iter().map(|&k| solution[k]).collect();
+                assert_eq!(watched.as_ref(), expected.as_slice());
+            } else {
+                assert_eq!(watched.as_ref(), solution.as_slice());
+            }
             let contact = local.evaluate(&solution).sets.holding();
             assert!(contact > 3, "the bar touches the foundation at {contact} nodes");
             check_gradient(local, &start, true) + check_gradient(local, &solution, false)
