@@ -140,9 +140,9 @@ struct Local<'a> {
     /// every one (the condensed problem's, all Γ3 unknowns); on the whole system the Γ3
     /// unknowns.
     watched: Option<Vec<usize>>,
-    /// Where the slip is measured from, in local coordinates (the tangential slots matter):
-    /// 0, or the previous step of a path with incremental friction.
-    origin: Vec<f64>,
+    /// Per node, where the slip is measured from in its local components (the tangential
+    /// ones matter): 0, or the previous step of a path with incremental friction.
+    origin: Vec<[f64; 3]>,
     /// θ ∈ (0, 1]: the fraction of k_e the conduction has, 1 but in the stages of a
     /// continuation ([`Local::continuation`]).
     conduction: f64,
@@ -241,7 +241,9 @@ struct Evaluation {
     fixed: Vec<bool>,
     /// λ_c, λ_f (local tangential components).
     multipliers: ContactState,
-    /// F = S x_c − b in local coordinates: the contact forces on the Γ3 rows.
+    /// F = S x_c − b in local coordinates, the contact forces on the Γ3 rows, from which the
+    /// condensed problem's interior is solved; empty on the whole system, whose solution is y
+    /// itself (its laws read F on the Γ3 rows from `residual` before they replace it).
     forces: Vec<f64>,
     /// σ_ν per node and R σ_ν.
     sigma_nu: Vec<f64>,
@@ -825,7 +827,7 @@ impl<'a> Local<'a> {
             scale: Vec::new(),
             x_hat,
             watched,
-            origin: vec![0.0; m],
+            origin: vec![[0.0; 3]; surface.len()],
             conduction: 1.0,
             first_merit: std::sync::OnceLock::new(),
         };
@@ -837,7 +839,10 @@ impl<'a> Local<'a> {
             None => this.product(&this.gather(&this.x_hat)),
         };
         if let Some(origin) = semismooth.step.slip_origin {
-            this.origin = this.gather(origin);
+            let local = this.gather(origin);
+            for (i, node) in this.origin.iter_mut().enumerate().filter(|(i, _)| cond.kept[*i]) {
+                cond.slots(i).0.iter().zip(node.iter_mut()).for_each(|(&k, o)| *o = local[k]);
+            }
         }
         this.c = (0..surface.len())
             .map(|i| {
@@ -957,7 +962,7 @@ impl<'a> Local<'a> {
             if y[u[0]] > stop {
                 y[u[0]] = stop;
                 if stick {
-                    u[1..].iter().for_each(|&k| y[k] = self.origin[k]);
+                    (1..u.len()).for_each(|a| y[u[a]] = self.origin[i][a]);
                 }
             }
         }
@@ -1161,13 +1166,14 @@ impl<'a> Local<'a> {
             .map(|i| if cond.kept[i] { forces[cond.u[i][0]] / surface.weight[i] } else { 0.0 })
             .collect();
         let r_sigma = step.friction.map_or_else(|| sigma_nu.clone(), |f| f.regularised(&sigma_nu));
+        let whole = matches!(self.operator, Operator::Sparse { .. });
         let mut eval = Evaluation {
             // The rows of the interior (of the whole system) and of ϕ: F; the others below.
-            residual: forces.clone(),
+            forces: if whole { Vec::new() } else { forces.clone() },
+            residual: forces,
             sets: Sets::new(n3, step.friction.is_some()),
             fixed: vec![false; y.len()],
             multipliers: ContactState::cold(n3),
-            forces,
             sigma_nu,
             r_sigma,
         };
@@ -1189,7 +1195,8 @@ impl<'a> Local<'a> {
             } else {
                 eval.residual[u[0]] = lambda_c;
             }
-            let lambda_f: Vec<f64> = (1..dim).map(|a| -eval.forces[u[a]] / w).collect();
+            // F on the tangential rows, which the laws' rows below replace.
+            let lambda_f: Vec<f64> = (1..dim).map(|a| -eval.residual[u[a]] / w).collect();
             (0..dim - 1).for_each(|a| eval.multipliers.lambda_f[i][a] = lambda_f[a]);
             match step.friction {
                 None => (1..dim).for_each(|a| eval.residual[u[a]] = lambda_f[a - 1]),
@@ -1217,7 +1224,7 @@ impl<'a> Local<'a> {
         eval: &mut Evaluation,
     ) {
         let (u, c) = (self.semismooth.condensed.u[i], self.c[i]);
-        let slip = |a: usize| y[u[a]] - self.origin[u[a]];
+        let slip = |a: usize| y[u[a]] - self.origin[i][a];
         let mut z = [0.0; 2];
         (0..lambda_f.len()).for_each(|a| z[a] = lambda_f[a] + c * slip(a + 1));
         let status = coulomb(z, s).1;
@@ -1437,7 +1444,7 @@ impl<'a> Local<'a> {
         // Slip: E_t = λ_f − s ẑ, ∂E_t = ∂λ_f − (s/‖z‖)(I − λ̃ẑᵀ)(∂λ_f + c ∂u_τ) − ẑ ∂s.
         let lambda_f: Vec<f64> = (1..dim).map(|b| eval.multipliers.lambda_f[i][b - 1]).collect();
         let z: Vec<f64> =
-            (1..dim).map(|b| lambda_f[b - 1] + c * (y[u[b]] - self.origin[u[b]])).collect();
+            (1..dim).map(|b| lambda_f[b - 1] + c * (y[u[b]] - self.origin[i][b])).collect();
         let norm = z.iter().map(|v| v * v).sum::<f64>().sqrt();
         let s = friction.node_bound(i, eval.r_sigma[i]);
         let z_hat: Vec<f64> = z.iter().map(|v| if norm > 0.0 { v / norm } else { 0.0 }).collect();
