@@ -642,20 +642,25 @@ impl Semismooth<'_> {
             None => whole_operator(&mut *system)?,
         };
         let mut local = Local::new(self, operator, (x_hat, rhs), system)?;
-        let from = local
-            .zero_if_solution()
-            .unwrap_or_else(|| local.gather(self.start.unwrap_or(&local.x_hat)));
-        let guess = local.onto_foundation(&from, self.start.is_none());
-        let cap = if guess == from { self.max_inner } else { GUESS_STEPS.min(self.max_inner) };
-        let mut newton = local.iterate(guess.clone(), cap);
+        // The first iterate and the guess made from it are made again where a second try
+        // needs them rather than kept through the iteration (on the whole system, two
+        // vectors of the unknowns).
+        let cold = self.start.is_none();
+        let from = local.first_iterate(self.start);
+        let guess = local.onto_foundation(&from, cold);
+        let moved = guess != from;
+        drop(from);
+        let cap = if moved { GUESS_STEPS.min(self.max_inner) } else { self.max_inner };
+        let mut newton = local.iterate(guess, cap);
         let left = self.max_inner - newton.iterations;
-        if guess != from && left > 0 && newton.failed() {
+        if moved && left > 0 && newton.failed() {
             // The guess led nowhere: again from the solve without contact forces, within the
             // cap on the steps of both.
-            newton = newton.then(local.iterate(from, left));
+            newton = newton.then(local.iterate(local.first_iterate(self.start), left));
         }
         let mut short_of = None;
         if newton.failed() && local.conducts() {
+            let guess = local.onto_foundation(&local.first_iterate(self.start), cold);
             let (continued, theta) = local.continuation(guess, GUESS_STEPS.min(self.max_inner));
             newton = newton.then(continued);
             short_of = (theta < 1.0).then_some(theta);
@@ -1026,6 +1031,13 @@ impl<'a> Local<'a> {
         }
     }
 
+    /// The iterate the iteration starts from, before the guess ([`Local::onto_foundation`]):
+    /// 0 where it solves every equation ([`Local::zero_if_solution`]), else `start` (a
+    /// global vector: the last solution) or the solve without contact forces.
+    fn first_iterate(&self, start: Option<&[f64]>) -> Vec<f64> {
+        self.zero_if_solution().unwrap_or_else(|| self.gather(start.unwrap_or(&self.x_hat)))
+    }
+
     /// y = 0 when it solves every equation exactly — no load and no foundation inside the
     /// body, as at the end of a path that unloads — else `None`. The problem having one
     /// solution, the iteration then starts there and stops at its first step: from another
@@ -1283,7 +1295,7 @@ impl<'a> Local<'a> {
             jacobian.turn(cond.slots(i).0, &transposed)?;
             preconditioner.turn(cond.slots(i).0, &transposed)?;
         }
-        let mut rhs = self.to_global(&rhs);
+        let mut rhs = self.to_global(&{ rhs }); // the local one freed before the solve
         let rtol = self.forcing(self.merit(eval));
         self.system()?.solve_unsymmetric((&jacobian, &preconditioner), &mut rhs, rtol)?;
         self.to_local(&mut rhs);
