@@ -623,18 +623,20 @@ impl PetscSolver {
         let most = self.cap.take();
         krylov.reuse_preconditioner(keep)?;
         let mut solve = krylov.solve_operator((operator, own), (rtol, most), &d.b, &mut d.x)?;
-        let mut kept = keep;
+        let (mut kept, mut spent) = (keep, 0);
         if keep && solve.reason <= 0 {
+            // Again with the preconditioner set up for the current values: the lag and a
+            // failure's message read this attempt, the list of iterations both.
             krylov.reuse_preconditioner(false)?;
-            let again = krylov.solve_operator((operator, own), (rtol, most), &d.b, &mut d.x)?;
-            (solve, kept) =
-                (KrylovSolve { iterations: solve.iterations + again.iterations, ..again }, false);
+            spent = solve.iterations;
+            solve = krylov.solve_operator((operator, own), (rtol, most), &d.b, &mut d.x)?;
+            kept = false;
         }
         match general {
             Some(_) => self.lag.record(kept, solve.iterations, rtol),
             None => self.lag.reset(),
         }
-        self.krylov_iterations.push(solve.iterations);
+        self.krylov_iterations.push(spent + solve.iterations);
         if solve.reason <= 0 {
             return Err(not_converged(krylov, &solve));
         }
