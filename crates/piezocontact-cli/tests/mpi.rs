@@ -255,7 +255,7 @@ fn gamg_setups(stdout: &str) -> usize {
 }
 
 /// The Newton steps of the exact solver on the iterative route keep the preconditioner of an
-/// earlier step while its iterations per decade of the residual stay within the ratio
+/// earlier step while its iterations per decade of relative tolerance stay within the ratio
 /// (`-piezocontact_pc_rebuild_ratio`, 2 by default) under mpirun -n 2: fewer setups of the
 /// multigrid than with the ratio 0 (a setup at every step), the same Γ3 table to 1e−8 and a
 /// KKT residual within solver.tol; a ratio that is not a number ≥ 0 is refused, naming the

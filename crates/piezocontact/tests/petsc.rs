@@ -413,8 +413,9 @@ fn a_solve_with_a_patched_matrix_is_the_lu_s_and_leaves_k_as_it_was() {
 /// preconditioned by the floored one): K factorised, then corrected to K′ = K with every
 /// entry whose row and column are ≡ 0 (mod 5) times 1.1 (K′ quasi-definite as K is; the
 /// correction K′ − K on those rows, [`RowMatrix::difference`]). Solves are the sparse LU's
-/// of K′ to 1e−8 and products K′ x to 1e−12; a patched solve (J's rows from K′ on every seventh row, unsymmetric) is the LU's of
-/// K′ with J's rows — the correction's rows outside the patch kept — to 1e−8. With the Krylov
+/// of K′ to 1e−8 and products K′ x to 1e−12; a patched solve (J's rows from K′ on every
+/// seventh row, unsymmetric) is the LU's of K′ with J's rows — the correction's rows outside
+/// the patch kept — to 1e−8. With the Krylov
 /// solver freed ([`LinearSolver::release_work`]), the next solve makes it again: the LU's of
 /// K′ still, the solver's names kept. On one process, as the LU it is checked against is
 /// whole; on the 3D indentation's coarse mesh, as two sparse LUs of the bar took 45 s.

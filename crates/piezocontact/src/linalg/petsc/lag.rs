@@ -17,19 +17,21 @@ use crate::error::{Error, Result};
 pub const RATIO_OPTION: &str = "-piezocontact_pc_rebuild_ratio";
 
 /// The ratio by default: a reused preconditioner is kept while its solves take at most twice
-/// the iterations per decade of the residual of the first solve after its setup.
+/// the iterations per decade of relative tolerance of the first solve after its setup.
 const DEFAULT_RATIO: f64 = 2.0;
 
 /// The Newton steps' choice between keeping the preconditioner of the last setup and setting
 /// it up again for the step's matrix.
+///
 /// By default (the direct route's, which has no preconditioner): a setup every step.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Lag {
     /// A step keeps the preconditioner while the last solve took at most this times the
     /// iterations per decade of the first solve after its setup; 0: a setup every step.
     ratio: f64,
-    /// Iterations per decade of the residual of the first solve after the last setup, and of
-    /// the last solve (`None`: no solve since a setup for a Newton step's matrix).
+    /// Iterations per decade of relative tolerance (a solve to 1e−4 has four) of the first
+    /// solve after the last setup, and of the last solve (`None`: no solve since a setup for
+    /// a Newton step's matrix).
     fresh: Option<f64>,
     last: Option<f64>,
 }
@@ -68,8 +70,8 @@ impl Lag {
         self.last = Some(rate);
     }
 
-    /// The preconditioner set up for another matrix (a factorisation's, a plain solve's): the
-    /// next Newton step sets it up for its own.
+    /// The preconditioner set up for another matrix (a factorisation's, a plain solve's, a
+    /// Krylov solver made again): the next Newton step sets it up for its own.
     pub fn reset(&mut self) {
         (self.fresh, self.last) = (None, None);
     }

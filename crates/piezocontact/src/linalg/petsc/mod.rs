@@ -869,7 +869,6 @@ impl LinearSolver for PetscSolver {
         if let Some(d) = self.distributed.as_mut() {
             d.krylov = None;
         }
-        self.lag.reset();
         Ok(())
     }
 }
