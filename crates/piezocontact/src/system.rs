@@ -12,6 +12,7 @@ use crate::linalg::{
     SolverStats, SymmetricMatrix, check_length,
 };
 use crate::problem::{Factors, Problem};
+use std::borrow::Cow;
 use std::time::Instant;
 
 /// The cap of [`CoupledSystem::check_solve`] in multiples of the most Krylov iterations of a
@@ -375,8 +376,15 @@ impl CoupledSystem {
         rtol: f64,
     ) -> Result<()> {
         let patched = Patched::new(self.assembler.pattern(), jacobian, preconditioner)?;
+        let complete = self.assembler.complete_rows();
         match (self.solver.unsymmetric(), &self.matrix) {
-            (Some(solver), _) => solver.solve_unsymmetric(patched, rhs, rtol),
+            (Some(solver), _) if complete.is_none() => solver.solve_unsymmetric(patched, rhs, rtol),
+            (Some(solver), _) => {
+                let mut owned = owned_part(complete, rhs).into_owned();
+                solver.solve_unsymmetric(patched, &mut owned, rtol)?;
+                rhs.copy_from_slice(&from_owned(complete, owned));
+                self.whole_rows(rhs)
+            }
             (None, Some(matrix)) => self.row_lu.solve(&patched.whole_jacobian(matrix)?, rhs),
             (None, None) => Err(Error::LinearAlgebra(
                 "a solve with a patched matrix before the factorisation".into(),
@@ -450,23 +458,23 @@ impl CoupledSystem {
     /// B̌ x on the free unknowns (`x` whole), whole on every process.
     pub fn product(&mut self, x: &[f64]) -> Result<Vec<f64>> {
         let mut product = self.multiply(x)?;
-        if self.matrix.is_some() {
-            // This system's K gives each process its complete rows; the backend's product is
-            // whole already.
-            self.whole_rows(&mut product)?;
-        }
+        self.whole_rows(&mut product)?;
         Ok(product)
     }
 
-    /// K x on the free unknowns (`x` whole): with this system's K, each process's complete
-    /// rows right; with the backend's, whole.
+    /// K x on the free unknowns (`x` whole), each process's complete rows right (the others
+    /// 0 with the backend's K).
     fn multiply(&mut self, x: &[f64]) -> Result<Vec<f64>> {
         match (&self.matrix, self.solver.unsymmetric()) {
             (Some(matrix), _) => {
                 check_length("x", matrix.n(), x.len())?;
                 Ok(matrix.mul(x))
             }
-            (None, Some(backend)) => backend.product(x),
+            (None, Some(backend)) => {
+                let complete = self.assembler.complete_rows();
+                let product = backend.product(&owned_part(complete, x))?;
+                Ok(from_owned(complete, product))
+            }
             (None, None) => {
                 Err(Error::LinearAlgebra("a product with K before its assembly".into()))
             }
@@ -520,6 +528,23 @@ impl CoupledSystem {
     pub fn into_dofs(self) -> DofMap {
         self.assembler.into_dofs()
     }
+}
+
+/// The entries of `x` (a vector of the free unknowns) on this process's rows — those of the
+/// nodes it owns, `complete` (`None`: every one) — in increasing order.
+fn owned_part<'x>(complete: Option<&[bool]>, x: &'x [f64]) -> Cow<'x, [f64]> {
+    match complete {
+        None => Cow::Borrowed(x),
+        Some(complete) => x.iter().zip(complete).filter(|(_, c)| **c).map(|(v, _)| *v).collect(),
+    }
+}
+
+/// A vector of this process's rows ([`owned_part`]) put into one of the free unknowns, 0 on
+/// the others' rows.
+fn from_owned(complete: Option<&[bool]>, owned: Vec<f64>) -> Vec<f64> {
+    let Some(complete) = complete else { return owned };
+    let mut values = owned.into_iter();
+    complete.iter().map(|&c| if c { values.next().unwrap_or(0.0) } else { 0.0 }).collect()
 }
 
 /// The Schur-complement capability of `solver`, or the error that refuses it.

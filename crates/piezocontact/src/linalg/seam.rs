@@ -130,14 +130,16 @@ pub trait LinearSolver: std::fmt::Debug + Send {
 /// factorised one's pattern and values that are not symmetric — the Jacobian of the
 /// semismooth Newton method on the whole system (model §11).
 pub trait UnsymmetricSolve {
-    /// Solves J x = b in place (b on entry, x on exit, whole vectors), J the factorised
-    /// matrix K with the rows of `patched.jacobian` in place of K's (a process may hold only
-    /// the rows it owns), to the relative residual `rtol` where the method is iterative,
+    /// Solves J x = b in place (b on entry, x on exit, each on this process's rows: the
+    /// unknowns whose rows it owns, increasing — every unknown on one process), J the
+    /// factorised matrix K with the rows of `patched.jacobian` in place of K's (a process may
+    /// hold only the rows it owns), to the relative residual `rtol` where the method is iterative,
     /// preconditioned as for P (K with the rows of `patched.preconditioner`: symmetric, near
     /// J). The factorised matrix stays the one [`LinearSolver::solve_in_place`] solves with.
     fn solve_unsymmetric(&mut self, patched: Patched, rhs: &mut [f64], rtol: f64) -> Result<()>;
-    /// K x with the factorised matrix K as the backend holds it (`x` whole, the product whole
-    /// on every process), so that the caller need not keep a copy of K of its own.
+    /// K x with the factorised matrix K as the backend holds it, `x` and the product on this
+    /// process's rows (as [`UnsymmetricSolve::solve_unsymmetric`]'s), so that the caller need
+    /// not keep a copy of K of its own.
     fn product(&mut self, x: &[f64]) -> Result<Vec<f64>>;
     /// From now to the next factorisation, the operator of every solve and product is the
     /// factorised matrix plus `correction` (rows of the factorised matrix's pattern `pattern`,

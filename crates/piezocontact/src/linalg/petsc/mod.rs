@@ -65,6 +65,8 @@ struct Rows {
     /// This process's PETSc rows: `start..end`.
     start: usize,
     end: usize,
+    /// The unknowns among them (the others are held rows).
+    owned: usize,
     /// The unknown at each PETSc row ([`HELD`] at a held row).
     order: Vec<usize>,
     /// The PETSc row of each unknown.
@@ -113,7 +115,8 @@ impl Rows {
         let start = keys.partition_point(|key| key[0] < rank);
         let end = keys.partition_point(|key| key[0] <= rank);
         let nodes = keys[start..end].iter().map(|key| key[1]).collect();
-        Ok(Self { n, total, start, end, order, petsc, nodes })
+        let owned = keys[start..end].iter().filter(|key| key[3] != HELD).count();
+        Ok(Self { n, total, start, end, owned, order, petsc, nodes })
     }
 
     /// Whether unknown i's row is this process's.
@@ -181,6 +184,56 @@ impl Rows {
     fn unpermute(&self, gathered: &[f64], whole: &mut [f64]) {
         whole.iter_mut().zip(&self.petsc).for_each(|(w, &p)| *w = gathered[p]);
     }
+
+    /// The unknowns of a vector given as `part`, in its order: all of them, or those whose
+    /// rows this process owns, increasing.
+    fn unknowns(&self, part: Part) -> impl Iterator<Item = usize> + '_ {
+        (0..self.n).filter(move |&k| part == Part::Whole || self.owns(k))
+    }
+
+    /// Copies a vector given as `part` (the seam's numbering) into `local` (this process's
+    /// PETSc rows), 0 at the held rows.
+    fn put(&self, part: Part, values: &[f64], local: &mut [f64]) {
+        match part {
+            Part::Whole => self.scatter(values, local),
+            Part::Owned => {
+                local.fill(0.0);
+                let at = |k: usize| self.petsc[k] - self.start;
+                self.unknowns(part).zip(values).for_each(|(k, v)| local[at(k)] = *v);
+            }
+        }
+    }
+
+    /// Reads the distributed `x` into `values`, a vector given as `part`: whole (gathered on
+    /// every process by `gather`), or this process's rows.
+    fn take(
+        &self,
+        part: Part,
+        (x, gather): (&mut Vector, &mut Gather),
+        values: &mut [f64],
+    ) -> Result<()> {
+        match part {
+            Part::Whole => {
+                let mut gathered = vec![0.0; self.total];
+                gather.run(x, &mut gathered)?;
+                self.unpermute(&gathered, values);
+                Ok(())
+            }
+            Part::Owned => x.with_local(|local| {
+                let at = |k: usize| self.petsc[k] - self.start;
+                self.unknowns(part).zip(values.iter_mut()).for_each(|(k, v)| *v = local[at(k)]);
+            }),
+        }
+    }
+}
+
+/// How a vector of the unknowns crosses the seam.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Part {
+    /// Every unknown, on every process.
+    Whole,
+    /// The unknowns whose rows this process owns, increasing ([`UnsymmetricSolve`]).
+    Owned,
 }
 
 /// A row of the distributed matrix kept aside: PETSc's row, its columns and values.
@@ -599,21 +652,22 @@ impl PetscSolver {
     /// with `general` = (an operator, the relative residual), preconditioned as for the
     /// distributed matrix's current values or, where [`Lag`] says so, as for an earlier
     /// Newton step's (and again as for the current values if the solve does not converge so)
-    /// —: `rhs` whole in, the whole solution out; a solve that does not converge is an error
-    /// with its numbers and the options to change.
+    /// —: `rhs` in and the solution out, both given as `part`; a solve that does not
+    /// converge is an error with its numbers and the options to change.
     fn krylov_solve(
         &mut self,
-        rhs: &mut [f64],
+        (rhs, part): (&mut [f64], Part),
         general: Option<(&ffi::Matrix, f64)>,
     ) -> Result<()> {
-        rhs.iter_mut().zip(&self.signs).for_each(|(b, &sign)| *b *= row_sign(true, sign));
         if self.distributed.as_ref().is_some_and(|d| d.krylov.is_none()) {
             self.set_up_krylov()?;
         }
         let rows = self.rows.as_ref().expect("analysed");
+        let sign = |k: usize| row_sign(true, self.signs[k]);
+        rows.unknowns(part).zip(rhs.iter_mut()).for_each(|(k, b)| *b *= sign(k));
         let d = self.distributed.as_mut().expect("set up");
         let krylov = d.krylov.as_mut().expect("set up");
-        d.b.with_local(|b| rows.scatter(rhs, b))?;
+        d.b.with_local(|b| rows.put(part, rhs, b))?;
         let own = d.matrix.operator();
         let keep = general.is_some() && self.lag.keep();
         let (operator, rtol) = match general {
@@ -640,10 +694,13 @@ impl PetscSolver {
         if solve.reason <= 0 {
             return Err(not_converged(krylov, &solve));
         }
-        let mut gathered = vec![0.0; rows.total];
-        d.gather.run(&d.x, &mut gathered)?;
-        rows.unpermute(&gathered, rhs);
-        Ok(())
+        rows.take(part, (&mut d.x, &mut d.gather), rhs)
+    }
+
+    /// `values`, given as `part`, times D (the scaling).
+    fn scale(&self, part: Part, values: &mut [f64]) {
+        let rows = self.rows.as_ref().expect("analysed");
+        rows.unknowns(part).zip(values).for_each(|(k, v)| *v *= self.scaling[k]);
     }
 
     /// MUMPS's analysis (at the first factorisation after [`LinearSolver::analyze`]) and
@@ -733,17 +790,15 @@ impl PetscSolver {
         Ok(())
     }
 
-    /// y = A x of the scaled matrix (with the correction, if any), whole vectors on every
-    /// process.
-    fn multiply(&mut self, x: &[f64]) -> Result<Vec<f64>> {
+    /// y = A x of the scaled matrix (with the correction, if any), x and y given as `part`.
+    fn multiply(&mut self, (x, part): (&[f64], Part)) -> Result<Vec<f64>> {
         let rows = self.rows.as_ref().expect("analysed");
         let d = self.distributed.as_mut().expect("filled");
-        d.b.with_local(|b| rows.scatter(x, b))?;
+        d.b.with_local(|b| rows.put(part, x, b))?;
         let operator = self.correction.as_ref().map_or(d.matrix.operator(), |c| &c.operator);
         operator.mult(&d.b, &mut d.x)?;
-        let (mut gathered, mut y) = (vec![0.0; rows.total], vec![0.0; rows.n]);
-        d.gather.run(&d.x, &mut gathered)?;
-        rows.unpermute(&gathered, &mut y);
+        let mut y = vec![0.0; x.len()];
+        rows.take(part, (&mut d.x, &mut d.gather), &mut y)?;
         Ok(y)
     }
 
@@ -752,13 +807,13 @@ impl PetscSolver {
     fn solve_with_schur(&mut self, b: &mut [f64]) -> Result<()> {
         let mut y = b.to_vec();
         self.mumps_solve(&mut y)?;
-        let k_y = self.multiply(&y)?;
+        let k_y = self.multiply((&y, Part::Whole))?;
         let (_, inverse) = self.schur.as_ref().expect("read at factorisation");
         let reduced: Vec<f64> = self.last.iter().map(|&c| b[c] - k_y[c]).collect();
         let x_c = inverse.mul(&reduced);
         let mut e = vec![0.0; b.len()];
         self.last.iter().zip(&x_c).for_each(|(&c, &v)| e[c] = v);
-        let k_e = self.multiply(&e)?;
+        let k_e = self.multiply((&e, Part::Whole))?;
         b.iter_mut().zip(&k_e).for_each(|(b, k)| *b -= k);
         self.mumps_solve(b)?;
         self.last.iter().zip(&x_c).for_each(|(&c, &v)| b[c] = v);
@@ -810,7 +865,7 @@ impl LinearSolver for PetscSolver {
         }
         rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
         if self.iterative.is_some() {
-            self.krylov_solve(rhs, None)?;
+            self.krylov_solve((rhs, Part::Whole), None)?;
         } else if self.last.is_empty() {
             self.mumps_solve(rhs)?;
         } else {
@@ -882,8 +937,8 @@ impl LinearSolver for PetscSolver {
 impl UnsymmetricSolve for PetscSolver {
     fn solve_unsymmetric(&mut self, patched: Patched, rhs: &mut [f64], rtol: f64) -> Result<()> {
         let t = Instant::now();
-        let n = self.rows.as_ref().map_or(0, |r| r.n);
-        check_length("right-hand side", n, rhs.len())?;
+        let (n, owned) = self.rows.as_ref().map_or((0, 0), |r| (r.n, r.owned));
+        check_length("right-hand side (this process's rows)", owned, rhs.len())?;
         check_length("Jacobian's patch order", n, patched.jacobian().n())?;
         if self.distributed.is_none() {
             return Err(unfilled());
@@ -893,12 +948,12 @@ impl UnsymmetricSolve for PetscSolver {
         self.write_patch(patched.preconditioner())?;
         let own = self.distributed.as_ref().ok_or_else(unfilled)?.matrix.operator();
         let operator = ffi::Matrix::sum(&[own, difference.operator()])?;
-        rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
-        let solved = self.krylov_solve(rhs, Some((&operator, rtol)));
+        self.scale(Part::Owned, rhs);
+        let solved = self.krylov_solve((rhs, Part::Owned), Some((&operator, rtol)));
         // K's rows again, whether or not the solve converged.
         self.restore_rows(&saved)?;
         solved?;
-        rhs.iter_mut().zip(&self.scaling).for_each(|(x, s)| *x *= s);
+        self.scale(Part::Owned, rhs);
         self.stats.solve_seconds += t.elapsed().as_secs_f64();
         self.stats.solve_count += 1;
         Ok(())
@@ -907,15 +962,19 @@ impl UnsymmetricSolve for PetscSolver {
     /// K x from the distributed matrix, which holds S D K D (D the scaling, S −1 on the ϕ
     /// rows): K x = D⁻¹ S (S D K D) D⁻¹ x.
     fn product(&mut self, x: &[f64]) -> Result<Vec<f64>> {
-        let n = self.rows.as_ref().ok_or_else(unfilled)?.n;
-        check_length("x", n, x.len())?;
+        let owned = self.rows.as_ref().ok_or_else(unfilled)?.owned;
+        check_length("x (this process's rows)", owned, x.len())?;
         if self.distributed.is_none() {
             return Err(unfilled());
         }
-        let scaled: Vec<f64> = x.iter().zip(&self.scaling).map(|(x, s)| x / s).collect();
-        let mut product = self.multiply(&scaled)?;
+        let rows = self.rows.as_ref().ok_or_else(unfilled)?;
+        let mut scaled = x.to_vec();
+        rows.unknowns(Part::Owned).zip(&mut scaled).for_each(|(k, v)| *v /= self.scaling[k]);
+        let mut product = self.multiply((&scaled, Part::Owned))?;
+        let rows = self.rows.as_ref().ok_or_else(unfilled)?;
         let sign = |k: usize| row_sign(self.iterative.is_some(), self.signs[k]);
-        product.iter_mut().enumerate().for_each(|(k, y)| *y *= sign(k) / self.scaling[k]);
+        let unscale = |(k, y): (usize, &mut f64)| *y *= sign(k) / self.scaling[k];
+        rows.unknowns(Part::Owned).zip(&mut product).for_each(unscale);
         Ok(product)
     }
 
