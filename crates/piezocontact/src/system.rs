@@ -365,7 +365,8 @@ impl CoupledSystem {
         self.solve(None)
     }
 
-    /// Solves J x = b in place (free DOFs) for J the factorised matrix B̌ but on the rows of
+    /// Solves J x = b in place (b and x on this process's rows, as [`CoupledSystem::product`]'s)
+    /// for J the factorised matrix B̌ but on the rows of
     /// `jacobian` (a [`Patched`] row matrix of B̌'s pattern): by the backend where it has its
     /// own solver of such matrices, to the relative residual `rtol`, preconditioned as for P,
     /// B̌ with the rows of `preconditioner` (symmetric, near J); else by a sparse LU of J.
@@ -376,16 +377,16 @@ impl CoupledSystem {
         rtol: f64,
     ) -> Result<()> {
         let patched = Patched::new(self.assembler.pattern(), jacobian, preconditioner)?;
-        let complete = self.assembler.complete_rows();
+        let whole = self.assembler.complete_rows().is_none();
         match (self.solver.unsymmetric(), &self.matrix) {
-            (Some(solver), _) if complete.is_none() => solver.solve_unsymmetric(patched, rhs, rtol),
-            (Some(solver), _) => {
-                let mut owned = owned_part(complete, rhs).into_owned();
-                solver.solve_unsymmetric(patched, &mut owned, rtol)?;
-                rhs.copy_from_slice(&from_owned(complete, owned));
-                self.whole_rows(rhs)
+            (Some(solver), _) => solver.solve_unsymmetric(patched, rhs, rtol),
+            (None, Some(matrix)) if whole => {
+                self.row_lu.solve(&patched.whole_jacobian(matrix)?, rhs)
             }
-            (None, Some(matrix)) => self.row_lu.solve(&patched.whole_jacobian(matrix)?, rhs),
+            (None, Some(_)) => Err(Error::LinearAlgebra(
+                "a solve with a patched matrix on several processes needs a backend that solves it"
+                    .into(),
+            )),
             (None, None) => Err(Error::LinearAlgebra(
                 "a solve with a patched matrix before the factorisation".into(),
             )),
@@ -441,25 +442,42 @@ impl CoupledSystem {
         Ok(r2.sqrt() / b2.sqrt().max(f64::MIN_POSITIVE))
     }
 
-    /// `rows` (a vector of the free unknowns whose complete rows are right on each process: a
-    /// product with the matrix, the right-hand side) made whole on every process: each
-    /// process's complete rows — those of the nodes it owns — kept, the others zeroed, and the
-    /// sum over the processes taken. Unchanged where every row is complete.
-    pub fn whole_rows(&mut self, rows: &mut [f64]) -> Result<()> {
-        let Some(complete) = self.assembler.complete_rows() else { return Ok(()) };
-        check_length("rows", complete.len(), rows.len())?;
-        rows.iter_mut().zip(complete).filter(|(_, c)| !**c).for_each(|(v, _)| *v = 0.0);
+    /// Each entry of `values` (of the same length on every process) summed over the
+    /// processes of a distributed backend, in place; unchanged on one process.
+    pub fn sum_over_processes(&mut self, values: &mut [f64]) -> Result<()> {
         match self.solver.distributed() {
-            Some(distributed) => distributed.sum_each(rows),
-            None => Ok(()),
+            Some(distributed) if self.assembler.complete_rows().is_some() => {
+                distributed.sum_each(values)
+            }
+            _ => Ok(()),
         }
     }
 
-    /// B̌ x on the free unknowns (`x` whole), whole on every process.
+    /// The largest `value` over the processes of a distributed backend; `value` on one.
+    pub fn max_over_processes(&mut self, value: f64) -> Result<f64> {
+        match self.solver.distributed() {
+            Some(distributed) if self.assembler.complete_rows().is_some() => distributed.max(value),
+            _ => Ok(value),
+        }
+    }
+
+    /// B̌ x on this process's rows: `x` and the product on the free unknowns whose rows it
+    /// owns, increasing (every one on one process).
     pub fn product(&mut self, x: &[f64]) -> Result<Vec<f64>> {
-        let mut product = self.multiply(x)?;
-        self.whole_rows(&mut product)?;
-        Ok(product)
+        let whole = self.assembler.complete_rows().is_none();
+        match (&self.matrix, self.solver.unsymmetric()) {
+            (_, Some(backend)) => backend.product(x),
+            (Some(matrix), None) if whole => {
+                check_length("x", matrix.n(), x.len())?;
+                Ok(matrix.mul(x))
+            }
+            (Some(_), None) => Err(Error::LinearAlgebra(
+                "a product on each process's rows needs a backend that multiplies".into(),
+            )),
+            (None, None) => {
+                Err(Error::LinearAlgebra("a product with K before its assembly".into()))
+            }
+        }
     }
 
     /// K x on the free unknowns (`x` whole), each process's complete rows right (the others

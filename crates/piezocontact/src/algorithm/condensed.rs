@@ -191,44 +191,76 @@ impl Condensed {
         this
     }
 
-    /// The whole system as the "condensed" unknowns, at their free indices (position k is
-    /// free unknown k), for the semismooth Newton method on the whole system (model §11):
-    /// every Γ3 node that can touch the foundation (a finite gap) is kept with each of its free
-    /// u components, and its ϕ as for [`Condensed::new`] with `with_phi`; the other unknowns
-    /// are the interior's.
-    pub fn whole(dofs: &DofMap, surface: &ContactSurface, with_phi: bool) -> Self {
+    /// The whole system as the "condensed" unknowns, for the semismooth Newton method on the
+    /// whole system (model §11): every Γ3 node that can touch the foundation (a finite gap) is
+    /// kept with each of its free u components, and its ϕ as for [`Condensed::new`] with
+    /// `with_phi`; the other unknowns are the interior's. The positions are the free unknowns
+    /// this process holds, increasing: every one on one process (position k is free unknown
+    /// k), else those whose rows it owns (`complete`, per free unknown) and every kept node's.
+    pub fn whole(
+        dofs: &DofMap,
+        surface: &ContactSurface,
+        with_phi: bool,
+        complete: Option<&[bool]>,
+    ) -> Self {
         let dim = surface.dim();
-        let mut global = vec![0; dofs.n_free()];
+        let kept: Vec<bool> = surface.gap.iter().map(|g| g.is_finite()).collect();
+        let axes: Vec<(usize, [usize; 3])> = (surface.nodes.iter().zip(&kept))
+            .map(|(&node, &kept)| if kept { free_axes(dofs, node, dim) } else { (0, [0; 3]) })
+            .collect();
+        let phi_of = |i: usize| {
+            let dof = dofs.phi(surface.nodes[i]);
+            match dofs.free_index(dof) {
+                _ if !with_phi || !kept[i] => Phi::Interior,
+                CONSTRAINED => Phi::Prescribed(dof),
+                k => Phi::Unknown(k),
+            }
+        };
+        let free_u = |i: usize| axes[i].1[..axes[i].0].iter().map(move |&k| (i, k));
+        let u_index = |(i, k): (usize, usize)| dofs.free_index(dofs.u(surface.nodes[i], k));
+        let free = match complete {
+            None => (0..dofs.n_free()).collect(),
+            Some(complete) => {
+                let mut held: Vec<usize> = (0..dofs.n_free()).filter(|&k| complete[k]).collect();
+                held.extend((0..surface.len()).flat_map(free_u).map(u_index));
+                held.extend((0..surface.len()).filter_map(|i| match phi_of(i) {
+                    Phi::Unknown(k) => Some(k),
+                    _ => None,
+                }));
+                held.sort_unstable();
+                held.dedup();
+                held
+            }
+        };
+        // Every free unknown looked up is held, by the construction above.
+        let position = |k: usize| free.partition_point(|&f| f < k);
+        let mut global = vec![0; free.len()];
         for g in (0..dofs.n_total()).filter(|&g| dofs.free_index(g) != CONSTRAINED) {
-            global[dofs.free_index(g)] = g;
+            if let Ok(p) = free.binary_search(&dofs.free_index(g)) {
+                global[p] = g;
+            }
         }
-        let mut this = Self {
-            free: (0..dofs.n_free()).collect(),
+        let (mut u, mut phi) = (Vec::new(), Vec::new());
+        for i in 0..surface.len() {
+            let mut slots = [usize::MAX; 3];
+            free_u(i).zip(&mut slots).for_each(|(k, slot)| *slot = position(u_index(k)));
+            u.push(slots);
+            phi.push(match phi_of(i) {
+                Phi::Unknown(k) => Phi::Unknown(position(k)),
+                other => other,
+            });
+        }
+        Self {
+            free,
             global,
-            u: Vec::new(),
-            axes: Vec::new(),
-            phi: Vec::new(),
-            kept: surface.gap.iter().map(|g| g.is_finite()).collect(),
+            u,
+            axes,
+            phi,
+            kept,
             with_phi,
             n_free: dofs.n_free(),
             frictionless: false,
-        };
-        for (i, &node) in surface.nodes.iter().enumerate() {
-            let axes = free_axes(dofs, node, dim);
-            let mut u = [usize::MAX; 3];
-            for (slot, &k) in u.iter_mut().zip(&axes.1[..axes.0]) {
-                *slot = dofs.free_index(dofs.u(node, k));
-            }
-            let dof = dofs.phi(node);
-            this.phi.push(match dofs.free_index(dof) {
-                _ if !with_phi || !this.kept[i] => Phi::Interior,
-                CONSTRAINED => Phi::Prescribed(dof),
-                k => Phi::Unknown(k),
-            });
-            this.u.push(if this.kept[i] { u } else { [usize::MAX; 3] });
-            this.axes.push(if this.kept[i] { axes } else { (0, [0; 3]) });
         }
-        this
     }
 
     /// The active-set check of the nodes left out (model §11): at the solution `x` of the
@@ -295,6 +327,11 @@ impl Condensed {
     pub(super) fn slots(&self, i: usize) -> (&[usize], &[usize]) {
         let (n, axes) = &self.axes[i];
         (&self.u[i][..*n], &axes[..*n])
+    }
+
+    /// The free unknowns at node i's slots ([`Condensed::slots`]), in their order.
+    pub(super) fn slot_unknowns(&self, i: usize) -> Vec<usize> {
+        self.slots(i).0.iter().map(|&k| self.free[k]).collect()
     }
 
     /// Number of condensed Γ3 nodes.
@@ -528,6 +565,47 @@ mod slot_tests {
             let i = (0..surface.len()).find(|&i| c.kept[i]).unwrap();
             let axes = c.slots(i).1.to_vec();
             assert_eq!(axes, if frictionless { vec![2] } else { vec![0, 1, 2] });
+        }
+    }
+
+    /// The whole system's positions on a process that owns the rows of every other free
+    /// unknown: those unknowns and every kept Γ3 node's, increasing, each position at its free
+    /// unknown and its global one; a kept node's slots at its free u components (in its
+    /// axes' order) and its ϕ at its own; on one process position k is free unknown k.
+    #[test]
+    fn the_whole_system_s_positions_are_the_owned_rows_and_the_contact_unknowns() {
+        let text = include_str!("../../../../cases/indentation-3d.toml");
+        let mesh = concat!(env!("CARGO_MANIFEST_DIR"), "/../../meshes/indent-3d-h0.05.msh");
+        let fixture = Fixture::new(text, &[&format!("mesh.file={mesh:?}")]);
+        let dofs = DofMap::new(fixture.problem()).unwrap();
+        let surface = &fixture.surface;
+        let one = Condensed::whole(&dofs, surface, true, None);
+        assert_eq!(one.free, (0..dofs.n_free()).collect::<Vec<_>>());
+        let complete: Vec<bool> = (0..dofs.n_free()).map(|k| k % 2 == 0).collect();
+        let part = Condensed::whole(&dofs, surface, true, Some(&complete));
+        let mut contact = Vec::new();
+        for i in (0..surface.len()).filter(|&i| part.kept[i]) {
+            let (slots, axes) = part.slots(i);
+            assert_eq!(slots.len(), one.slots(i).0.len());
+            for (&p, &axis) in slots.iter().zip(axes) {
+                assert_eq!(part.free[p], dofs.free_index(dofs.u(surface.nodes[i], axis)));
+                contact.push(part.free[p]);
+            }
+            if let (Phi::Unknown(p), Phi::Unknown(q)) = (part.phi[i], one.phi[i]) {
+                assert_eq!(part.free[p], q);
+                contact.push(q);
+            }
+        }
+        assert!(contact.len() > 100, "{} contact unknowns", contact.len());
+        let mut expected: Vec<usize> = (0..dofs.n_free()).filter(|&k| complete[k]).collect();
+        expected.extend(contact);
+        expected.sort_unstable();
+        expected.dedup();
+        assert!(expected.len() < dofs.n_free());
+        assert_eq!(part.free, expected);
+        for (p, &k) in part.free.iter().enumerate() {
+            assert_eq!(part.global[p], one.global[k]);
+            assert_eq!(dofs.free_index(part.global[p]), k);
         }
     }
 }

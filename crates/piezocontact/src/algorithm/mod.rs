@@ -1,7 +1,8 @@
 //! The contact algorithms (model §7): the outer fixed point of \[P\] Section 6 — Algorithm 1
 //! (PV2) and Algorithm 3 (PV1) — around an inner method: the paper's Uzawa block relaxation
 //! ([`uzawa`], Algorithms 2 and 4) or the exact solver ([`newton`], model §11, on the problem
-//! condensed onto Γ3 by [`condensed`]).
+//! condensed onto Γ3 by [`condensed`], or on the whole system, of which each process holds
+//! its part: `held`).
 //!
 //! - [`outer`]: the outer loop ([`ContactSolver`]), a short loop of named steps;
 //! - [`hencky`]: Hencky's law linearised at x_n — the secant, or the consistent tangent with
@@ -24,6 +25,7 @@
 //! and [`stops`] for its criterion and its stops. No file of these imports one above it.
 
 pub mod condensed;
+mod held;
 pub mod hencky;
 pub mod inner;
 pub mod newton;

@@ -22,6 +22,7 @@
 //! them cycle from both starts, a continuation in k_e (`Local::continuation`) takes its place.
 
 use super::condensed::{self, Condensed, Guess, Phi, SchurSource};
+use super::held::Held;
 use super::inner::{InnerMethod, InnerResult, Progress, Setup, Step, Stop, StopContext};
 use super::residual::KktResidual;
 use crate::assembly::NodalBlock;
@@ -86,8 +87,8 @@ enum Operator {
     Dense(DenseMatrix),
     /// T K Tᵀ, K the whole system's matrix (the coupled system's, which multiplies),
     /// T turning each kept Γ3 node's u to its local frame: of T K Tᵀ, the rows that the
-    /// Newton steps change (`rows`: the kept nodes' and their neighbours', the others empty)
-    /// and the diagonal.
+    /// Newton steps change (`rows`: the kept nodes' and their neighbours', the others empty;
+    /// numbered by the free unknowns) and the diagonal (per position).
     Sparse { rows: RowMatrix, diagonal: Vec<f64> },
 }
 
@@ -97,19 +98,6 @@ impl Operator {
         match self {
             Operator::Dense(schur) => schur.get(k, k),
             Operator::Sparse { diagonal, .. } => diagonal[k],
-        }
-    }
-
-    /// out += factor · (row j of A) (A is symmetric: its column j).
-    fn add_row(&self, j: usize, factor: f64, out: &mut [f64]) {
-        match self {
-            Operator::Dense(schur) => {
-                out.iter_mut().zip(schur.col(j)).for_each(|(o, s)| *o += factor * s)
-            }
-            Operator::Sparse { rows, .. } => {
-                let (columns, values) = rows.row(j);
-                columns.iter().zip(values).for_each(|(&c, v)| out[c] += factor * v);
-            }
         }
     }
 }
@@ -124,6 +112,9 @@ struct Local<'a> {
     system: Mutex<&'a mut CoupledSystem>,
     /// Per position, its Γ3 node ([`INTERIOR`] for the whole system's other unknowns).
     node_of: Vec<usize>,
+    /// On the whole system, what this process holds of it; `None` on the condensed problem
+    /// (the same on every process).
+    held: Option<Held>,
     /// Q b: the condensed load in local coordinates.
     load: Vec<f64>,
     /// Per node: Q_i (rows ν, τ1, τ2) in the components of its unknowns.
@@ -136,10 +127,6 @@ struct Local<'a> {
     scale: Vec<f64>,
     /// The global vector of the solve without contact (for prescribed ϕ).
     x_hat: Vec<f64>,
-    /// The positions whose iterates the loop detection keeps ([`Local::watched`]): `None`,
-    /// every one (the condensed problem's, all Γ3 unknowns); on the whole system the Γ3
-    /// unknowns.
-    watched: Option<Vec<usize>>,
     /// Per node, where the slip is measured from in its local components (the tangential
     /// ones matter): 0, or the previous step of a path with incremental friction.
     origin: Vec<[f64; 3]>,
@@ -414,8 +401,9 @@ impl InnerMethod for Newton {
         self.c_factor = self.parameters.r / problem.materials.reference_modulus();
         self.whole = solver.schur().is_none();
         if self.whole {
-            let condensed = Condensed::whole(&dofs, surface, with_phi);
             let mut system = CoupledSystem::new(problem, dofs, &[], solver)?;
+            let complete = system.assembler().complete_rows();
+            let condensed = Condensed::whole(system.dofs(), surface, with_phi, complete);
             system.keep_rows(rows_read(&system, &condensed))?;
             self.condensed = Some(condensed);
             return Ok(system);
@@ -639,7 +627,7 @@ impl Semismooth<'_> {
         let x_hat = system.solve(None)?;
         let (operator, rhs) = match schur {
             Some(schur) => (Operator::Dense(schur.get(system, &cond.free)?), None),
-            None => whole_operator(&mut *system)?,
+            None => whole_operator(&mut *system, cond)?,
         };
         let mut local = Local::new(self, operator, (x_hat, rhs), system)?;
         // The first iterate and the guess made from it are made again where a second try
@@ -711,14 +699,16 @@ fn nodes_of(cond: &Condensed) -> Vec<usize> {
 
 /// The whole system's operator (K's rows that the Newton steps change — [`rows_read`] — and
 /// K's diagonal, in the unknowns' frames, kept by the system at its factorisation) and its
-/// right-hand side, whole.
-fn whole_operator(system: &mut CoupledSystem) -> Result<(Operator, Option<Vec<f64>>)> {
+/// right-hand side, at the positions of `cond` (right on the rows this process owns).
+fn whole_operator(
+    system: &mut CoupledSystem,
+    cond: &Condensed,
+) -> Result<(Operator, Option<Vec<f64>>)> {
     let (rows, diagonal) = system.kept_rows().ok_or_else(|| {
         Error::LinearAlgebra("the whole system's Newton step before its matrix".into())
     })?;
-    let (rows, diagonal) = (rows.clone(), diagonal.to_vec());
-    let mut rhs = system.rhs().to_vec();
-    system.whole_rows(&mut rhs)?;
+    let (rows, diagonal) = (rows.clone(), cond.free.iter().map(|&k| diagonal[k]).collect());
+    let rhs = cond.free.iter().map(|&k| system.rhs()[k]).collect();
     Ok((Operator::Sparse { rows, diagonal }, Some(rhs)))
 }
 
@@ -728,7 +718,10 @@ fn whole_operator(system: &mut CoupledSystem) -> Result<(Operator, Option<Vec<f6
 /// rows turn with them ([`RowMatrix::turn`]); their own values are not used.
 fn rows_read(system: &CoupledSystem, cond: &Condensed) -> Vec<bool> {
     let pattern = system.assembler().pattern();
-    let on_contact: Vec<bool> = nodes_of(cond).iter().map(|&i| i != INTERIOR).collect();
+    let mut on_contact = vec![false; pattern.n()];
+    for (k, _) in nodes_of(cond).iter().enumerate().filter(|(_, i)| **i != INTERIOR) {
+        on_contact[cond.free[k]] = true;
+    }
     let mut touched = on_contact.clone();
     for j in 0..pattern.n() {
         for i in pattern.column(j).1.iter().map(|&i| i as usize) {
@@ -764,10 +757,12 @@ fn turned_operator(
     match operator {
         Operator::Sparse { mut rows, mut diagonal } => {
             for &i in &kept {
-                rows.turn(cond.slots(i).0, &block(i))?;
+                rows.turn(&cond.slot_unknowns(i), &block(i))?;
             }
-            for (k, d) in diagonal.iter_mut().enumerate().filter(|(k, _)| rows.has_row(*k)) {
-                *d = rows.diagonal(k);
+            let row_of = |k: usize| cond.free[k];
+            for (k, d) in diagonal.iter_mut().enumerate().filter(|(k, _)| rows.has_row(row_of(*k)))
+            {
+                *d = rows.diagonal(row_of(k));
             }
             Ok(Operator::Sparse { rows, diagonal })
         }
@@ -808,30 +803,35 @@ impl<'a> Local<'a> {
     fn new(
         semismooth: &'a Semismooth<'a>,
         operator: Operator,
-        (x_hat, rhs): (Vec<f64>, Option<Vec<f64>>),
+        (x_hat, mut rhs): (Vec<f64>, Option<Vec<f64>>),
         system: &'a mut CoupledSystem,
     ) -> Result<Self> {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
         let (frames, turned) = unknown_frames(surface, system.dofs());
         let (m, node_of) = (cond.len(), nodes_of(cond));
         let mut operator = turned_operator(operator, cond, &frames)?;
-        let mut watched = None;
+        let mut held = None;
         if let Operator::Sparse { diagonal, .. } = &mut operator {
-            system.whole_rows(diagonal)?;
-            watched = Some((0..m).filter(|&k| node_of[k] != INTERIOR).collect());
+            let contact = (0..m).filter(|&k| node_of[k] != INTERIOR).collect();
+            let whole = Held::new(contact, &cond.free, system.assembler().complete_rows());
+            whole.complete(diagonal, system)?;
+            if let Some(rhs) = rhs.as_mut() {
+                whole.complete(rhs, system)?;
+            }
+            held = Some(whole);
         }
         let mut this = Self {
             semismooth,
             operator,
             system: Mutex::new(system),
             node_of,
+            held,
             load: Vec::new(),
             frames,
             turned,
             c: Vec::new(),
             scale: Vec::new(),
             x_hat,
-            watched,
             origin: vec![[0.0; 3]; surface.len()],
             conduction: 1.0,
             first_merit: std::sync::OnceLock::new(),
@@ -895,8 +895,8 @@ impl<'a> Local<'a> {
                 }
             };
             y.iter_mut().zip(&delta).for_each(|(a, d)| *a += alpha * d);
-            let size = max_norm(&y).max(f64::MIN_POSITIVE);
-            let criterion = alpha * max_norm(&delta) / size;
+            let size = self.max_norm(&y).max(f64::MIN_POSITIVE);
+            let criterion = alpha * self.max_norm(&delta) / size;
             history.push(criterion);
             let tolerance = STEP_TOLERANCE;
             (semismooth.step.progress)(Progress::Inner { iteration: k + 1, criterion, tolerance });
@@ -1025,9 +1025,33 @@ impl<'a> Local<'a> {
     /// fixed), so that a loop of the sets shows there — and not a whole vector per iterate;
     /// the condensed problem's whole y.
     fn watched<'y>(&self, y: &'y [f64]) -> std::borrow::Cow<'y, [f64]> {
-        match &self.watched {
-            Some(positions) => positions.iter().map(|&k| y[k]).collect(),
+        match &self.held {
+            Some(held) => held.contact.iter().map(|&k| y[k]).collect(),
             None => std::borrow::Cow::Borrowed(y),
+        }
+    }
+
+    /// The sum of the terms (position, value): on the whole system over the positions each
+    /// process owns, summed over the processes, so that every process has the same; else of
+    /// every term. NaN where a reduction fails (whose errors end the job by default).
+    fn total(&self, terms: impl Iterator<Item = (usize, f64)>) -> f64 {
+        match &self.held {
+            None => terms.map(|(_, v)| v).sum(),
+            Some(held) => self
+                .system()
+                .and_then(|mut system| held.sum(&mut system, terms))
+                .unwrap_or(f64::NAN),
+        }
+    }
+
+    /// max |v_k| over the positions (on the whole system, every process's owned ones), NaN
+    /// where the reduction fails.
+    fn max_norm(&self, values: &[f64]) -> f64 {
+        match &self.held {
+            None => max_norm(values),
+            Some(held) => (self.system())
+                .and_then(|mut system| held.max_norm(&mut system, values))
+                .unwrap_or(f64::NAN),
         }
     }
 
@@ -1045,7 +1069,9 @@ impl<'a> Local<'a> {
     /// below round-off.
     fn zero_if_solution(&self) -> Option<Vec<f64>> {
         let zero = vec![0.0; self.semismooth.condensed.len()];
-        self.evaluate(&zero).residual.iter().all(|e| *e == 0.0).then_some(zero)
+        let residual = self.evaluate(&zero).residual;
+        let nonzero = residual.iter().map(|e| f64::from(u8::from(*e != 0.0)));
+        (self.total(nonzero.enumerate()) == 0.0).then_some(zero)
     }
 
     /// The condensed entries of a global vector (mesh components), in local coordinates.
@@ -1077,18 +1103,24 @@ impl<'a> Local<'a> {
         }
     }
 
-    /// A y: Q S Qᵀ y, or T K Tᵀ y with the coupled system's K (whole on every process).
+    /// A y: Q S Qᵀ y, or T K Tᵀ y with the coupled system's K (this process's rows and the
+    /// Γ3 rows).
     fn product(&self, y: &[f64]) -> Vec<f64> {
-        match &self.operator {
-            Operator::Dense(schur) => schur.mul(y),
-            Operator::Sparse { .. } => {
+        match (&self.operator, &self.held) {
+            (Operator::Dense(schur), _) => schur.mul(y),
+            (Operator::Sparse { .. }, held) => {
+                let held = held.as_ref().expect("the whole system holds its positions");
                 // K is only read: a panic elsewhere while the lock was held cannot spoil it.
                 let mut system =
                     self.system.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+                let x = held.owned_part(self.to_global(y));
                 // The product fails only where MPI's reduction does, whose errors end the job
                 // by default; were it to return, non-finite forces fail the Newton step.
-                let mut forces =
-                    system.product(&self.to_global(y)).unwrap_or_else(|_| vec![f64::NAN; y.len()]);
+                let forces = system.product(&x).map(|f| held.spread(f)).and_then(|mut f| {
+                    held.complete(&mut f, &mut system)?;
+                    Ok(f)
+                });
+                let mut forces = forces.unwrap_or_else(|_| vec![f64::NAN; y.len()]);
                 self.to_local(&mut forces);
                 forces
             }
@@ -1120,13 +1152,25 @@ impl<'a> Local<'a> {
     /// whole system's y itself.
     fn whole_solution(&self, y: &[f64], eval: &Evaluation) -> Result<Vec<f64>> {
         let cond = self.semismooth.condensed;
-        let mut system = self.system()?;
-        if let Operator::Sparse { .. } = self.operator {
-            if let Some(k) = y.iter().position(|v| !v.is_finite()) {
-                return Err(Error::NonFinite { what: format!("solution component {k}") });
+        if let Some(held) = &self.held {
+            // Every process fails alike, so that none waits for the others' next collective.
+            let not_finite = y.iter().map(|v| f64::from(u8::from(!v.is_finite())));
+            if self.total(not_finite.enumerate()) > 0.0 {
+                let what = match y.iter().position(|v| !v.is_finite()) {
+                    Some(k) => format!("solution component {}", cond.free[k]),
+                    None => "a solution component of another process".to_string(),
+                };
+                return Err(Error::NonFinite { what });
             }
-            return Ok(system.dofs().expand(&self.to_global(y)));
+            // Gathered once, for the outputs: each process's rows, summed.
+            let mut system = self.system()?;
+            let mut whole = vec![0.0; system.dofs().n_free()];
+            let owned = self.to_global(y).into_iter().enumerate().filter(|(k, _)| held.owns(*k));
+            owned.for_each(|(k, v)| whole[cond.free[k]] = v);
+            system.sum_over_processes(&mut whole)?;
+            return Ok(system.dofs().expand(&whole));
         }
+        let mut system = self.system()?;
         let mut forces = vec![0.0; system.dofs().n_free()];
         for (k, f) in self.to_global(&eval.forces).into_iter().enumerate() {
             forces[cond.free[k]] = f;
@@ -1164,7 +1208,8 @@ impl<'a> Local<'a> {
 
     /// ‖scaled E‖².
     fn merit(&self, eval: &Evaluation) -> f64 {
-        eval.residual.iter().zip(&self.scale).map(|(r, s)| (r * s).powi(2)).sum()
+        let terms = eval.residual.iter().zip(&self.scale).map(|(r, s)| (r * s).powi(2));
+        self.total(terms.enumerate())
     }
 
     /// E, the sets and the multipliers at the condensed iterate y (local coordinates).
@@ -1292,14 +1337,23 @@ impl<'a> Local<'a> {
         for i in (0..self.frames.len()).filter(|&i| cond.kept[i]) {
             let q = node_block(cond, &self.frames, i);
             let transposed = std::array::from_fn(|a| q.map(|row| row[a]));
-            jacobian.turn(cond.slots(i).0, &transposed)?;
-            preconditioner.turn(cond.slots(i).0, &transposed)?;
+            let unknowns = cond.slot_unknowns(i);
+            jacobian.turn(&unknowns, &transposed)?;
+            preconditioner.turn(&unknowns, &transposed)?;
         }
-        let mut rhs = self.to_global(&{ rhs }); // the local one freed before the solve
+        let held = self.held.as_ref().ok_or_else(|| {
+            Error::LinearAlgebra("a whole-system Newton step without its positions".into())
+        })?;
+        let rhs = self.to_global(&{ rhs }); // the local one freed before the solve
         let rtol = self.forcing(self.merit(eval));
-        self.system()?.solve_unsymmetric((&jacobian, &preconditioner), &mut rhs, rtol)?;
-        self.to_local(&mut rhs);
-        Ok(rhs)
+        let mut system = self.system()?;
+        let mut owned = held.owned_part(rhs);
+        system.solve_unsymmetric((&jacobian, &preconditioner), &mut owned, rtol)?;
+        let mut delta = held.spread(owned);
+        held.complete(&mut delta, &mut system)?;
+        drop(system);
+        self.to_local(&mut delta);
+        Ok(delta)
     }
 
     /// The whole system's Jacobian J at y in local coordinates, a symmetric matrix P near it
@@ -1319,7 +1373,8 @@ impl<'a> Local<'a> {
         eval: &Evaluation,
         matrix: &RowMatrix,
     ) -> (RowMatrix, RowMatrix, Vec<f64>) {
-        let surface = self.semismooth.step.surface;
+        let (surface, cond) = (self.semismooth.step.surface, self.semismooth.condensed);
+        let row_of = |k: usize| cond.free[k];
         let delta = self.fixed_steps(eval);
         let (mut jacobian, mut preconditioner) = (matrix.clone(), matrix.clone());
         let mut rhs: Vec<f64> = eval.residual.iter().map(|e| -e).collect();
@@ -1328,31 +1383,39 @@ impl<'a> Local<'a> {
             let i = self.node_of[k];
             terms.clear();
             self.gradient(y, eval, i, k, &mut terms);
-            let phi_row = matches!(self.semismooth.condensed.phi[i], Phi::Unknown(p) if p == k);
+            let phi_row = matches!(cond.phi[i], Phi::Unknown(p) if p == k);
             let factor = if phi_row { 1.0 } else { -surface.weight[i] };
-            let (columns, values) = jacobian.row_mut(k);
+            let (columns, values) = jacobian.row_mut(row_of(k));
             values.iter_mut().for_each(|v| *v = 0.0);
             let mut diagonal = 0.0;
             for term in terms.iter().filter(|t| self.on_node(t, i)) {
                 match *term {
-                    Term::Force(j, f) => add_matching(matrix.row(j), factor * f, columns, values),
+                    Term::Force(j, f) => {
+                        add_matching(matrix.row(row_of(j)), factor * f, columns, values)
+                    }
                     Term::Unknown(j, f) => {
-                        if let Ok(at) = columns.binary_search(&j) {
+                        if let Ok(at) = columns.binary_search(&row_of(j)) {
                             values[at] += factor * f;
                         }
                         diagonal += if j == k { factor * f } else { 0.0 };
                     }
                 }
             }
-            if let Some(at) = preconditioner.position(k, k) {
-                preconditioner.row_mut(k).1[at] += diagonal;
+            if let Some(at) = preconditioner.position(row_of(k), row_of(k)) {
+                preconditioner.row_mut(row_of(k)).1[at] += diagonal;
             }
             rhs[k] *= factor;
         }
         for k in (0..y.len()).filter(|&k| eval.fixed[k]) {
-            let diagonal = matrix.diagonal(k).abs();
-            jacobian.eliminate(k, diagonal, Some((delta[k], &mut rhs)));
-            preconditioner.eliminate(k, diagonal, None);
+            let diagonal = matrix.diagonal(row_of(k)).abs();
+            // The rows this process holds move the fixed step to the right-hand side.
+            for (r, a_rk) in jacobian.eliminate(row_of(k), diagonal) {
+                if let Ok(p) = cond.free.binary_search(&r) {
+                    rhs[p] -= a_rk * delta[k];
+                }
+            }
+            rhs[k] = diagonal * delta[k];
+            preconditioner.eliminate(row_of(k), diagonal);
         }
         (jacobian, preconditioner, rhs)
     }
@@ -1412,8 +1475,26 @@ impl<'a> Local<'a> {
         self.gradient(y, eval, i, k, &mut terms);
         for term in terms {
             match term {
-                Term::Force(j, factor) => self.operator.add_row(j, factor, out),
+                Term::Force(j, factor) => self.add_row(j, factor, out),
                 Term::Unknown(j, factor) => out[j] += factor,
+            }
+        }
+    }
+
+    /// out += factor · (row j of A) at the positions (A is symmetric: its column j).
+    fn add_row(&self, j: usize, factor: f64, out: &mut [f64]) {
+        match &self.operator {
+            Operator::Dense(schur) => {
+                out.iter_mut().zip(schur.col(j)).for_each(|(o, s)| *o += factor * s)
+            }
+            Operator::Sparse { rows, .. } => {
+                let free = &self.semismooth.condensed.free;
+                let (columns, values) = rows.row(free[j]);
+                for (c, v) in columns.iter().zip(values) {
+                    if let Ok(p) = free.binary_search(c) {
+                        out[p] += factor * v;
+                    }
+                }
             }
         }
     }
@@ -1800,7 +1881,7 @@ mod tests {
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
         let (operator, rhs) = if whole {
-            whole_operator(&mut system).unwrap()
+            whole_operator(&mut system, &condensed).unwrap()
         } else {
             (Operator::Dense(system.schur_complement().unwrap()), None)
         };

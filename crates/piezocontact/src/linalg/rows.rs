@@ -166,18 +166,18 @@ impl RowMatrix {
         Ok(())
     }
 
-    /// Makes unknown k's row and column zero but for `diagonal` on the diagonal. With
-    /// `fixed` = (value, rhs), k's equation becomes x_k = value and the column's part moves
-    /// to `rhs`, so that the other equations keep their solution (rhs_r −= a_rk value). The
-    /// pattern must be symmetric.
-    pub fn eliminate(&mut self, k: usize, diagonal: f64, mut fixed: Option<(f64, &mut [f64])>) {
+    /// Makes unknown k's row and column zero but for `diagonal` on the diagonal; returns the
+    /// column's entries it zeroed, (r, a_rk) for the rows r ≠ k the matrix has, in increasing
+    /// r. A caller that fixes k's equation to x_k = v moves them to its right-hand side (b_r
+    /// −= a_rk v, and b_k = `diagonal` · v), so that the other equations keep their solution.
+    /// The pattern must be symmetric.
+    pub fn eliminate(&mut self, k: usize, diagonal: f64) -> Vec<(usize, f64)> {
         let columns = self.row(k).0.to_vec();
+        let mut zeroed = Vec::new();
         for r in columns.into_iter().filter(|&r| r != k) {
             if let Some(at) = self.position(r, k) {
                 let (_, values) = self.row_mut(r);
-                if let Some((value, rhs)) = fixed.as_mut() {
-                    rhs[r] -= values[at] * *value;
-                }
+                zeroed.push((r, values[at]));
                 values[at] = 0.0;
             }
         }
@@ -189,9 +189,7 @@ impl RowMatrix {
         if let Some(at) = at {
             values[at] = diagonal;
         }
-        if let Some((value, rhs)) = fixed {
-            rhs[k] = diagonal * value;
-        }
+        zeroed
     }
 }
 
@@ -411,7 +409,10 @@ mod tests {
         let original = a.clone();
         let b = vec![1.0, 2.0, -1.0, 0.5, 3.0];
         let mut rhs = b.clone();
-        a.eliminate(3, 9.0, Some((0.7, &mut rhs)));
+        for (r, a_r3) in a.eliminate(3, 9.0) {
+            rhs[r] -= a_r3 * 0.7;
+        }
+        rhs[3] = 9.0 * 0.7;
         let mut lu = RowLu::default();
         lu.solve(&a, &mut rhs).unwrap();
         assert!((rhs[3] - 0.7).abs() < 1e-14);

@@ -174,6 +174,8 @@ pub trait Distributed {
         self.sum_each(&mut values)?;
         Ok(values[0])
     }
+    /// The largest `value` over the processes.
+    fn max(&self, value: f64) -> Result<f64>;
     /// The mesh nodes' coordinates, `dim` per node, and the component of each unknown (`i`
     /// for u_i, `dim` for ϕ), given before the analysis: an iterative backend makes from them
     /// the rigid-body modes of the elastic block, and gives a node's constrained components

@@ -45,6 +45,7 @@ type ErrorHandler = unsafe extern "C" fn(
 unsafe extern "C" {
     static ompi_mpi_double: Opaque;
     static ompi_mpi_op_sum: Opaque;
+    static ompi_mpi_op_max: Opaque;
     fn MPI_Comm_rank(comm: MpiHandle, rank: *mut c_int) -> c_int;
     fn MPI_Comm_size(comm: MpiHandle, size: *mut c_int) -> c_int;
     fn MPI_Bcast(buf: *mut c_void, n: c_int, ty: MpiHandle, root: c_int, comm: MpiHandle) -> c_int;
@@ -373,9 +374,22 @@ pub fn sum_over_processes(value: f64) -> Result<f64> {
 
 /// Each entry of `values` (the same length everywhere) summed over the processes, in place.
 pub fn sum_each_over_processes(values: &mut [f64]) -> Result<()> {
+    reduce_each((&raw const ompi_mpi_op_sum) as MpiHandle, values)
+}
+
+/// The largest `value` over the processes.
+pub fn max_over_processes(value: f64) -> Result<f64> {
+    let mut out = [value];
+    reduce_each((&raw const ompi_mpi_op_max) as MpiHandle, &mut out)?;
+    Ok(out[0])
+}
+
+/// Each entry of `values` (the same length everywhere) reduced over the processes by the
+/// operation `op`, in place.
+fn reduce_each(op: MpiHandle, values: &mut [f64]) -> Result<()> {
     let n = c_int::try_from(values.len())
         .map_err(|_| Error::LinearAlgebra("a reduction of more than 2³¹ values".into()))?;
-    let (op, send) = ((&raw const ompi_mpi_op_sum) as MpiHandle, values.to_vec());
+    let send = values.to_vec();
     // SAFETY: n doubles in and out on every process, in distinct buffers.
     let code = unsafe {
         MPI_Allreduce(

@@ -1021,6 +1021,10 @@ impl Distributed for PetscSolver {
         ffi::sum_each_over_processes(values)
     }
 
+    fn max(&self, value: f64) -> Result<f64> {
+        ffi::max_over_processes(value)
+    }
+
     fn node_layout(&mut self, dim: usize, coordinates: &[f64], components: &[u8]) {
         self.layout = Some((dim, coordinates.to_vec(), components.to_vec()));
     }
