@@ -9,10 +9,9 @@ use crate::dofs::DofMap;
 use crate::error::{Error, Result};
 use crate::linalg::{
     DenseMatrix, LinearRoute, LinearSolver, Patched, RowLu, RowMatrix, SchurComplement,
-    SolverStats, SymmetricMatrix, check_length,
+    SolverStats, SymmetricMatrix, check_length, masked, masked_view, unmasked,
 };
 use crate::problem::{Factors, Problem};
-use std::borrow::Cow;
 use std::time::Instant;
 
 /// The cap of [`CoupledSystem::check_solve`] in multiples of the most Krylov iterations of a
@@ -63,7 +62,8 @@ impl Timings {
 struct KeptRows {
     /// Which rows: a flag per free unknown.
     select: Vec<bool>,
-    /// Those rows and K's diagonal, as of the last factorisation.
+    /// Those rows and K's diagonal on this process's rows ([`CoupledSystem::product`]'s), as
+    /// of the last factorisation.
     rows: Option<(RowMatrix, Vec<f64>)>,
 }
 
@@ -77,14 +77,15 @@ pub struct CoupledSystem {
     matrix: Option<SymmetricMatrix>,
     /// The rows of K a caller reads ([`CoupledSystem::keep_rows`]).
     kept: Option<KeptRows>,
-    /// f̌ on the free DOFs, the loads scaled by `factors`: it does not depend on x_n.
+    /// f̌ on this process's rows ([`CoupledSystem::product`]'s), the loads scaled by
+    /// `factors`: it does not depend on x_n.
     load: Vec<f64>,
     /// The factors on the applied loads and electrodes that `load` holds.
     factors: Factors,
     /// The Dirichlet lifting of the current matrix (with Hencky's tangent, (K_T − K_sec) x_n),
-    /// on the free DOFs.
+    /// on this process's rows.
     lifting: Vec<f64>,
-    /// f̌ plus the lifting, on the free DOFs.
+    /// f̌ plus the lifting, on this process's rows.
     rhs: Vec<f64>,
     /// The solution for `rhs` alone (global), kept until the factorisation or `rhs` changes:
     /// the exact solver starts each round of a growing condensation and each step of a
@@ -152,6 +153,7 @@ impl CoupledSystem {
         let pattern_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let load = assembler.restrict_load(&load_vector(problem, assembler.dofs(), 1.0), 1.0);
+        let load = masked(assembler.complete_rows(), load);
         let assembly_seconds = t.elapsed().as_secs_f64();
         Ok(Self {
             assembler,
@@ -233,7 +235,7 @@ impl CoupledSystem {
             Some(p) => Some(self.assembler.linearised_matrix(problem, p, blocks)?.0),
             None => None,
         };
-        self.lifting = lifting;
+        self.lifting = masked(self.assembler.complete_rows(), lifting);
         self.lifting_stale = false;
         self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
         self.assembly_seconds += t.elapsed().as_secs_f64();
@@ -249,8 +251,8 @@ impl CoupledSystem {
             }
         }
         if let Some(KeptRows { select, rows }) = &mut self.kept {
-            *rows =
-                Some((RowMatrix::from_symmetric_rows(&matrix, |r| select[r]), matrix.diagonal()));
+            let diagonal = masked(self.assembler.complete_rows(), matrix.diagonal());
+            *rows = Some((RowMatrix::from_symmetric_rows(&matrix, |r| select[r]), diagonal));
         }
         self.matrix = self.solver.unsymmetric().is_none().then_some(matrix);
         Ok(())
@@ -265,8 +267,8 @@ impl CoupledSystem {
         Ok(())
     }
 
-    /// The rows of K chosen by [`CoupledSystem::keep_rows`] and K's diagonal, as of the last
-    /// factorisation since.
+    /// The rows of K chosen by [`CoupledSystem::keep_rows`] and K's diagonal on this process's
+    /// rows ([`CoupledSystem::product`]'s), as of the last factorisation since.
     pub fn kept_rows(&self) -> Option<(&RowMatrix, &[f64])> {
         let (rows, diagonal) = self.kept.as_ref()?.rows.as_ref()?;
         Some((rows, diagonal))
@@ -288,8 +290,8 @@ impl CoupledSystem {
         let (matrix, lifting) = self.assembler.linearised_matrix(problem, linearisation, blocks)?;
         let x_free = self.assembler.restrict(x);
         let (m_x, k_x) = (self.multiply(&x_free)?, matrix.mul(&x_free));
-        self.lifting =
-            lifting.iter().zip(m_x.iter().zip(&k_x)).map(|(l, (m, k))| l + m - k).collect();
+        let lifting = lifting.iter().zip(m_x.iter().zip(&k_x)).map(|(l, (m, k))| l + m - k);
+        self.lifting = masked(self.assembler.complete_rows(), lifting.collect());
         self.lifting_stale = false;
         self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
         self.unloaded = None;
@@ -311,9 +313,9 @@ impl CoupledSystem {
             self.lifting_stale = true;
         }
         let dofs = self.assembler.dofs();
-        self.load = self
-            .assembler
-            .restrict_load(&load_vector(problem, dofs, factors.loads), factors.electrodes);
+        let load = load_vector(problem, dofs, factors.loads);
+        let load = self.assembler.restrict_load(&load, factors.electrodes);
+        self.load = masked(self.assembler.complete_rows(), load);
         self.factors = factors;
         self.unloaded = None;
         if !self.lifting.is_empty() {
@@ -336,7 +338,7 @@ impl CoupledSystem {
         if let (None, Some(x)) = (extra, &self.unloaded) {
             return Ok(x.clone());
         }
-        let mut x = self.rhs.clone();
+        let mut x = unmasked(self.assembler.complete_rows(), self.rhs.clone());
         if let Some(extra) = extra {
             x.iter_mut().zip(extra).for_each(|(b, e)| *b += e);
         }
@@ -416,7 +418,7 @@ impl CoupledSystem {
         self.matrix.as_ref()
     }
 
-    /// The right-hand side f̌ + lifting on the free DOFs.
+    /// The right-hand side f̌ + lifting on this process's rows ([`CoupledSystem::product`]'s).
     pub fn rhs(&self) -> &[f64] {
         &self.rhs
     }
@@ -431,10 +433,10 @@ impl CoupledSystem {
     /// process.
     pub fn relative_residual(&mut self, x: &[f64]) -> Result<f64> {
         let ax = self.multiply(&self.assembler.restrict(x))?;
-        let complete = |k: usize| self.assembler.complete_rows().is_none_or(|c| c[k]);
+        let ax = masked_view(self.assembler.complete_rows(), &ax);
         let (mut r2, mut b2) = (0.0, 0.0);
-        for k in (0..ax.len()).filter(|&k| complete(k)) {
-            (r2, b2) = (r2 + (ax[k] - self.rhs[k]).powi(2), b2 + self.rhs[k].powi(2));
+        for (a, b) in ax.iter().zip(&self.rhs) {
+            (r2, b2) = (r2 + (a - b).powi(2), b2 + b.powi(2));
         }
         if let Some(d) = self.solver.distributed() {
             (r2, b2) = (d.sum(r2)?, d.sum(b2)?);
@@ -490,8 +492,8 @@ impl CoupledSystem {
             }
             (None, Some(backend)) => {
                 let complete = self.assembler.complete_rows();
-                let product = backend.product(&owned_part(complete, x))?;
-                Ok(from_owned(complete, product))
+                let product = backend.product(&masked_view(complete, x))?;
+                Ok(unmasked(complete, product))
             }
             (None, None) => {
                 Err(Error::LinearAlgebra("a product with K before its assembly".into()))
@@ -546,23 +548,6 @@ impl CoupledSystem {
     pub fn into_dofs(self) -> DofMap {
         self.assembler.into_dofs()
     }
-}
-
-/// The entries of `x` (a vector of the free unknowns) on this process's rows — those of the
-/// nodes it owns, `complete` (`None`: every one) — in increasing order.
-fn owned_part<'x>(complete: Option<&[bool]>, x: &'x [f64]) -> Cow<'x, [f64]> {
-    match complete {
-        None => Cow::Borrowed(x),
-        Some(complete) => x.iter().zip(complete).filter(|(_, c)| **c).map(|(v, _)| *v).collect(),
-    }
-}
-
-/// A vector of this process's rows ([`owned_part`]) put into one of the free unknowns, 0 on
-/// the others' rows.
-fn from_owned(complete: Option<&[bool]>, owned: Vec<f64>) -> Vec<f64> {
-    let Some(complete) = complete else { return owned };
-    let mut values = owned.into_iter();
-    complete.iter().map(|&c| if c { values.next().unwrap_or(0.0) } else { 0.0 }).collect()
 }
 
 /// The Schur-complement capability of `solver`, or the error that refuses it.

@@ -7,6 +7,7 @@
 //! reduced over the processes, give each process the same merit and step sizes.
 
 use crate::error::Result;
+use crate::linalg::{masked, unmasked};
 use crate::system::CoupledSystem;
 
 /// The positions of the whole system's Newton iteration that this process holds.
@@ -36,20 +37,13 @@ impl Held {
     /// The entries of a vector of the positions on this process's rows, increasing — a
     /// vector of the seam's ([`CoupledSystem::product`]).
     pub(super) fn owned_part(&self, values: Vec<f64>) -> Vec<f64> {
-        match &self.owned {
-            None => values,
-            Some(owned) => {
-                values.into_iter().zip(owned).filter(|(_, o)| **o).map(|(v, _)| v).collect()
-            }
-        }
+        masked(self.owned.as_deref(), values)
     }
 
     /// A vector of this process's rows ([`Held::owned_part`]) spread over the positions:
     /// 0 at the others, which [`Held::complete`] fills where it matters.
     pub(super) fn spread(&self, values: Vec<f64>) -> Vec<f64> {
-        let Some(owned) = &self.owned else { return values };
-        let mut values = values.into_iter();
-        owned.iter().map(|&o| if o { values.next().unwrap_or(0.0) } else { 0.0 }).collect()
+        unmasked(self.owned.as_deref(), values)
     }
 
     /// `values`, right on the owned positions, made right on the Γ3 positions whose rows

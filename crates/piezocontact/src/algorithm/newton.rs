@@ -125,8 +125,10 @@ struct Local<'a> {
     c: Vec<f64>,
     /// Per condensed unknown: the scale of its equation in the merit function.
     scale: Vec<f64>,
-    /// The global vector of the solve without contact (for prescribed ϕ).
-    x_hat: Vec<f64>,
+    /// x̂, the solve without contact forces, at the positions (local coordinates).
+    y_hat: Vec<f64>,
+    /// Per node whose ϕ is prescribed ([`Phi::Prescribed`]), x̂'s ϕ there (0 at the others).
+    prescribed: Vec<f64>,
     /// Per node, where the slip is measured from in its local components (the tangential
     /// ones matter): 0, or the previous step of a path with incremental friction.
     origin: Vec<[f64; 3]>,
@@ -697,19 +699,27 @@ fn nodes_of(cond: &Condensed) -> Vec<usize> {
     node_of
 }
 
+/// On the whole system, its right-hand side at the positions (right on the rows this
+/// process owns, 0 at the others) and what this process holds of it.
+type WholeSystem = (Vec<f64>, Held);
+
 /// The whole system's operator (K's rows that the Newton steps change — [`rows_read`] — and
-/// K's diagonal, in the unknowns' frames, kept by the system at its factorisation) and its
-/// right-hand side, at the positions of `cond` (right on the rows this process owns).
+/// K's diagonal, in the unknowns' frames, kept by the system at its factorisation), its
+/// right-hand side and what this process holds of it: the diagonal and the right-hand side
+/// at the positions of `cond`, right on the rows this process owns, 0 at the others.
 fn whole_operator(
     system: &mut CoupledSystem,
     cond: &Condensed,
-) -> Result<(Operator, Option<Vec<f64>>)> {
+) -> Result<(Operator, Option<WholeSystem>)> {
+    let node_of = nodes_of(cond);
+    let contact = (0..cond.len()).filter(|&k| node_of[k] != INTERIOR).collect();
+    let held = Held::new(contact, &cond.free, system.assembler().complete_rows());
     let (rows, diagonal) = system.kept_rows().ok_or_else(|| {
         Error::LinearAlgebra("the whole system's Newton step before its matrix".into())
     })?;
-    let (rows, diagonal) = (rows.clone(), cond.free.iter().map(|&k| diagonal[k]).collect());
-    let rhs = cond.free.iter().map(|&k| system.rhs()[k]).collect();
-    Ok((Operator::Sparse { rows, diagonal }, Some(rhs)))
+    let (rows, diagonal) = (rows.clone(), held.spread(diagonal.to_vec()));
+    let rhs = held.spread(system.rhs().to_vec());
+    Ok((Operator::Sparse { rows, diagonal }, Some((rhs, held))))
 }
 
 /// The rows of K that the whole system's Newton steps change: the kept Γ3 nodes' and their
@@ -798,27 +808,26 @@ fn turned_operator(
 }
 
 impl<'a> Local<'a> {
-    /// Turns the operator (S, or the whole system's K with its right-hand side `rhs`, free,
-    /// in the unknowns' frames) and the load into local coordinates and sets the constants.
+    /// Turns the operator (S, or the whole system's K with `whole`: its right-hand side and
+    /// what this process holds, in the unknowns' frames) and the load into local coordinates,
+    /// keeps x̂ (the global solve without contact forces) at the positions, and sets the
+    /// constants.
     fn new(
         semismooth: &'a Semismooth<'a>,
         operator: Operator,
-        (x_hat, mut rhs): (Vec<f64>, Option<Vec<f64>>),
+        (x_hat, whole): (Vec<f64>, Option<WholeSystem>),
         system: &'a mut CoupledSystem,
     ) -> Result<Self> {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
         let (frames, turned) = unknown_frames(surface, system.dofs());
         let (m, node_of) = (cond.len(), nodes_of(cond));
         let mut operator = turned_operator(operator, cond, &frames)?;
-        let mut held = None;
-        if let Operator::Sparse { diagonal, .. } = &mut operator {
-            let contact = (0..m).filter(|&k| node_of[k] != INTERIOR).collect();
-            let whole = Held::new(contact, &cond.free, system.assembler().complete_rows());
+        let (mut held, mut rhs) = (None, None);
+        if let (Operator::Sparse { diagonal, .. }, Some((mut load, whole))) = (&mut operator, whole)
+        {
             whole.complete(diagonal, system)?;
-            if let Some(rhs) = rhs.as_mut() {
-                whole.complete(rhs, system)?;
-            }
-            held = Some(whole);
+            whole.complete(&mut load, system)?;
+            (held, rhs) = (Some(whole), Some(load));
         }
         let mut this = Self {
             semismooth,
@@ -831,17 +840,21 @@ impl<'a> Local<'a> {
             turned,
             c: Vec::new(),
             scale: Vec::new(),
-            x_hat,
+            y_hat: Vec::new(),
+            prescribed: (cond.phi.iter())
+                .map(|phi| if let Phi::Prescribed(g) = phi { x_hat[*g] } else { 0.0 })
+                .collect(),
             origin: vec![[0.0; 3]; surface.len()],
             conduction: 1.0,
             first_merit: std::sync::OnceLock::new(),
         };
+        this.y_hat = this.gather(&{ x_hat }); // the global one freed
         this.load = match rhs {
             Some(mut load) => {
                 this.to_local(&mut load);
                 load
             }
-            None => this.product(&this.gather(&this.x_hat)),
+            None => this.product(&this.y_hat),
         };
         if let Some(origin) = semismooth.step.slip_origin {
             let local = this.gather(origin);
@@ -1059,7 +1072,8 @@ impl<'a> Local<'a> {
     /// 0 where it solves every equation ([`Local::zero_if_solution`]), else `start` (a
     /// global vector: the last solution) or the solve without contact forces.
     fn first_iterate(&self, start: Option<&[f64]>) -> Vec<f64> {
-        self.zero_if_solution().unwrap_or_else(|| self.gather(start.unwrap_or(&self.x_hat)))
+        let start = || start.map_or_else(|| self.y_hat.clone(), |x| self.gather(x));
+        self.zero_if_solution().unwrap_or_else(start)
     }
 
     /// y = 0 when it solves every equation exactly — no load and no foundation inside the
@@ -1195,7 +1209,7 @@ impl<'a> Local<'a> {
     fn phi(&self, y: &[f64], i: usize) -> Option<f64> {
         match self.semismooth.condensed.phi[i] {
             Phi::Unknown(p) => Some(y[p]),
-            Phi::Prescribed(global) => Some(self.x_hat[global]),
+            Phi::Prescribed(_) => Some(self.prescribed[i]),
             Phi::Interior => None,
         }
     }
@@ -1681,7 +1695,8 @@ mod tests {
         // Steps relative to the size of each kind of unknown (u and ϕ differ by far): the
         // global ϕ unknowns follow every u.
         let dim = local.semismooth.step.surface.dim();
-        let is_phi = |k: usize| cond.global[k] >= local.x_hat.len() / (dim + 1) * dim;
+        let n_total = local.system().unwrap().dofs().n_total();
+        let is_phi = |k: usize| cond.global[k] >= n_total / (dim + 1) * dim;
         let size = |k: usize| {
             let same_kind = |j: &usize| is_phi(*j) == is_phi(k);
             (0..m).filter(same_kind).map(|j| y[j].abs()).fold(0.0, f64::max).max(1e-12)
@@ -1780,7 +1795,7 @@ mod tests {
     /// rows left out) and at the solution (every row). Returns the number of rows checked.
     fn jacobian_case(fixture: &Fixture, whole: bool) -> usize {
         solved_step_on(fixture, whole, |local, result| {
-            let start = local.gather(&local.x_hat);
+            let start = local.y_hat.clone();
             let solution = local.gather(&result.x);
             // The loop detection keeps the Γ3 unknowns of the whole system's iterates: each
             // kept node's u slots and the ϕ unknowns they read.
@@ -1988,7 +2003,7 @@ mod tests {
         let mesh = concat!(env!("CARGO_MANIFEST_DIR"), "/../../meshes/indent-3d-h0.05.msh");
         let fixture = Fixture::new(INDENTATION_3D, &[&format!("mesh.file={mesh:?}")]);
         solved_step(&fixture, |local, _| {
-            let start = local.onto_foundation(&local.gather(&local.x_hat), true);
+            let start = local.onto_foundation(&local.y_hat, true);
             let newton = local.iterate(start.clone(), 100);
             assert!(matches!(newton.stop, Stop::Converged), "{:?}", newton.stop);
             let (steps, factorised) = (newton.iterations, newton.factorisations);

@@ -67,8 +67,8 @@ pub use seam::{
     UnsymmetricSolve,
 };
 pub use sparse::{PatternIndex, SymmetricMatrix, SymmetricPattern};
-pub(crate) use vectors::check_length;
 pub use vectors::parallelism;
+pub(crate) use vectors::{check_length, masked, masked_view, unmasked};
 
 /// The processes of the run: those of PETSc's communicator once the PETSc backend has
 /// started, else 1.

@@ -86,7 +86,8 @@ pub trait LinearSolver: std::fmt::Debug + Send {
     /// Numeric factorisation of `matrix`, which has the analysed pattern.
     fn factorize(&mut self, matrix: &SymmetricMatrix) -> Result<()>;
     /// Solves A x = b in place (b on entry, x on exit, whole vectors) with the current
-    /// factorisation.
+    /// factorisation. A backend whose rows live on several processes reads b on its own
+    /// rows alone (the caller may leave the others 0).
     fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()>;
     /// Solves A X = B in place for the right-hand sides stored one after another in `rhs`
     /// (the columns of B, `n` entries each): by default one [`Self::solve_in_place`] each; a

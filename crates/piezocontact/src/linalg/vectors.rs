@@ -2,6 +2,7 @@
 //! work.
 
 use crate::error::{Error, Result};
+use std::borrow::Cow;
 
 /// The number of columns of `n` entries in `len` entries; an error when they do not divide.
 pub(super) fn column_count(len: usize, n: usize) -> Result<usize> {
@@ -23,6 +24,31 @@ pub(crate) fn check_length(what: &str, expected: usize, got: usize) -> Result<()
         return Ok(());
     }
     Err(Error::Length { what: what.into(), expected, got })
+}
+
+/// The entries of `values` where `mask` holds, in order (every one without a mask): a
+/// process's own rows of a vector of the unknowns, or its owned positions of one.
+pub(crate) fn masked(mask: Option<&[bool]>, values: Vec<f64>) -> Vec<f64> {
+    match mask {
+        None => values,
+        Some(mask) => values.into_iter().zip(mask).filter(|(_, m)| **m).map(|(v, _)| v).collect(),
+    }
+}
+
+/// [`masked`] of a borrowed vector, which comes back borrowed without a mask.
+pub(crate) fn masked_view<'v>(mask: Option<&[bool]>, values: &'v [f64]) -> Cow<'v, [f64]> {
+    match mask {
+        None => Cow::Borrowed(values),
+        Some(mask) => values.iter().zip(mask).filter(|(_, m)| **m).map(|(v, _)| *v).collect(),
+    }
+}
+
+/// The inverse of [`masked`]: `values`, one per entry where `mask` holds, put there in a
+/// vector of the mask's length, 0 at the other entries.
+pub(crate) fn unmasked(mask: Option<&[bool]>, values: Vec<f64>) -> Vec<f64> {
+    let Some(mask) = mask else { return values };
+    let mut values = values.into_iter();
+    mask.iter().map(|&m| if m { values.next().unwrap_or(0.0) } else { 0.0 }).collect()
 }
 
 /// A slice as a one-column matrix, for faer's solves and products of one right-hand side.

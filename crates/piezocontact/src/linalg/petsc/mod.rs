@@ -808,8 +808,13 @@ impl PetscSolver {
         let mut y = b.to_vec();
         self.mumps_solve(&mut y)?;
         let k_y = self.multiply((&y, Part::Whole))?;
+        // b − K y on the Schur rows, each from the process that owns it (b is read on the
+        // owned rows alone).
+        let rows = self.rows.as_ref().expect("analysed");
+        let own = |c: usize| if rows.owns(c) { b[c] - k_y[c] } else { 0.0 };
+        let mut reduced: Vec<f64> = self.last.iter().map(|&c| own(c)).collect();
+        ffi::sum_each_over_processes(&mut reduced)?;
         let (_, inverse) = self.schur.as_ref().expect("read at factorisation");
-        let reduced: Vec<f64> = self.last.iter().map(|&c| b[c] - k_y[c]).collect();
         let x_c = inverse.mul(&reduced);
         let mut e = vec![0.0; b.len()];
         self.last.iter().zip(&x_c).for_each(|(&c, &v)| e[c] = v);
