@@ -29,10 +29,12 @@
 //! MUMPS under `mpirun`) fits without changes to its callers:
 //! - every process runs the same program on the same mesh; the backend hands the rows it owns
 //!   to the distributed matrix at [`LinearSolver::factorize`];
-//! - vectors cross the seam whole on every process: `solve_in_place` reads the whole
-//!   right-hand side, scatters the owned rows into the distributed vector, solves, and gathers
-//!   the solution back to every process, so that the contact algorithms (O(|Γ3|) work) run
-//!   redundantly and identically everywhere;
+//! - vectors cross [`LinearSolver`] whole on every process: `solve_in_place` reads the
+//!   right-hand side's owned rows, scatters them into the distributed vector, solves, and
+//!   gathers the solution back to every process; [`UnsymmetricSolve`]'s product and solve
+//!   take and give each process's own rows alone, so that the whole system's Newton method
+//!   holds no whole vector, while the contact algorithms (O(|Γ3|) work) run redundantly and
+//!   identically everywhere;
 //! - [`SchurComplement::schur_complement`] returns the dense Schur complement on every process
 //!   (MUMPS builds it on the host, which broadcasts it);
 //! - a backend that has [`LinearSolver::distributed`] says which mesh nodes' rows its process
