@@ -292,17 +292,23 @@ fn newton_steps_keep_the_preconditioner_while_its_iterations_hold() {
     [kept, set_up, out].iter().for_each(|dir| drop(std::fs::remove_dir_all(dir)));
 }
 
-/// `--petsc-options -log_view` prints PETSc's performance summary at exit, with the Krylov
-/// solver's and the multigrid's events, though the options reach PETSc after it started.
+/// `--petsc-options "-log_view -memory_view"` prints PETSc's performance summary at exit,
+/// with the Krylov solver's and the multigrid's events, and its memory summary (the largest
+/// resident set of the processes), though the options reach PETSc after it started; the run
+/// ends normally on every process (before, -memory_view's report failed and left MPI
+/// unfinalised).
 #[test]
 fn log_view_prints_petsc_s_performance_summary() {
     let out = out_dir("log-view");
-    let result = run(1, &iterative_example_7_2(&out, &["-q", "--petsc-options", "-log_view"]));
+    let options = ["-q", "--petsc-options", "-log_view -memory_view"];
+    let result = run(2, &iterative_example_7_2(&out, &options));
     let stdout = String::from_utf8_lossy(&result.stdout);
     assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
     assert!(stdout.contains("PETSc Performance Summary"), "{stdout}");
     assert!(stdout.lines().any(|l| l.starts_with("KSPSolve ")), "{stdout}");
     assert!(stdout.lines().any(|l| l.starts_with("PCSetUp_GAMG")), "{stdout}");
+    let memory = stdout.lines().find(|l| l.starts_with("Maximum (over computational time)"));
+    assert!(memory.is_some_and(|l| l.contains("max")), "{stdout}");
     let _ = std::fs::remove_dir_all(&out);
 }
 

@@ -76,6 +76,7 @@ unsafe extern "C" {
     fn PetscFinalize() -> Code;
     fn PetscOptionsInsertString(options: Handle, text: *const c_char) -> Code;
     fn PetscLogDefaultBegin() -> Code;
+    fn PetscMemorySetGetMaximumUsage() -> Code;
     fn PetscPushErrorHandler(handler: ErrorHandler, ctx: *mut c_void) -> Code;
     fn PetscErrorMessage(code: c_int, text: *mut *const c_char, more: *mut *mut c_char) -> Code;
     fn atexit(f: extern "C" fn()) -> c_int;
@@ -298,13 +299,18 @@ fn start(options: &str) -> Result<()> {
     start_log()
 }
 
-/// Starts PETSc's performance log when the options ask for its report (-log_view, printed
-/// by PetscFinalize at exit): PETSc starts it only for options present at its initialisation,
-/// and ours are inserted after.
+/// Starts what PETSc's reports at exit read when the options ask for them (-log_view: the
+/// performance log; -memory_view: the tracking of the largest resident set, without which
+/// PetscFinalize fails before it finalises MPI): PETSc starts them only for options present
+/// at its initialisation, and ours are inserted after.
 fn start_log() -> Result<()> {
     if has_option("-log_view")? {
         // SAFETY: PETSc is initialised and no event has been logged yet.
         check(unsafe { PetscLogDefaultBegin() }, "PetscLogDefaultBegin")?;
+    }
+    if has_option("-memory_view")? {
+        // SAFETY: PETSc is initialised.
+        check(unsafe { PetscMemorySetGetMaximumUsage() }, "PetscMemorySetGetMaximumUsage")?;
     }
     Ok(())
 }
