@@ -659,6 +659,7 @@ impl PetscSolver {
         (rhs, part): (&mut [f64], Part),
         general: Option<(&ffi::Matrix, f64)>,
     ) -> Result<()> {
+        ffi::return_free_memory();
         if self.distributed.as_ref().is_some_and(|d| d.krylov.is_none()) {
             self.set_up_krylov()?;
         }
