@@ -426,7 +426,7 @@ pub fn gather(value: f64) -> Result<Vec<f64>> {
 /// that memory freed since — a Newton step's patches and vectors, an earlier setup's — does
 /// not stay in the resident set while the next Krylov solve sets up its preconditioner: on
 /// two processes at 1.37M unknowns the larger one's peak fell from 2,992–3,082 MB (four runs)
-/// to 2,975–2,979 (two), the one process's stayed at 3,314 MB (docs/distributed.md).
+/// to 2,971–2,979 (three), in the same time; the one process's stayed at 3,314 MB.
 pub fn return_free_memory() {
     #[cfg(target_env = "gnu")]
     {
