@@ -438,28 +438,25 @@ impl CoupledSystem {
         for (a, b) in ax.iter().zip(&self.rhs) {
             (r2, b2) = (r2 + (a - b).powi(2), b2 + b.powi(2));
         }
-        if let Some(d) = self.solver.distributed() {
-            (r2, b2) = (d.sum(r2)?, d.sum(b2)?);
-        }
-        Ok(r2.sqrt() / b2.sqrt().max(f64::MIN_POSITIVE))
+        let mut sums = [r2, b2];
+        self.sum_over_processes(&mut sums)?;
+        Ok(sums[0].sqrt() / sums[1].sqrt().max(f64::MIN_POSITIVE))
     }
 
     /// Each entry of `values` (of the same length on every process) summed over the
     /// processes of a distributed backend, in place; unchanged on one process.
     pub fn sum_over_processes(&mut self, values: &mut [f64]) -> Result<()> {
         match self.solver.distributed() {
-            Some(distributed) if self.assembler.complete_rows().is_some() => {
-                distributed.sum_each(values)
-            }
-            _ => Ok(()),
+            Some(distributed) => distributed.sum_each(values),
+            None => Ok(()),
         }
     }
 
     /// The largest `value` over the processes of a distributed backend; `value` on one.
     pub fn max_over_processes(&mut self, value: f64) -> Result<f64> {
         match self.solver.distributed() {
-            Some(distributed) if self.assembler.complete_rows().is_some() => distributed.max(value),
-            _ => Ok(value),
+            Some(distributed) => distributed.max(value),
+            None => Ok(value),
         }
     }
 

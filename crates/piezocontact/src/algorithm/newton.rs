@@ -88,8 +88,9 @@ enum Operator {
     /// T K Tᵀ, K the whole system's matrix (the coupled system's, which multiplies),
     /// T turning each kept Γ3 node's u to its local frame: of T K Tᵀ, the rows that the
     /// Newton steps change (`rows`: the kept nodes' and their neighbours', the others empty;
-    /// numbered by the free unknowns) and the diagonal (per position).
-    Sparse { rows: RowMatrix, diagonal: Vec<f64> },
+    /// numbered by the free unknowns), the diagonal (per position) and what this process
+    /// holds of the whole system.
+    Sparse { rows: RowMatrix, diagonal: Vec<f64>, held: Held },
 }
 
 impl Operator {
@@ -112,9 +113,6 @@ struct Local<'a> {
     system: Mutex<&'a mut CoupledSystem>,
     /// Per position, its Γ3 node ([`INTERIOR`] for the whole system's other unknowns).
     node_of: Vec<usize>,
-    /// On the whole system, what this process holds of it; `None` on the condensed problem
-    /// (the same on every process).
-    held: Option<Held>,
     /// Q b: the condensed load in local coordinates.
     load: Vec<f64>,
     /// Per node: Q_i (rows ν, τ1, τ2) in the components of its unknowns.
@@ -699,18 +697,14 @@ fn nodes_of(cond: &Condensed) -> Vec<usize> {
     node_of
 }
 
-/// On the whole system, its right-hand side at the positions (right on the rows this
-/// process owns, 0 at the others) and what this process holds of it.
-type WholeSystem = (Vec<f64>, Held);
-
 /// The whole system's operator (K's rows that the Newton steps change — [`rows_read`] — and
-/// K's diagonal, in the unknowns' frames, kept by the system at its factorisation), its
-/// right-hand side and what this process holds of it: the diagonal and the right-hand side
-/// at the positions of `cond`, right on the rows this process owns, 0 at the others.
+/// K's diagonal, in the unknowns' frames, kept by the system at its factorisation, and what
+/// this process holds) and its right-hand side: the diagonal and the right-hand side at the
+/// positions of `cond`, right on the rows this process owns, 0 at the others.
 fn whole_operator(
     system: &mut CoupledSystem,
     cond: &Condensed,
-) -> Result<(Operator, Option<WholeSystem>)> {
+) -> Result<(Operator, Option<Vec<f64>>)> {
     let node_of = nodes_of(cond);
     let contact = (0..cond.len()).filter(|&k| node_of[k] != INTERIOR).collect();
     let held = Held::new(contact, &cond.free, system.assembler().complete_rows());
@@ -719,7 +713,7 @@ fn whole_operator(
     })?;
     let (rows, diagonal) = (rows.clone(), held.spread(diagonal.to_vec()));
     let rhs = held.spread(system.rhs().to_vec());
-    Ok((Operator::Sparse { rows, diagonal }, Some((rhs, held))))
+    Ok((Operator::Sparse { rows, diagonal, held }, Some(rhs)))
 }
 
 /// The rows of K that the whole system's Newton steps change: the kept Γ3 nodes' and their
@@ -765,7 +759,7 @@ fn turned_operator(
     let kept: Vec<usize> = (0..frames.len()).filter(|&i| cond.kept[i]).collect();
     let block = |i: usize| node_block(cond, frames, i);
     match operator {
-        Operator::Sparse { mut rows, mut diagonal } => {
+        Operator::Sparse { mut rows, mut diagonal, held } => {
             for &i in &kept {
                 rows.turn(&cond.slot_unknowns(i), &block(i))?;
             }
@@ -774,7 +768,7 @@ fn turned_operator(
             {
                 *d = rows.diagonal(row_of(k));
             }
-            Ok(Operator::Sparse { rows, diagonal })
+            Ok(Operator::Sparse { rows, diagonal, held })
         }
         Operator::Dense(mut schur) => {
             let rotate = |q: &[[f64; 3]; 3], old: &[f64; 3], n: usize, a: usize| -> f64 {
@@ -808,33 +802,31 @@ fn turned_operator(
 }
 
 impl<'a> Local<'a> {
-    /// Turns the operator (S, or the whole system's K with `whole`: its right-hand side and
-    /// what this process holds, in the unknowns' frames) and the load into local coordinates,
+    /// Turns the operator (S, or the whole system's K with its right-hand side `rhs`, in the
+    /// unknowns' frames, at the positions) and the load into local coordinates,
     /// keeps x̂ (the global solve without contact forces) at the positions, and sets the
     /// constants.
     fn new(
         semismooth: &'a Semismooth<'a>,
         operator: Operator,
-        (x_hat, whole): (Vec<f64>, Option<WholeSystem>),
+        (x_hat, mut rhs): (Vec<f64>, Option<Vec<f64>>),
         system: &'a mut CoupledSystem,
     ) -> Result<Self> {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
         let (frames, turned) = unknown_frames(surface, system.dofs());
         let (m, node_of) = (cond.len(), nodes_of(cond));
         let mut operator = turned_operator(operator, cond, &frames)?;
-        let (mut held, mut rhs) = (None, None);
-        if let (Operator::Sparse { diagonal, .. }, Some((mut load, whole))) = (&mut operator, whole)
-        {
-            whole.complete(diagonal, system)?;
-            whole.complete(&mut load, system)?;
-            (held, rhs) = (Some(whole), Some(load));
+        if let Operator::Sparse { diagonal, held, .. } = &mut operator {
+            held.complete(diagonal, system)?;
+            if let Some(rhs) = rhs.as_mut() {
+                held.complete(rhs, system)?;
+            }
         }
         let mut this = Self {
             semismooth,
             operator,
             system: Mutex::new(system),
             node_of,
-            held,
             load: Vec::new(),
             frames,
             turned,
@@ -1038,9 +1030,18 @@ impl<'a> Local<'a> {
     /// fixed), so that a loop of the sets shows there — and not a whole vector per iterate;
     /// the condensed problem's whole y.
     fn watched<'y>(&self, y: &'y [f64]) -> std::borrow::Cow<'y, [f64]> {
-        match &self.held {
+        match self.held() {
             Some(held) => held.contact.iter().map(|&k| y[k]).collect(),
             None => std::borrow::Cow::Borrowed(y),
+        }
+    }
+
+    /// What this process holds of the whole system; `None` on the condensed problem (the same
+    /// on every process).
+    fn held(&self) -> Option<&Held> {
+        match &self.operator {
+            Operator::Sparse { held, .. } => Some(held),
+            Operator::Dense(_) => None,
         }
     }
 
@@ -1048,7 +1049,7 @@ impl<'a> Local<'a> {
     /// process owns, summed over the processes, so that every process has the same; else of
     /// every term. NaN where a reduction fails (whose errors end the job by default).
     fn total(&self, terms: impl Iterator<Item = (usize, f64)>) -> f64 {
-        match &self.held {
+        match self.held() {
             None => terms.map(|(_, v)| v).sum(),
             Some(held) => self
                 .system()
@@ -1060,7 +1061,7 @@ impl<'a> Local<'a> {
     /// max |v_k| over the positions (on the whole system, every process's owned ones), NaN
     /// where the reduction fails.
     fn max_norm(&self, values: &[f64]) -> f64 {
-        match &self.held {
+        match self.held() {
             None => max_norm(values),
             Some(held) => (self.system())
                 .and_then(|mut system| held.max_norm(&mut system, values))
@@ -1120,10 +1121,9 @@ impl<'a> Local<'a> {
     /// A y: Q S Qᵀ y, or T K Tᵀ y with the coupled system's K (this process's rows and the
     /// Γ3 rows).
     fn product(&self, y: &[f64]) -> Vec<f64> {
-        match (&self.operator, &self.held) {
-            (Operator::Dense(schur), _) => schur.mul(y),
-            (Operator::Sparse { .. }, held) => {
-                let held = held.as_ref().expect("the whole system holds its positions");
+        match &self.operator {
+            Operator::Dense(schur) => schur.mul(y),
+            Operator::Sparse { held, .. } => {
                 // K is only read: a panic elsewhere while the lock was held cannot spoil it.
                 let mut system =
                     self.system.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -1166,7 +1166,7 @@ impl<'a> Local<'a> {
     /// whole system's y itself.
     fn whole_solution(&self, y: &[f64], eval: &Evaluation) -> Result<Vec<f64>> {
         let cond = self.semismooth.condensed;
-        if let Some(held) = &self.held {
+        if let Some(held) = self.held() {
             // Every process fails alike, so that none waits for the others' next collective.
             let not_finite = y.iter().map(|v| f64::from(u8::from(!v.is_finite())));
             if self.total(not_finite.enumerate()) > 0.0 {
@@ -1324,7 +1324,9 @@ impl<'a> Local<'a> {
     ) -> Result<(Vec<f64>, Option<TransposedLu>)> {
         match &self.operator {
             Operator::Dense(_) => self.dense_step(y, eval, frozen),
-            Operator::Sparse { rows, .. } => Ok((self.sparse_step(y, eval, rows)?, None)),
+            Operator::Sparse { rows, held, .. } => {
+                Ok((self.sparse_step(y, eval, (rows, held))?, None))
+            }
         }
     }
 
@@ -1345,7 +1347,12 @@ impl<'a> Local<'a> {
     /// preconditioner's rigid-body modes are the nodes' (a fixed local component is then a
     /// fixed direction), to the forcing tolerance: J and P handed to the system as patches of
     /// its matrix K, whose other rows they share.
-    fn sparse_step(&self, y: &[f64], eval: &Evaluation, rows: &RowMatrix) -> Result<Vec<f64>> {
+    fn sparse_step(
+        &self,
+        y: &[f64],
+        eval: &Evaluation,
+        (rows, held): (&RowMatrix, &Held),
+    ) -> Result<Vec<f64>> {
         let (mut jacobian, mut preconditioner, rhs) = self.sparse_jacobian(y, eval, rows);
         let cond = self.semismooth.condensed;
         for i in (0..self.frames.len()).filter(|&i| cond.kept[i]) {
@@ -1355,9 +1362,6 @@ impl<'a> Local<'a> {
             jacobian.turn(&unknowns, &transposed)?;
             preconditioner.turn(&unknowns, &transposed)?;
         }
-        let held = self.held.as_ref().ok_or_else(|| {
-            Error::LinearAlgebra("a whole-system Newton step without its positions".into())
-        })?;
         let rhs = self.to_global(&{ rhs }); // the local one freed before the solve
         let rtol = self.forcing(self.merit(eval));
         let mut system = self.system()?;

@@ -191,6 +191,11 @@ impl Rows {
         (0..self.n).filter(move |&k| part == Part::Whole || self.owns(k))
     }
 
+    /// f(k, entry) for each entry of a vector given as `part`, k its unknown.
+    fn each(&self, part: Part, values: &mut [f64], f: impl Fn(usize, &mut f64)) {
+        self.unknowns(part).zip(values).for_each(|(k, v)| f(k, v));
+    }
+
     /// Copies a vector given as `part` (the seam's numbering) into `local` (this process's
     /// PETSc rows), 0 at the held rows.
     fn put(&self, part: Part, values: &[f64], local: &mut [f64]) {
@@ -664,8 +669,7 @@ impl PetscSolver {
             self.set_up_krylov()?;
         }
         let rows = self.rows.as_ref().expect("analysed");
-        let sign = |k: usize| row_sign(true, self.signs[k]);
-        rows.unknowns(part).zip(rhs.iter_mut()).for_each(|(k, b)| *b *= sign(k));
+        rows.each(part, rhs, |k, b| *b *= row_sign(true, self.signs[k]));
         let d = self.distributed.as_mut().expect("set up");
         let krylov = d.krylov.as_mut().expect("set up");
         d.b.with_local(|b| rows.put(part, rhs, b))?;
@@ -701,7 +705,7 @@ impl PetscSolver {
     /// `values`, given as `part`, times D (the scaling).
     fn scale(&self, part: Part, values: &mut [f64]) {
         let rows = self.rows.as_ref().expect("analysed");
-        rows.unknowns(part).zip(values).for_each(|(k, v)| *v *= self.scaling[k]);
+        rows.each(part, values, |k, v| *v *= self.scaling[k]);
     }
 
     /// MUMPS's analysis (at the first factorisation after [`LinearSolver::analyze`]) and
@@ -968,19 +972,17 @@ impl UnsymmetricSolve for PetscSolver {
     /// K x from the distributed matrix, which holds S D K D (D the scaling, S −1 on the ϕ
     /// rows): K x = D⁻¹ S (S D K D) D⁻¹ x.
     fn product(&mut self, x: &[f64]) -> Result<Vec<f64>> {
-        let owned = self.rows.as_ref().ok_or_else(unfilled)?.owned;
-        check_length("x (this process's rows)", owned, x.len())?;
+        let rows = self.rows.as_ref().ok_or_else(unfilled)?;
+        check_length("x (this process's rows)", rows.owned, x.len())?;
         if self.distributed.is_none() {
             return Err(unfilled());
         }
-        let rows = self.rows.as_ref().ok_or_else(unfilled)?;
         let mut scaled = x.to_vec();
-        rows.unknowns(Part::Owned).zip(&mut scaled).for_each(|(k, v)| *v /= self.scaling[k]);
+        rows.each(Part::Owned, &mut scaled, |k, v| *v /= self.scaling[k]);
         let mut product = self.multiply((&scaled, Part::Owned))?;
-        let rows = self.rows.as_ref().ok_or_else(unfilled)?;
         let sign = |k: usize| row_sign(self.iterative.is_some(), self.signs[k]);
-        let unscale = |(k, y): (usize, &mut f64)| *y *= sign(k) / self.scaling[k];
-        rows.unknowns(Part::Owned).zip(&mut product).for_each(unscale);
+        let rows = self.rows.as_ref().ok_or_else(unfilled)?;
+        rows.each(Part::Owned, &mut product, |k, y| *y *= sign(k) / self.scaling[k]);
         Ok(product)
     }
 
