@@ -1069,15 +1069,15 @@ impl Gather {
         Ok(Self { context, all: Vector(all) })
     }
 
-    /// Copies the whole of `v` into `out` on every process.
-    pub fn run(&mut self, v: &Vector, out: &mut [f64]) -> Result<()> {
+    /// `read` of the whole of `v` on every process.
+    pub fn run(&mut self, v: &Vector, read: impl FnOnce(&[f64])) -> Result<()> {
         // SAFETY: `v` has the layout the scatter was made for.
         unsafe {
             let (x, y) = (v.0, self.all.0);
             check(VecScatterBegin(self.context, x, y, INSERT_VALUES, SCATTER_FORWARD), "scatter")?;
             check(VecScatterEnd(self.context, x, y, INSERT_VALUES, SCATTER_FORWARD), "scatter")?;
         }
-        self.all.with_local(|all| out.copy_from_slice(all))
+        self.all.with_local(|all| read(all))
     }
 }
 

@@ -31,6 +31,7 @@
 
 mod ffi;
 mod lag;
+mod scaling;
 mod stored;
 
 pub use ffi::{abort, gather, initialize, rank_and_size, sum_over_processes};
@@ -46,6 +47,7 @@ use crate::error::{Error, Result};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use ffi::{Factor, Field, Gather, Krylov, KrylovSolve, PetscInt, Vector};
 use lag::Lag;
+use scaling::{Scaled, Scaling};
 use std::time::Instant;
 use stored::{Preallocation, Split, Stored};
 
@@ -67,10 +69,11 @@ struct Rows {
     end: usize,
     /// The unknowns among them (the others are held rows).
     owned: usize,
-    /// The unknown at each PETSc row ([`HELD`] at a held row).
+    /// The unknown at each of this process's PETSc rows, `start..end` ([`HELD`] at a held
+    /// row).
     order: Vec<usize>,
-    /// The PETSc row of each unknown.
-    petsc: Vec<usize>,
+    /// The PETSc row of each unknown (PETSc's 32-bit indices: half the bytes of a `usize`).
+    petsc: Vec<PetscInt>,
     /// The mesh node of each owned PETSc row.
     nodes: Vec<usize>,
 }
@@ -109,11 +112,12 @@ impl Rows {
         keys.sort_unstable();
         let total = keys.len();
         ffi::index(total)?;
-        let order: Vec<usize> = keys.iter().map(|key| key[3]).collect();
         let mut petsc = vec![0; n];
-        order.iter().enumerate().filter(|(_, k)| **k != HELD).for_each(|(p, &k)| petsc[k] = p);
+        let unknowns = keys.iter().enumerate().filter(|(_, key)| key[3] != HELD);
+        unknowns.for_each(|(p, key)| petsc[key[3]] = p as PetscInt);
         let start = keys.partition_point(|key| key[0] < rank);
         let end = keys.partition_point(|key| key[0] <= rank);
+        let order = keys[start..end].iter().map(|key| key[3]).collect();
         let nodes = keys[start..end].iter().map(|key| key[1]).collect();
         let owned = keys[start..end].iter().filter(|key| key[3] != HELD).count();
         Ok(Self { n, total, start, end, owned, order, petsc, nodes })
@@ -121,7 +125,17 @@ impl Rows {
 
     /// Whether unknown i's row is this process's.
     fn owns(&self, i: usize) -> bool {
-        (self.start..self.end).contains(&self.petsc[i])
+        (self.start..self.end).contains(&self.row(i))
+    }
+
+    /// Unknown i's PETSc row.
+    fn row(&self, i: usize) -> usize {
+        self.petsc[i] as usize
+    }
+
+    /// The unknown at this process's PETSc row p ([`HELD`] at a held row).
+    fn unknown(&self, p: usize) -> usize {
+        self.order[p - self.start]
     }
 
     /// PETSc's preallocation for the seam's matrix of pattern `symbolic` (its lower triangle):
@@ -138,7 +152,7 @@ impl Rows {
         let [mut diagonal, mut off] = [(); 2].map(|()| [vec![0; local], vec![0; local]]);
         let mut count = |row: usize, column: usize| {
             if self.owns(row) && only(row) {
-                let (k, f) = (self.petsc[row] - self.start, field(self.petsc[column]));
+                let (k, f) = (self.row(row) - self.start, field(self.row(column)));
                 match self.owns(column) {
                     true => diagonal[f][k] += 1,
                     false => off[f][k] += 1,
@@ -153,7 +167,7 @@ impl Rows {
                 }
             }
         }
-        for p in (self.start..self.end).filter(|&p| self.order[p] == HELD && only(HELD)) {
+        for p in (self.start..self.end).filter(|&p| self.unknown(p) == HELD && only(HELD)) {
             diagonal[0][p - self.start] = 1;
         }
         Preallocation { diagonal, off }
@@ -162,27 +176,37 @@ impl Rows {
     /// The split of PETSc's rows into u (with the held rows) and ϕ (pivot sign −1 in
     /// `signs`).
     fn split(&self, signs: &[i8]) -> Split {
-        let field = |k: usize| u8::from(k != HELD && signs[k] < 0);
-        Split::new(self.order.iter().map(|&k| field(k)).collect())
+        let mut field = vec![0; self.total];
+        (0..self.n).filter(|&k| signs[k] < 0).for_each(|k| field[self.row(k)] = 1);
+        Split::new(field)
     }
 
     /// Copies the owned rows of `whole` (the seam's numbering) into `local` (PETSc's), 0 at
     /// the held rows.
     fn scatter(&self, whole: &[f64], local: &mut [f64]) {
-        let owned = &self.order[self.start..self.end];
-        local.iter_mut().zip(owned).for_each(|(l, &k)| *l = whole.get(k).map_or(0.0, |w| *w));
+        local.iter_mut().zip(&self.order).for_each(|(l, &k)| *l = whole.get(k).map_or(0.0, |w| *w));
     }
 
     /// This process's PETSc rows that hold the unknowns of pivot sign `sign` (+1 for u, with
     /// the held rows; −1 for ϕ).
     fn field(&self, signs: &[i8], sign: i8) -> Vec<usize> {
-        let sign_of = |p: usize| signs.get(self.order[p]).copied().unwrap_or(1);
+        let sign_of = |p: usize| signs.get(self.unknown(p)).copied().unwrap_or(1);
         (self.start..self.end).filter(|&p| sign_of(p) == sign).collect()
     }
 
-    /// Puts `gathered` (PETSc's numbering) into `whole` (the seam's).
-    fn unpermute(&self, gathered: &[f64], whole: &mut [f64]) {
-        whole.iter_mut().zip(&self.petsc).for_each(|(w, &p)| *w = gathered[p]);
+    /// Copies the distributed `v` whole into `whole` (the seam's numbering) on every process.
+    fn gather(&self, (v, gather): (&Vector, &mut Gathers), whole: &mut [f64]) -> Result<()> {
+        let mut run = match gather.kept.take() {
+            Some(run) => run,
+            None => Gather::new(v)?,
+        };
+        let gathered = run.run(v, |all| {
+            whole.iter_mut().zip(&self.petsc).for_each(|(w, &p)| *w = all[p as usize]);
+        });
+        if gather.keep {
+            gather.kept = Some(run);
+        }
+        gathered
     }
 
     /// The unknowns of a vector given as `part`, in its order: all of them, or those whose
@@ -203,7 +227,7 @@ impl Rows {
             Part::Whole => self.scatter(values, local),
             Part::Owned => {
                 local.fill(0.0);
-                let at = |k: usize| self.petsc[k] - self.start;
+                let at = |k: usize| self.row(k) - self.start;
                 self.unknowns(part).zip(values).for_each(|(k, v)| local[at(k)] = *v);
             }
         }
@@ -214,18 +238,13 @@ impl Rows {
     fn take(
         &self,
         part: Part,
-        (x, gather): (&mut Vector, &mut Gather),
+        (x, gather): (&mut Vector, &mut Gathers),
         values: &mut [f64],
     ) -> Result<()> {
         match part {
-            Part::Whole => {
-                let mut gathered = vec![0.0; self.total];
-                gather.run(x, &mut gathered)?;
-                self.unpermute(&gathered, values);
-                Ok(())
-            }
+            Part::Whole => self.gather((x, gather), values),
             Part::Owned => x.with_local(|local| {
-                let at = |k: usize| self.petsc[k] - self.start;
+                let at = |k: usize| self.row(k) - self.start;
                 self.unknowns(part).zip(values.iter_mut()).for_each(|(k, v)| *v = local[at(k)]);
             }),
         }
@@ -241,6 +260,17 @@ enum Part {
     Owned,
 }
 
+/// How the backend gathers distributed vectors whole onto every process: PETSc's scatter
+/// holds a vector of every unknown on every process, so on the iterative route, where whole
+/// vectors are rare (the solve without contact forces, the assessment), one is made for each
+/// gather instead of kept between them.
+#[derive(Debug)]
+struct Gathers {
+    kept: Option<Gather>,
+    /// Whether a gather is kept for the next one (the direct route, whose every solve is whole).
+    keep: bool,
+}
+
 /// A row of the distributed matrix kept aside: PETSc's row, its columns and values.
 type SavedRow = (PetscInt, Vec<PetscInt>, Vec<f64>);
 
@@ -254,33 +284,32 @@ struct Objects {
     krylov: Option<Krylov>,
     b: Vector,
     x: Vector,
-    gather: Gather,
+    gather: Gathers,
 }
 
 /// Writes this process's rows of the unknowns that `only` takes (never a held one) into
-/// `target` as the backend holds a matrix: unknown i's row from `row(i, entries)`, which
-/// pushes its (PETSc column, value) pairs, scaled D A D by `scaling` and, on the iterative
-/// route, negated on ϕ rows (`signs`).
+/// `target` as the backend holds a matrix (`scaled`): unknown i's row from `row(i, entries)`,
+/// which pushes its (unknown, value) pairs.
 fn write_rows(
     target: &mut Stored,
     (rows, only): (&Rows, impl Fn(usize) -> bool),
-    (scaling, signs, iterative): (&[f64], &[i8], bool),
-    mut row: impl FnMut(usize, &mut Vec<(PetscInt, f64)>),
+    scaled: Scaled<'_>,
+    mut row: impl FnMut(usize, &mut Vec<(usize, f64)>),
 ) -> Result<()> {
     let (mut entries, mut cols, mut vals) = (Vec::new(), Vec::new(), Vec::new());
     for p in rows.start..rows.end {
-        let i = rows.order[p];
+        let i = rows.unknown(p);
         if i == HELD || !only(i) {
             continue;
         }
-        let s = scaling[i] * row_sign(iterative, signs[i]);
+        let s = scaled.row(i);
         entries.clear();
         row(i, &mut entries);
         cols.clear();
         vals.clear();
-        for &(q, v) in &entries {
-            cols.push(q);
-            vals.push(v * s * scaling[rows.order[q as usize]]);
+        for &(j, v) in &entries {
+            cols.push(rows.petsc[j]);
+            vals.push(v * s * scaled.column(j));
         }
         target.set_row(p as PetscInt, &cols, &vals)?;
     }
@@ -291,17 +320,16 @@ fn write_rows(
 /// triangle) into `target`, scaled as [`write_rows`] does, column by
 /// column of the lower triangle (column j's entries are row j's right of its diagonal and,
 /// below it, an entry of each row i > j); a held row 1 on its diagonal (the scaled elastic
-/// diagonal is 1 on average: [`field_scaling`]).
+/// diagonal is 1 on average: [`Scaling::Fields`]).
 fn write_lower(
     target: &mut Stored,
     rows: &Rows,
-    (scaling, signs, iterative): (&[f64], &[i8], bool),
+    scaled: Scaled<'_>,
     lower: SparseColMatRef<'_, PatternIndex, f64>,
 ) -> Result<()> {
     let (symbolic, values) = (lower.symbolic(), lower.val());
     let takes = |i: usize| rows.owns(i);
-    let row_scale = |i: usize| scaling[i] * row_sign(iterative, signs[i]);
-    let petsc = |i: usize| rows.petsc[i] as PetscInt;
+    let petsc = |i: usize| rows.petsc[i];
     let (mut at, mut vals) = (Vec::new(), Vec::new());
     for j in 0..rows.n {
         let range = symbolic.col_range(j);
@@ -311,7 +339,7 @@ fn write_lower(
             vals.clear();
             for (i, &v) in below.iter().map(|&i| i as usize).zip(column) {
                 at.push(petsc(i));
-                vals.push(v * row_scale(j) * scaling[i]);
+                vals.push(v * scaled.row(j) * scaled.column(i));
             }
             target.set_row(petsc(j), &at, &vals)?;
         }
@@ -320,13 +348,13 @@ fn write_lower(
         let others = below.iter().map(|&i| i as usize).zip(column);
         for (i, &v) in others.filter(|&(i, _)| i != j && takes(i)) {
             at.push(petsc(i));
-            vals.push(v * row_scale(i) * scaling[j]);
+            vals.push(v * scaled.row(i) * scaled.column(j));
         }
         if !at.is_empty() {
             target.set_column(&at, petsc(j), &vals)?;
         }
     }
-    for p in (rows.start..rows.end).filter(|&p| rows.order[p] == HELD) {
+    for p in (rows.start..rows.end).filter(|&p| rows.unknown(p) == HELD) {
         target.set_row(p as PetscInt, &[p as PetscInt], &[1.0])?;
     }
     Ok(())
@@ -341,8 +369,8 @@ pub struct PetscSolver {
     signs: Vec<i8>,
     /// The unknowns kept for the Schur complement (empty: none).
     last: Vec<usize>,
-    /// D = diag(|a_ii|^{-1/2}) of the last factorised matrix.
-    scaling: Vec<f64>,
+    /// D of the last factorised matrix.
+    scaling: Scaling,
     /// S of the scaled matrix (on every process) and its inverse, with a Schur set.
     schur: Option<(DenseMatrix, DenseMatrix)>,
     stats: SolverStats,
@@ -367,14 +395,10 @@ pub struct PetscSolver {
     lag: Lag,
 }
 
-/// Row i of `patch` as (PETSc column, value) pairs.
-fn petsc_row<'a>(
-    rows: &'a Rows,
-    patch: &'a RowMatrix,
-    i: usize,
-) -> impl Iterator<Item = (PetscInt, f64)> + 'a {
+/// Row i of `patch` as (unknown, value) pairs.
+fn row_entries(patch: &RowMatrix, i: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
     let (columns, values) = patch.row(i);
-    columns.iter().map(|&c| rows.petsc[c] as PetscInt).zip(values.iter().copied())
+    columns.iter().copied().zip(values.iter().copied())
 }
 
 /// The operator's correction ([`UnsymmetricSolve::correct`]): its rows, the matrix of the
@@ -435,7 +459,7 @@ impl PetscSolver {
 
     /// The unknowns whose rows this process owns, after an analysis.
     pub fn owned_unknowns(&self) -> Vec<usize> {
-        let owned = self.rows.as_ref().map(|r| &r.order[r.start..r.end]);
+        let owned = self.rows.as_ref().map(|r| &r.order);
         owned.into_iter().flatten().copied().filter(|&k| k != HELD).collect()
     }
 
@@ -446,13 +470,15 @@ impl PetscSolver {
         let (Some(rows), Some(d)) = (&self.rows, &self.distributed) else {
             return Ok(Vec::new());
         };
+        let mut unknown = vec![HELD; rows.total];
+        (0..rows.n).for_each(|k| unknown[rows.row(k)] = k);
         let mut out = Vec::new();
-        for p in (rows.start..rows.end).filter(|&p| rows.order[p] != HELD) {
-            let i = rows.order[p];
-            let s = row_sign(self.iterative.is_some(), self.signs[i]) / self.scaling[i];
+        for p in (rows.start..rows.end).filter(|&p| rows.unknown(p) != HELD) {
+            let i = rows.unknown(p);
+            let scaled = self.scaled();
             for (q, v) in d.matrix.row(p as PetscInt)? {
-                let j = rows.order[q];
-                out.push((i, j, v * s / self.scaling[j]));
+                let j = unknown[q];
+                out.push((i, j, v / (scaled.row(i) * scaled.column(j))));
             }
         }
         Ok(out)
@@ -501,30 +527,65 @@ impl PetscSolver {
         if self.distributed.is_none() {
             let matrix = self.stored(rows, matrix.lower().symbolic())?;
             let (b, x) = (matrix.vector()?, matrix.vector()?);
-            let gather = Gather::new(&x)?;
+            let gather = Gathers { kept: None, keep: self.iterative.is_none() };
             self.distributed = Some(Objects { matrix, factor: None, krylov: None, b, x, gather });
         }
-        let d = self.distributed.as_mut().expect("made above");
-        // The diagonal of the owned rows, gathered whole: each process's matrix holds only
-        // its rows, and D must be the same on every process.
-        let (owned, mut gathered) = (matrix.diagonal(), vec![0.0; rows.total]);
-        d.b.with_local(|b| rows.scatter(&owned, b))?;
-        d.gather.run(&d.b, &mut gathered)?;
-        let mut diagonal = vec![0.0; rows.n];
-        rows.unpermute(&gathered, &mut diagonal);
-        if let Some(i) = diagonal.iter().position(|d| *d == 0.0 || !d.is_finite()) {
-            return Err(Error::SingularSystem { detail: format!("zero diagonal entry {i}") });
-        }
         self.scaling = match self.iterative {
-            Some(_) => field_scaling(&diagonal, &self.signs),
-            None => diagonal.iter().map(|d| 1.0 / d.abs().sqrt()).collect(),
+            Some(_) => self.field_scaling(&matrix.diagonal())?,
+            None => self.unknown_scaling(&matrix.diagonal())?,
         };
         let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
             return Err(unfilled());
         };
-        let scaled = (&self.scaling[..], &self.signs[..], self.iterative.is_some());
+        let scaled = Scaled {
+            scaling: &self.scaling,
+            signs: &self.signs,
+            iterative: self.iterative.is_some(),
+        };
         write_lower(&mut d.matrix, rows, scaled, matrix.lower().as_ref())?;
         d.matrix.assemble(self.iterative.is_none())
+    }
+
+    /// The direct route's D from `diagonal` (K's, right on this process's rows), gathered
+    /// whole: D must be the same on every process.
+    fn unknown_scaling(&mut self, diagonal: &[f64]) -> Result<Scaling> {
+        let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
+            return Err(unfilled());
+        };
+        d.b.with_local(|b| rows.scatter(diagonal, b))?;
+        let mut whole = vec![0.0; rows.n];
+        rows.gather((&d.b, &mut d.gather), &mut whole)?;
+        if let Some(i) = whole.iter().position(|d| *d == 0.0 || !d.is_finite()) {
+            return Err(Error::SingularSystem { detail: format!("zero diagonal entry {i}") });
+        }
+        Ok(Scaling::Unknowns(whole.iter().map(|d| 1.0 / d.abs().sqrt()).collect()))
+    }
+
+    /// The iterative route's D from `diagonal` (K's, right on this process's rows): each
+    /// field's sum of |a_ii| over the owned rows, summed over the processes; a zero or
+    /// non-finite entry on any process is an error on every process.
+    fn field_scaling(&self, diagonal: &[f64]) -> Result<Scaling> {
+        let rows = self.rows.as_ref().ok_or_else(unfilled)?;
+        // u's sum and count, ϕ's, and the last unfit entry + 1 (0: none).
+        let (mut sums, mut unfit) = ([0.0; 4], 0.0f64);
+        for &i in rows.order.iter().filter(|&&i| i != HELD) {
+            let (a, f) = (diagonal[i], usize::from(self.signs[i] < 0));
+            if a == 0.0 || !a.is_finite() {
+                unfit = unfit.max(i as f64 + 1.0);
+            }
+            sums[f] += a.abs();
+            sums[2 + f] += 1.0;
+        }
+        if let Some(i) = (self.max(unfit)? as usize).checked_sub(1) {
+            return Err(Error::SingularSystem { detail: format!("zero diagonal entry {i}") });
+        }
+        self.sum_each(&mut sums)?;
+        Ok(Scaling::fields([sums[0], sums[1]], [sums[2], sums[3]]))
+    }
+
+    /// How a matrix is written as the distributed one is.
+    fn scaled(&self) -> Scaled<'_> {
+        Scaled { scaling: &self.scaling, signs: &self.signs, iterative: self.iterative.is_some() }
     }
 
     /// The distributed matrix of `rows`, preallocated for `symbolic` (the seam's matrix's lower
@@ -556,7 +617,7 @@ impl PetscSolver {
             return Err(unfilled());
         };
         let patched = patched_rows(patch);
-        let saved = (rows.start..rows.end).filter(|&p| patched(rows.order[p])).map(|p| {
+        let saved = (rows.start..rows.end).filter(|&p| patched(rows.unknown(p))).map(|p| {
             let row = d.matrix.row(p as PetscInt)?;
             let columns = row.iter().map(|&(q, _)| q as PetscInt).collect();
             Ok((p as PetscInt, columns, row.iter().map(|&(_, v)| v).collect()))
@@ -579,9 +640,9 @@ impl PetscSolver {
         let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
             return Err(unfilled());
         };
-        let scaled = (&self.scaling[..], &self.signs[..], true);
+        let scaled = Scaled { scaling: &self.scaling, signs: &self.signs, iterative: true };
         write_rows(&mut d.matrix, (rows, patched_rows(patch)), scaled, |i, row| {
-            row.extend(petsc_row(rows, patch, i));
+            row.extend(row_entries(patch, i));
         })?;
         d.matrix.assemble(false)
     }
@@ -591,18 +652,16 @@ impl PetscSolver {
     /// correction, the correction's rows outside them (J's rows hold it already).
     fn difference(&self, patched: &Patched) -> Result<Stored> {
         let (jacobian, preconditioner) = (patched.jacobian(), patched.preconditioner());
-        let Some(rows) = &self.rows else { return Err(unfilled()) };
         let in_patch = patched_rows(preconditioner);
         let correction = self.correction.as_ref().map(|c| &c.rows);
         let corrected = |i: usize| correction.filter(|c| patched_rows(c)(i) && !in_patch(i));
         let only = |i: usize| in_patch(i) || corrected(i).is_some();
         self.rows_matrix(patched.pattern(), only, |i, row| {
             if let Some(correction) = corrected(i) {
-                return row.extend(petsc_row(rows, correction, i));
+                return row.extend(row_entries(correction, i));
             }
-            let (j, p) = (jacobian.row(i).1, preconditioner.row(i).1);
-            let pairs = petsc_row(rows, preconditioner, i).map(|(c, _)| c);
-            row.extend(pairs.zip(j.iter().zip(p).map(|(j, p)| j - p)));
+            let (j, (columns, p)) = (jacobian.row(i).1, preconditioner.row(i));
+            row.extend(columns.iter().copied().zip(j.iter().zip(p).map(|(j, p)| j - p)));
         })
     }
 
@@ -613,13 +672,12 @@ impl PetscSolver {
         &self,
         pattern: &SymmetricPattern,
         only: impl Fn(usize) -> bool,
-        row: impl FnMut(usize, &mut Vec<(PetscInt, f64)>),
+        row: impl FnMut(usize, &mut Vec<(usize, f64)>),
     ) -> Result<Stored> {
         let rows = self.rows.as_ref().ok_or_else(unfilled)?;
         let counts = rows.preallocation(pattern.symbolic(), &only, |_| 0);
         let mut matrix = Stored::whole((rows.start, rows.end), rows.total, &counts)?;
-        let scaled = (&self.scaling[..], &self.signs[..], true);
-        write_rows(&mut matrix, (rows, &only), scaled, row)?;
+        write_rows(&mut matrix, (rows, &only), self.scaled(), row)?;
         matrix.assemble(false)?;
         Ok(matrix)
     }
@@ -669,7 +727,7 @@ impl PetscSolver {
             self.set_up_krylov()?;
         }
         let rows = self.rows.as_ref().expect("analysed");
-        rows.each(part, rhs, |k, b| *b *= row_sign(true, self.signs[k]));
+        rows.each(part, rhs, |k, b| *b *= self.scaled().sign(k));
         let d = self.distributed.as_mut().expect("set up");
         let krylov = d.krylov.as_mut().expect("set up");
         d.b.with_local(|b| rows.put(part, rhs, b))?;
@@ -705,7 +763,7 @@ impl PetscSolver {
     /// `values`, given as `part`, times D (the scaling).
     fn scale(&self, part: Part, values: &mut [f64]) {
         let rows = self.rows.as_ref().expect("analysed");
-        rows.each(part, values, |k, v| *v *= self.scaling[k]);
+        rows.each(part, values, |k, v| *v *= self.scaled().column(k));
     }
 
     /// MUMPS's analysis (at the first factorisation after [`LinearSolver::analyze`]) and
@@ -718,7 +776,7 @@ impl PetscSolver {
             let schur: Vec<PetscInt> = match rank_and_size().0 {
                 0 => {
                     let rows = self.rows.as_ref().expect("analysed");
-                    self.last.iter().map(|&i| rows.petsc[i] as PetscInt).collect()
+                    self.last.iter().map(|&i| rows.petsc[i]).collect()
                 }
                 _ => Vec::new(),
             };
@@ -788,9 +846,7 @@ impl PetscSolver {
         let d = self.distributed.as_mut().expect("factorised");
         d.b.with_local(|b| rows.scatter(rhs, b))?;
         d.factor.as_ref().expect("factorised").solve(&d.b, &mut d.x)?;
-        let mut gathered = vec![0.0; rows.total];
-        d.gather.run(&d.x, &mut gathered)?;
-        rows.unpermute(&gathered, rhs);
+        rows.gather((&d.x, &mut d.gather), rhs)?;
         self.last.iter().for_each(|&c| rhs[c] = 0.0);
         Ok(())
     }
@@ -873,7 +929,7 @@ impl LinearSolver for PetscSolver {
         if !factorised {
             return Err(Error::LinearAlgebra("PETSc backend: solve before factorize".into()));
         }
-        rhs.iter_mut().zip(&self.scaling).for_each(|(b, s)| *b *= s);
+        self.scale(Part::Whole, rhs);
         if self.iterative.is_some() {
             self.krylov_solve((rhs, Part::Whole), None)?;
         } else if self.last.is_empty() {
@@ -881,7 +937,7 @@ impl LinearSolver for PetscSolver {
         } else {
             self.solve_with_schur(rhs)?;
         }
-        rhs.iter_mut().zip(&self.scaling).for_each(|(x, s)| *x *= s);
+        self.scale(Part::Whole, rhs);
         self.stats.solve_seconds += t.elapsed().as_secs_f64();
         self.stats.solve_count += 1;
         Ok(())
@@ -978,11 +1034,10 @@ impl UnsymmetricSolve for PetscSolver {
             return Err(unfilled());
         }
         let mut scaled = x.to_vec();
-        rows.each(Part::Owned, &mut scaled, |k, v| *v /= self.scaling[k]);
+        rows.each(Part::Owned, &mut scaled, |k, v| *v /= self.scaled().column(k));
         let mut product = self.multiply((&scaled, Part::Owned))?;
-        let sign = |k: usize| row_sign(self.iterative.is_some(), self.signs[k]);
         let rows = self.rows.as_ref().ok_or_else(unfilled)?;
-        rows.each(Part::Owned, &mut product, |k, y| *y *= sign(k) / self.scaling[k]);
+        rows.each(Part::Owned, &mut product, |k, y| *y /= self.scaled().row(k));
         Ok(product)
     }
 
@@ -1000,7 +1055,7 @@ impl UnsymmetricSolve for PetscSolver {
         };
         check_length("correction order", rows.n, correction.n())?;
         let matrix = self.rows_matrix(pattern, patched_rows(&correction), |i, row| {
-            row.extend(petsc_row(rows, &correction, i));
+            row.extend(row_entries(&correction, i));
         })?;
         let operator = ffi::Matrix::sum(&[d.matrix.operator(), matrix.operator()])?;
         self.correction = Some(Correction { rows: correction, _matrix: matrix, operator });
@@ -1056,24 +1111,11 @@ impl SchurComplement for PetscSolver {
         let mut out = DenseMatrix::zeros(m);
         for (a, &i) in self.last.iter().enumerate() {
             for (b, &j) in self.last.iter().enumerate() {
-                out.set(a, b, s.get(a, b) / (self.scaling[i] * self.scaling[j]));
+                out.set(a, b, s.get(a, b) / (self.scaled().column(i) * self.scaled().column(j)));
             }
         }
         Ok(out)
     }
-}
-
-/// The iterative route's scaling: one constant per field, 1/√(mean |a_ii|) over its rows,
-/// so that u and ϕ meet on equal terms in the Krylov norms whatever the units, and the
-/// rigid-body modes of the elastic field stay those of the unscaled one.
-fn field_scaling(diagonal: &[f64], signs: &[i8]) -> Vec<f64> {
-    let constant = |sign: i8| {
-        let rows = || diagonal.iter().zip(signs).filter(move |(_, s)| **s == sign);
-        let count = rows().count().max(1) as f64;
-        1.0 / (rows().map(|(d, _)| d.abs()).sum::<f64>() / count).sqrt()
-    };
-    let (u, phi) = (constant(1), constant(-1));
-    signs.iter().map(|&s| if s < 0 { phi } else { u }).collect()
 }
 
 /// The (node, component) of each constrained elastic component of a node with some but not
@@ -1121,13 +1163,6 @@ fn rigid(rows: &Rows, u: &[usize], dim: usize, coordinates: &[f64]) -> Option<Ve
 fn rigid_modes(layout: Option<&Layout>, rows: &Rows, u: &[usize]) -> Option<(usize, Vec<f64>)> {
     let (dim, coordinates, _) = layout?;
     Some((*dim, rigid(rows, u, *dim, coordinates)?))
-}
-
-/// The factor on a row of pivot sign `sign`: on the iterative route −1 for a ϕ row, whose
-/// negation makes the matrix positive real with both diagonal blocks positive definite (K_uu
-/// and +K_ϕϕ, each for its multigrid); else 1.
-fn row_sign(iterative: bool, sign: i8) -> f64 {
-    if iterative && sign < 0 { -1.0 } else { 1.0 }
 }
 
 /// The error of a Krylov solve that stopped short of its tolerance (the solver's own, the
