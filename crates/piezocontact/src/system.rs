@@ -87,9 +87,10 @@ pub struct CoupledSystem {
     lifting: Vec<f64>,
     /// f̌ plus the lifting, on this process's rows.
     rhs: Vec<f64>,
-    /// The solution for `rhs` alone (global), kept until the factorisation or `rhs` changes:
-    /// the exact solver starts each round of a growing condensation and each step of a
-    /// loading path that keeps the loads from it.
+    /// The solution for `rhs` alone on this process's rows (of the free unknowns), kept until
+    /// the factorisation or `rhs` changes: the exact solver starts each round of a growing
+    /// condensation and each step of a loading path that keeps the loads from it. (On
+    /// several processes asking for it again sums the whole from each process's rows.)
     unloaded: Option<Vec<f64>>,
     /// Time of the pattern [s].
     pattern_seconds: f64,
@@ -335,8 +336,12 @@ impl CoupledSystem {
     /// Without `extra`, the solution is kept and given again until the factorisation or the
     /// right-hand side changes.
     pub fn solve(&mut self, extra: Option<&[f64]>) -> Result<Vec<f64>> {
-        if let (None, Some(x)) = (extra, &self.unloaded) {
-            return Ok(x.clone());
+        if let (None, Some(kept)) = (extra, &self.unloaded) {
+            let mut x = unmasked(self.assembler.complete_rows(), kept.clone());
+            if self.assembler.complete_rows().is_some() {
+                self.sum_over_processes(&mut x)?;
+            }
+            return Ok(self.assembler.dofs().expand(&x));
         }
         let mut x = unmasked(self.assembler.complete_rows(), self.rhs.clone());
         if let Some(extra) = extra {
@@ -346,11 +351,10 @@ impl CoupledSystem {
         if let Some(k) = x.iter().position(|v| !v.is_finite()) {
             return Err(Error::NonFinite { what: format!("solution component {k}") });
         }
-        let x = self.assembler.dofs().expand(&x);
         if extra.is_none() {
-            self.unloaded = Some(x.clone());
+            self.unloaded = Some(masked(self.assembler.complete_rows(), x.clone()));
         }
-        Ok(x)
+        Ok(self.assembler.dofs().expand(&x))
     }
 
     /// The first solve after a factorisation on an iterative route, as the check that B̌ kept
