@@ -55,7 +55,8 @@ enum Command {
         /// Write into an output directory that holds files piezocontact did not write.
         #[arg(long)]
         force: bool,
-        /// Seconds between two plain progress lines when stdout is not a terminal.
+        /// Seconds between two plain progress lines when stdout is not a terminal (or under
+        /// mpirun).
         #[arg(long, default_value = "5", value_name = "SECONDS", value_parser = parse_seconds)]
         progress_interval: Duration,
         /// How solution.vtu and a path's series hold their numbers: ParaView's binary

@@ -14,6 +14,14 @@ fn launched() -> usize {
     std::env::var("OMPI_COMM_WORLD_SIZE").ok().and_then(|v| v.parse().ok()).unwrap_or(1)
 }
 
+/// Whether `stream` is a terminal someone watches, where a spinner or a bar may be drawn:
+/// never under mpirun, whose processes each get a pseudo-terminal from Open MPI whether
+/// mpirun's own output goes to a terminal or to a file (a log would get the spinner's
+/// control sequences instead of plain progress lines).
+pub fn watched(stream: &impl std::io::IsTerminal) -> bool {
+    launched() == 1 && stream.is_terminal()
+}
+
 /// Starts PETSc (and MPI) when the command runs under mpirun or `petsc_options` are given,
 /// so that every process knows its rank before it prints; silences the processes but the
 /// first. Refuses mpirun and PETSc options in a build without the PETSc backend.

@@ -8,7 +8,6 @@ use crate::say::quiet;
 use crate::say_err;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use piezocontact::algorithm::Progress;
-use std::io::IsTerminal;
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
@@ -88,7 +87,7 @@ impl Reporter {
     /// A reporter for a run of `method` ("uzawa" or "newton"), with plain lines at least
     /// `interval` apart (the first after `interval`).
     pub fn new(method: &'static str, interval: Duration) -> Self {
-        let terminal = std::io::stdout().is_terminal();
+        let terminal = crate::processes::watched(&std::io::stdout());
         // Process 0 alone reports a run under mpirun.
         let shown = !quiet() && crate::processes::is_root();
         let bar = (terminal && shown).then(|| {

@@ -11,7 +11,6 @@ use piezocontact::report::csv_number;
 use piezocontact::run::{ContactRun, Run};
 use rayon::prelude::*;
 use std::fmt::Write;
-use std::io::IsTerminal;
 use std::num::NonZeroUsize;
 use std::path::{Path, PathBuf};
 
@@ -69,7 +68,7 @@ fn run_until(
     let total = jobs.len();
     // Progress: a bar on a terminal, else a line per run; nothing with --quiet.
     let shown = !crate::say::quiet();
-    let bar = (shown && std::io::stderr().is_terminal()).then(|| {
+    let bar = (shown && crate::processes::watched(&std::io::stderr())).then(|| {
         let bar = ProgressBar::new(total as u64);
         bar.set_style(
             ProgressStyle::with_template("{bar:40} {pos}/{len} runs, {elapsed} {msg}")

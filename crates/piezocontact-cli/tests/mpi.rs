@@ -117,6 +117,22 @@ fn example_7_2_under_mpirun_is_the_serial_run() {
     same_as_serial("cases/paper-7.2.toml", &[], "7.2-uzawa", &[2]);
 }
 
+/// Under mpirun every process sees a terminal (Open MPI's pseudo-terminals) though mpirun's
+/// output goes to a pipe here: progress comes as plain lines on stderr all the same, never
+/// as a spinner's control sequences.
+#[test]
+fn progress_under_mpirun_is_plain_lines() {
+    let out = out_dir("progress");
+    let coarse = ["--set", "mesh.nx=24", "--set", "mesh.ny=4", "--progress-interval", "0"];
+    let base = ["run", "cases/paper-7.2.toml", "--out", out.to_str().unwrap()];
+    let result = run(2, &[&base[..], &coarse].concat());
+    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    let [stdout, stderr] = [&result.stdout, &result.stderr].map(|s| String::from_utf8_lossy(s));
+    assert!(stderr.contains("progress: outer step 1 (of at most"), "{stderr}");
+    assert!(!stdout.contains('\u{1b}') && !stderr.contains('\u{1b}'), "{stdout:?}");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
 #[test]
 fn indentation_3d_under_mpirun_is_the_serial_run() {
     same_as_serial("cases/indentation-3d.toml", &[], "indentation", &[2]);
