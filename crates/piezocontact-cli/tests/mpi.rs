@@ -133,6 +133,13 @@ fn progress_under_mpirun_is_plain_lines() {
     let _ = std::fs::remove_dir_all(&out);
 }
 
+/// A loading path of the exact solver on MUMPS's Schur complement: the drive voltage on Γ3
+/// (prescribed ϕ) changes from step to step, each step a new factorisation.
+#[test]
+fn the_actuator_path_under_mpirun_is_the_serial_run() {
+    same_as_serial("cases/actuator-stop.toml", &[], "actuator", &[2]);
+}
+
 #[test]
 fn indentation_3d_under_mpirun_is_the_serial_run() {
     same_as_serial("cases/indentation-3d.toml", &[], "indentation", &[2]);
