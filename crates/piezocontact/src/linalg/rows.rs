@@ -12,10 +12,30 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut};
 use std::sync::Arc;
 
-/// The pattern of a [`RowMatrix`]: the columns of each row, increasing — held as faer's
-/// compressed columns of the transpose, which its LU factorises ([`RowLu`]).
+/// The pattern of a [`RowMatrix`]: the columns of each row that has entries, increasing —
+/// held as faer's compressed columns of the transpose (which its LU factorises, [`RowLu`]),
+/// one column for each such row, so that a matrix of a few rows (a Newton step's patch)
+/// holds no index of every row.
 #[derive(Debug)]
-struct RowPattern(SymbolicSparseColMat<usize>);
+struct RowPattern {
+    /// The rows that have entries, increasing; `None`: every row, each at its own column.
+    rows: Option<Vec<usize>>,
+    transposed: SymbolicSparseColMat<usize>,
+}
+
+impl RowPattern {
+    /// Row r's entries: their range in the columns and values.
+    fn range(&self, r: usize) -> std::ops::Range<usize> {
+        let at = match &self.rows {
+            None => r,
+            Some(rows) => match rows.binary_search(&r) {
+                Ok(at) => at,
+                Err(_) => return 0..0,
+            },
+        };
+        self.transposed.col_range(at)
+    }
+}
 
 /// A square sparse matrix stored row by row; matrices made from one another share the pattern.
 #[derive(Clone, Debug)]
@@ -34,25 +54,36 @@ impl RowMatrix {
     /// empty: the part of a matrix that a few rows' changes touch.
     pub fn from_symmetric_rows(symmetric: &SymmetricMatrix, keep: impl Fn(usize) -> bool) -> Self {
         let n = symmetric.n();
-        let mut counts = vec![0usize; n + 1];
+        let rows: Vec<usize> = (0..n).filter(|&r| keep(r)).collect();
+        // The column of each kept row in the transpose (a row left out: NONE).
+        const NONE: usize = usize::MAX;
+        let mut slot = vec![NONE; n];
+        rows.iter().enumerate().for_each(|(k, &r)| slot[r] = k);
+        let m = rows.len();
+        let mut counts = vec![0usize; m + 1];
         for (i, j, _) in symmetric.lower_entries() {
-            counts[i + 1] += usize::from(keep(i));
+            let mut count = |r: usize| {
+                if slot[r] != NONE {
+                    counts[slot[r] + 1] += 1;
+                }
+            };
+            count(i);
             if i != j {
-                counts[j + 1] += usize::from(keep(j));
+                count(j);
             }
         }
-        (0..n).for_each(|r| counts[r + 1] += counts[r]);
-        let row_ptr = counts.clone();
+        (0..m).for_each(|k| counts[k + 1] += counts[k]);
+        let starts = counts.clone();
         let mut next = counts;
-        let mut columns = vec![0; row_ptr[n]];
-        let mut values = vec![0.0; row_ptr[n]];
+        let mut columns = vec![0; starts[m]];
+        let mut values = vec![0.0; starts[m]];
         // Column j of the lower triangle, in increasing j: row i ≥ j receives column j, and
         // row j receives columns i ≥ j after every column below j — each row in order.
         for (i, j, v) in symmetric.lower_entries() {
             let mut put = |row: usize, col: usize| {
-                if keep(row) {
-                    (columns[next[row]], values[next[row]]) = (col, v);
-                    next[row] += 1;
+                if let Some(&k) = slot.get(row).filter(|&&k| k != NONE) {
+                    (columns[next[k]], values[next[k]]) = (col, v);
+                    next[k] += 1;
                 }
             };
             put(i, j);
@@ -60,8 +91,9 @@ impl RowMatrix {
                 put(j, i);
             }
         }
-        let transposed = SymbolicSparseColMat::new_checked(n, n, row_ptr, None, columns);
-        Self { pattern: Arc::new(RowPattern(transposed)), values }
+        let transposed = SymbolicSparseColMat::new_checked(n, m, starts, None, columns);
+        let rows = (m < n).then_some(rows);
+        Self { pattern: Arc::new(RowPattern { rows, transposed }), values }
     }
 
     /// `a − b` on the rows where two matrices of one pattern differ (both triangles' entries,
@@ -84,7 +116,7 @@ impl RowMatrix {
 
     /// Order of the matrix.
     pub fn n(&self) -> usize {
-        self.pattern.0.ncols()
+        self.pattern.transposed.nrows()
     }
 
     /// Stored entries.
@@ -101,19 +133,19 @@ impl RowMatrix {
     /// Whether row r has entries (a row left out of [`RowMatrix::from_symmetric_rows`] has
     /// none; a kept one has at least its diagonal).
     pub fn has_row(&self, r: usize) -> bool {
-        !self.pattern.0.col_range(r).is_empty()
+        !self.pattern.range(r).is_empty()
     }
 
     /// Row r: its columns (increasing) and values.
     pub fn row(&self, r: usize) -> (&[usize], &[f64]) {
-        let range = self.pattern.0.col_range(r);
-        (&self.pattern.0.row_idx()[range.clone()], &self.values[range])
+        let range = self.pattern.range(r);
+        (&self.pattern.transposed.row_idx()[range.clone()], &self.values[range])
     }
 
     /// Row r: its columns and values to change.
     pub fn row_mut(&mut self, r: usize) -> (&[usize], &mut [f64]) {
-        let range = self.pattern.0.col_range(r);
-        (&self.pattern.0.row_idx()[range.clone()], &mut self.values[range])
+        let range = self.pattern.range(r);
+        (&self.pattern.transposed.row_idx()[range.clone()], &mut self.values[range])
     }
 
     /// The index of column c within row r, if the pattern has the entry.
@@ -269,10 +301,14 @@ impl RowLu {
     /// Solves A x = b in place (b on entry, x on exit).
     pub fn solve(&mut self, a: &RowMatrix, rhs: &mut [f64]) -> Result<()> {
         check_length("right-hand side", a.n(), rhs.len())?;
+        if a.pattern.rows.is_some() {
+            let detail = "a sparse LU of a matrix with empty rows".into();
+            return Err(Error::SingularSystem { detail });
+        }
         // A's rows are the columns of Aᵀ: factorise Aᵀ, solve with its transpose.
-        let transposed = a.pattern.0.as_ref();
+        let transposed = a.pattern.transposed.as_ref();
         let same = |p: &RowPattern| {
-            let (p, q) = (&p.0, &a.pattern.0);
+            let (p, q) = (&p.transposed, &a.pattern.transposed);
             p.col_ptr() == q.col_ptr() && p.row_idx() == q.row_idx()
         };
         let analysed = self.symbolic.as_ref().is_some_and(|(p, _)| same(p));
@@ -431,7 +467,8 @@ mod tests {
         rhs.iter().zip(&expected).for_each(|(x, e)| assert!((x - e).abs() < 1e-12));
     }
 
-    /// Rows kept are the whole matrix's rows, the others empty; a patch of kept rows makes
+    /// Rows kept are the whole matrix's rows, the others empty (the pattern indexes the kept
+    /// ones alone); a patch of kept rows makes
     /// the whole Jacobian with those rows replaced and every other row the symmetric
     /// matrix's.
     #[test]
@@ -445,6 +482,9 @@ mod tests {
                 assert_eq!(patch.row(r), whole.row(r), "row {r}");
             }
         }
+        assert_eq!(patch.pattern.rows.as_deref(), Some(&[1, 2][..]), "an index of its rows");
+        assert_eq!((patch.n(), patch.pattern.transposed.ncols()), (5, 2));
+        assert!(RowLu::default().solve(&patch, &mut [1.0; 5]).is_err(), "an LU of empty rows");
         patch.row_mut(2).1.iter_mut().for_each(|v| *v = -1.0);
         let pattern = s.pattern();
         let patched = Patched::new(&pattern, &patch, &patch).unwrap();
