@@ -645,10 +645,17 @@ impl Factor {
 
     /// Numeric factorisation of `matrix` (the analysed pattern, new values). With a Schur
     /// set, solves are then of the interior rows (ICNTL(26) = 0, which PETSc's analysis and
-    /// factorisation reset).
+    /// factorisation reset); on several processes S is asked for centralised on process 0
+    /// at every factorisation (ICNTL(19) = 1): PETSc asks for it so at the analysis, but
+    /// after each factorisation turns its copy to columns and sets ICNTL(19) = 2, which MUMPS
+    /// reads at the next one as another layout — S came back with its off-diagonal entries
+    /// zero (PETSc 3.18, MUMPS 5.5.1).
     pub fn factorize(&mut self, matrix: &Matrix, schur: bool) -> Result<()> {
         // SAFETY: a factor analysed with this matrix's pattern.
         unsafe {
+            if schur && rank_and_size().1 > 1 {
+                check(MatMumpsSetIcntl(self.0, 19, 1), "MatMumpsSetIcntl")?;
+            }
             check(
                 MatCholeskyFactorNumeric(self.0, matrix.0, std::ptr::null()),
                 "MUMPS factorisation",

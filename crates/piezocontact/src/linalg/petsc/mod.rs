@@ -771,12 +771,6 @@ impl PetscSolver {
     fn factor(&mut self) -> Result<f64> {
         let d = self.distributed.as_mut().expect("filled");
         let mut analysis = 0.0;
-        if !self.last.is_empty() && rank_and_size().1 > 1 {
-            // On several processes MUMPS's Schur complement after a second numeric
-            // factorisation of one analysis comes back with its off-diagonal entries zero
-            // (measured with Debian's PETSc 3.18): the factor is made anew, analysis and all.
-            d.factor = None;
-        }
         if d.factor.is_none() {
             let t = Instant::now();
             let schur: Vec<PetscInt> = match rank_and_size().0 {
