@@ -352,7 +352,7 @@ impl CoupledSystem {
             return Err(Error::NonFinite { what: format!("solution component {k}") });
         }
         if extra.is_none() {
-            self.unloaded = Some(masked(self.assembler.complete_rows(), x.clone()));
+            self.unloaded = Some(masked_view(self.assembler.complete_rows(), &x).into_owned());
         }
         Ok(self.assembler.dofs().expand(&x))
     }

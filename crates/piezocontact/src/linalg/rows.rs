@@ -59,12 +59,13 @@ impl RowMatrix {
         const NONE: usize = usize::MAX;
         let mut slot = vec![NONE; n];
         rows.iter().enumerate().for_each(|(k, &r)| slot[r] = k);
+        let column = |r: usize| Some(slot[r]).filter(|&k| k != NONE);
         let m = rows.len();
         let mut counts = vec![0usize; m + 1];
         for (i, j, _) in symmetric.lower_entries() {
             let mut count = |r: usize| {
-                if slot[r] != NONE {
-                    counts[slot[r] + 1] += 1;
+                if let Some(k) = column(r) {
+                    counts[k + 1] += 1;
                 }
             };
             count(i);
@@ -81,7 +82,7 @@ impl RowMatrix {
         // row j receives columns i ≥ j after every column below j — each row in order.
         for (i, j, v) in symmetric.lower_entries() {
             let mut put = |row: usize, col: usize| {
-                if let Some(&k) = slot.get(row).filter(|&&k| k != NONE) {
+                if let Some(k) = column(row) {
                     (columns[next[k]], values[next[k]]) = (col, v);
                     next[k] += 1;
                 }

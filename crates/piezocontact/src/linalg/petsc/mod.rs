@@ -472,10 +472,9 @@ impl PetscSolver {
         };
         let mut unknown = vec![HELD; rows.total];
         (0..rows.n).for_each(|k| unknown[rows.row(k)] = k);
-        let mut out = Vec::new();
+        let (scaled, mut out) = (self.scaled(), Vec::new());
         for p in (rows.start..rows.end).filter(|&p| rows.unknown(p) != HELD) {
             let i = rows.unknown(p);
-            let scaled = self.scaled();
             for (q, v) in d.matrix.row(p as PetscInt)? {
                 let j = unknown[q];
                 out.push((i, j, v / (scaled.row(i) * scaled.column(j))));
@@ -640,7 +639,8 @@ impl PetscSolver {
         let (Some(rows), Some(d)) = (&self.rows, self.distributed.as_mut()) else {
             return Err(unfilled());
         };
-        let scaled = Scaled { scaling: &self.scaling, signs: &self.signs, iterative: true };
+        let iterative = self.iterative.is_some();
+        let scaled = Scaled { scaling: &self.scaling, signs: &self.signs, iterative };
         write_rows(&mut d.matrix, (rows, patched_rows(patch)), scaled, |i, row| {
             row.extend(row_entries(patch, i));
         })?;
@@ -727,7 +727,8 @@ impl PetscSolver {
             self.set_up_krylov()?;
         }
         let rows = self.rows.as_ref().expect("analysed");
-        rows.each(part, rhs, |k, b| *b *= self.scaled().sign(k));
+        let scaled = self.scaled();
+        rows.each(part, rhs, |k, b| *b *= scaled.sign(k));
         let d = self.distributed.as_mut().expect("set up");
         let krylov = d.krylov.as_mut().expect("set up");
         d.b.with_local(|b| rows.put(part, rhs, b))?;
@@ -763,7 +764,8 @@ impl PetscSolver {
     /// `values`, given as `part`, times D (the scaling).
     fn scale(&self, part: Part, values: &mut [f64]) {
         let rows = self.rows.as_ref().expect("analysed");
-        rows.each(part, values, |k, v| *v *= self.scaled().column(k));
+        let scaled = self.scaled();
+        rows.each(part, values, |k, v| *v *= scaled.column(k));
     }
 
     /// MUMPS's analysis (at the first factorisation after [`LinearSolver::analyze`]) and
@@ -1034,10 +1036,11 @@ impl UnsymmetricSolve for PetscSolver {
             return Err(unfilled());
         }
         let mut scaled = x.to_vec();
-        rows.each(Part::Owned, &mut scaled, |k, v| *v /= self.scaled().column(k));
+        let written = self.scaled();
+        rows.each(Part::Owned, &mut scaled, |k, v| *v /= written.column(k));
         let mut product = self.multiply((&scaled, Part::Owned))?;
-        let rows = self.rows.as_ref().ok_or_else(unfilled)?;
-        rows.each(Part::Owned, &mut product, |k, y| *y /= self.scaled().row(k));
+        let (rows, written) = (self.rows.as_ref().ok_or_else(unfilled)?, self.scaled());
+        rows.each(Part::Owned, &mut product, |k, y| *y /= written.row(k));
         Ok(product)
     }
 
@@ -1109,9 +1112,10 @@ impl SchurComplement for PetscSolver {
         })?;
         let m = self.last.len();
         let mut out = DenseMatrix::zeros(m);
+        let scaled = self.scaled();
         for (a, &i) in self.last.iter().enumerate() {
             for (b, &j) in self.last.iter().enumerate() {
-                out.set(a, b, s.get(a, b) / (self.scaled().column(i) * self.scaled().column(j)));
+                out.set(a, b, s.get(a, b) / (scaled.column(i) * scaled.column(j)));
             }
         }
         Ok(out)

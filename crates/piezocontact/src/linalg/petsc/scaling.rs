@@ -81,7 +81,7 @@ mod tests {
         let signs = [1, 1, -1, -1];
         let scaled = Scaled { scaling: &scaling, signs: &signs, iterative: true };
         assert!((scaled.column(0).powi(2) * 10.0 - 1.0).abs() < 1e-15);
-        assert!((scaled.column(1) - scaled.column(0)).abs() == 0.0);
+        assert_eq!(scaled.column(1), scaled.column(0), "one constant per field");
         assert!((scaled.column(3).powi(2) * 0.25 - 1.0).abs() < 1e-15);
         assert_eq!(scaled.row(3), -scaled.column(3));
         assert_eq!(Scaling::fields([1.0, 0.0], [1.0, 0.0]).of(0, -1), 1.0);
