@@ -537,3 +537,68 @@ fn a_krylov_solve_short_of_its_tolerance_says_so() {
         assert!(error.contains("-ksp_max_it"), "{error}");
     });
 }
+
+/// A Newton step's solve that does not converge with an earlier step's preconditioner is
+/// solved again with one made from scratch for its own matrix (GAMG's setup for new values
+/// keeps the interpolations of its first, which need not serve): K factorised, a first
+/// patched solve (J₁ = K but on every seventh row, its diagonal × 1.5) sets the
+/// preconditioner up and is kept, a second (J₂ with those rows' diagonals × 10⁴ and
+/// unsymmetric entries) keeps it and does not converge within a cap set just above what a
+/// preconditioner made from scratch for J₂ needs (measured first on a solver made for J₂
+/// alone). The second solve's count is both attempts' and its answer the LU's of J₂.
+#[test]
+fn a_solve_short_with_a_kept_preconditioner_is_solved_with_one_made_anew() {
+    on(&[1], "a_solve_short_with_a_kept_preconditioner_is_solved_with_one_made_anew", || {
+        let problem = case("bar-3d.toml", &[]).problem().unwrap();
+        let system = |most: usize| {
+            let solver = Box::new(PetscSolver::iterative(petsc::KRYLOV_RTOL, most).unwrap());
+            let dofs = DofMap::new(&problem).unwrap();
+            let mut system = CoupledSystem::new(&problem, dofs, &[], solver).unwrap();
+            let zero = vec![0.0; system.dofs().n_total()];
+            let moduli = secant_moduli(&problem, system.dofs(), &zero).unwrap();
+            system.factorize(&problem, &moduli, &[]).unwrap();
+            system
+        };
+        let ldlt = Box::new(LdltSolver::new());
+        let mut reference =
+            CoupledSystem::new(&problem, DofMap::new(&problem).unwrap(), &[], ldlt).unwrap();
+        let zero = vec![0.0; reference.dofs().n_total()];
+        let moduli = secant_moduli(&problem, reference.dofs(), &zero).unwrap();
+        reference.factorize(&problem, &moduli, &[]).unwrap();
+        let matrix = reference.matrix().unwrap().clone();
+        let patched = |r: usize| r.is_multiple_of(7);
+        let patch = |diagonal: f64, skew: f64| {
+            let mut jacobian = RowMatrix::from_symmetric_rows(&matrix, patched);
+            for r in (0..matrix.n()).filter(|&r| patched(r)) {
+                let (columns, values) = jacobian.row_mut(r);
+                for (c, v) in columns.iter().zip(values) {
+                    *v *= if *c == r { diagonal } else { 1.0 + skew * (c % 3) as f64 };
+                }
+            }
+            jacobian
+        };
+        let (first, second) = (patch(1.5, 0.0), patch(1e4, 0.01));
+        let b = system(1).rhs().to_vec();
+        let solve = |system: &mut CoupledSystem, j: &RowMatrix| {
+            let mut x = b.clone();
+            system.solve_unsymmetric((j, j), &mut x, 1e-10).map(|()| x)
+        };
+        // What a preconditioner made from scratch for J₂ needs: the solver made again.
+        let mut alone = system(petsc::KRYLOV_MAX_ITERATIONS);
+        alone.release_work().unwrap();
+        solve(&mut alone, &second).unwrap();
+        let own = *alone.timings().linear.krylov_iterations.last().unwrap();
+        let cap = own + 2;
+        let mut capped = system(cap);
+        solve(&mut capped, &first).unwrap();
+        let x = solve(&mut capped, &second).unwrap();
+        let counts = capped.timings().linear.krylov_iterations;
+        assert_eq!(counts.last(), Some(&(cap + own)), "the kept attempt and the new: {counts:?}");
+        let pattern = matrix.pattern();
+        let whole = Patched::new(&pattern, &second, &second).unwrap();
+        let mut expected = b.clone();
+        RowLu::default().solve(&whole.whole_jacobian(&matrix).unwrap(), &mut expected).unwrap();
+        let difference = relative_difference(&x, &expected);
+        assert!(difference < 1e-8, "‖x − x_LU‖/‖x_LU‖ = {difference:e}");
+    });
+}

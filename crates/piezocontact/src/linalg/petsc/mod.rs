@@ -282,9 +282,22 @@ struct Objects {
     matrix: Stored,
     factor: Option<Factor>,
     krylov: Option<Krylov>,
+    /// Whether the Krylov solver's preconditioner was made from scratch for the matrix's
+    /// values as they are: false once values are written after it, for the setup they call
+    /// for keeps the first setup's interpolations (GAMG's default), and a solve that does not
+    /// converge with it is solved again with a preconditioner made anew.
+    from_scratch: bool,
     b: Vector,
     x: Vector,
     gather: Gathers,
+}
+
+impl Objects {
+    /// Final assembly of the matrix after its values are written.
+    fn assemble(&mut self, symmetric: bool) -> Result<()> {
+        self.from_scratch = false;
+        self.matrix.assemble(symmetric)
+    }
 }
 
 /// Writes this process's rows of the unknowns that `only` takes (never a held one) into
@@ -527,7 +540,8 @@ impl PetscSolver {
             let matrix = self.stored(rows, matrix.lower().symbolic())?;
             let (b, x) = (matrix.vector()?, matrix.vector()?);
             let gather = Gathers { kept: None, keep: self.iterative.is_none() };
-            self.distributed = Some(Objects { matrix, factor: None, krylov: None, b, x, gather });
+            let (factor, krylov, from_scratch) = (None, None, false);
+            self.distributed = Some(Objects { matrix, factor, krylov, from_scratch, b, x, gather });
         }
         self.scaling = match self.iterative {
             Some(_) => self.field_scaling(&matrix.diagonal())?,
@@ -542,7 +556,7 @@ impl PetscSolver {
             iterative: self.iterative.is_some(),
         };
         write_lower(&mut d.matrix, rows, scaled, matrix.lower().as_ref())?;
-        d.matrix.assemble(self.iterative.is_none())
+        d.assemble(self.iterative.is_none())
     }
 
     /// The direct route's D from `diagonal` (K's, right on this process's rows), gathered
@@ -630,7 +644,7 @@ impl PetscSolver {
         for (row, columns, values) in saved {
             d.matrix.set_row(*row, columns, values)?;
         }
-        d.matrix.assemble(false)
+        d.assemble(false)
     }
 
     /// Writes the rows of `patch` (the seam's numbering, both triangles) over the owned rows
@@ -644,7 +658,7 @@ impl PetscSolver {
         write_rows(&mut d.matrix, (rows, patched_rows(patch)), scaled, |i, row| {
             row.extend(row_entries(patch, i));
         })?;
-        d.matrix.assemble(false)
+        d.assemble(false)
     }
 
     /// J − P, scaled as the distributed matrix: a matrix of the layout with entries only in
@@ -682,15 +696,17 @@ impl PetscSolver {
         Ok(matrix)
     }
 
-    /// The Krylov solver of the filled matrix, made after the first fill of an analysis, and
-    /// its preconditioner set up for the current values.
+    /// The Krylov solver of the filled matrix, made after the first fill of an analysis (or
+    /// after [`LinearSolver::release_work`]), and its preconditioner set up for the current
+    /// values: from scratch when the solver is made here.
     fn set_up_krylov(&mut self) -> Result<()> {
         let (Some(rows), Some(d), Some(iterative)) =
             (&self.rows, self.distributed.as_mut(), &self.iterative)
         else {
             return Err(Error::LinearAlgebra("PETSc backend: set up before the fill".into()));
         };
-        if d.krylov.is_none() {
+        let made = d.krylov.is_none();
+        if made {
             let (u, phi) = (rows.field(&self.signs, 1), rows.field(&self.signs, -1));
             let rigid = rigid_modes(self.layout.as_ref(), rows, &u);
             let petsc = |rows: Vec<usize>| rows.into_iter().map(|p| p as PetscInt).collect();
@@ -703,6 +719,7 @@ impl PetscSolver {
         }
         let krylov = d.krylov.as_mut().expect("made above");
         krylov.set_up(d.matrix.operator())?;
+        d.from_scratch = made;
         self.lag.reset();
         self.kinds = Some(match krylov.kinds() {
             Ok(kinds) => kinds,
@@ -714,9 +731,11 @@ impl PetscSolver {
     /// One Krylov solve of the scaled system (ϕ rows negated) — with the factorised matrix, or
     /// with `general` = (an operator, the relative residual), preconditioned as for the
     /// distributed matrix's current values or, where [`Lag`] says so, as for an earlier
-    /// Newton step's (and again as for the current values if the solve does not converge so)
-    /// —: `rhs` in and the solution out, both given as `part`; a solve that does not
-    /// converge is an error with its numbers and the options to change.
+    /// Newton step's —: `rhs` in and the solution out, both given as `part`. A solve that
+    /// does not converge with a preconditioner other than one made from scratch for the
+    /// current values (a kept one, or one whose setup kept the first setup's interpolations)
+    /// is solved again with one made so; a solve that does not converge then is an error
+    /// with its numbers and the options to change.
     fn krylov_solve(
         &mut self,
         (rhs, part): (&mut [f64], Part),
@@ -730,35 +749,50 @@ impl PetscSolver {
         let scaled = self.scaled();
         rows.each(part, rhs, |k, b| *b *= scaled.sign(k));
         let d = self.distributed.as_mut().expect("set up");
-        let krylov = d.krylov.as_mut().expect("set up");
         d.b.with_local(|b| rows.put(part, rhs, b))?;
-        let own = d.matrix.operator();
         let keep = general.is_some() && self.lag.keep();
+        let most = self.cap.take();
+        let mut solve = self.attempt(general, keep, most)?;
+        let (mut kept, mut spent) = (keep, 0);
+        if solve.reason <= 0 && !self.distributed.as_ref().is_some_and(|d| d.from_scratch) {
+            // The lag and a failure's message read this attempt, the list of iterations both.
+            spent = solve.iterations;
+            self.distributed.as_mut().expect("set up").krylov = None;
+            self.set_up_krylov()?;
+            solve = self.attempt(general, false, most)?;
+            kept = false;
+        }
+        match general {
+            Some((_, rtol)) => self.lag.record(kept, solve.iterations, rtol),
+            None => self.lag.reset(),
+        }
+        self.krylov_iterations.push(spent + solve.iterations);
+        let d = self.distributed.as_mut().expect("set up");
+        if solve.reason <= 0 {
+            return Err(not_converged(d.krylov.as_ref().expect("set up"), &solve));
+        }
+        let rows = self.rows.as_ref().expect("analysed");
+        rows.take(part, (&mut d.x, &mut d.gather), rhs)
+    }
+
+    /// One attempt of [`PetscSolver::krylov_solve`] from the distributed right-hand side,
+    /// with the preconditioner of the last setup (`keep`) or one set up for the current
+    /// values, in at most `most` iterations (`None`: the solver's own).
+    fn attempt(
+        &mut self,
+        general: Option<(&ffi::Matrix, f64)>,
+        keep: bool,
+        most: Option<usize>,
+    ) -> Result<KrylovSolve> {
+        let d = self.distributed.as_mut().expect("set up");
+        let krylov = d.krylov.as_mut().expect("set up");
+        let own = d.matrix.operator();
         let (operator, rtol) = match general {
             Some(general) => general,
             None => (self.correction.as_ref().map_or(own, |c| &c.operator), krylov.tolerances()?.0),
         };
-        let most = self.cap.take();
         krylov.reuse_preconditioner(keep)?;
-        let mut solve = krylov.solve_operator((operator, own), (rtol, most), &d.b, &mut d.x)?;
-        let (mut kept, mut spent) = (keep, 0);
-        if keep && solve.reason <= 0 {
-            // Again with the preconditioner set up for the current values: the lag and a
-            // failure's message read this attempt, the list of iterations both.
-            krylov.reuse_preconditioner(false)?;
-            spent = solve.iterations;
-            solve = krylov.solve_operator((operator, own), (rtol, most), &d.b, &mut d.x)?;
-            kept = false;
-        }
-        match general {
-            Some(_) => self.lag.record(kept, solve.iterations, rtol),
-            None => self.lag.reset(),
-        }
-        self.krylov_iterations.push(spent + solve.iterations);
-        if solve.reason <= 0 {
-            return Err(not_converged(krylov, &solve));
-        }
-        rows.take(part, (&mut d.x, &mut d.gather), rhs)
+        krylov.solve_operator((operator, own), (rtol, most), &d.b, &mut d.x)
     }
 
     /// `values`, given as `part`, times D (the scaling).
