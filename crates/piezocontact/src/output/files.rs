@@ -8,7 +8,7 @@
 //!   forced) and clears our own earlier output there, so that a rerun replaces it whole. The
 //!   files written are listed in the directory's [`MARKER`] file.
 
-use super::vtu::{Encoding, Field, pvd, to_vtu};
+use super::vtu::{Encoding, Field, pvd, write_vtu};
 use crate::assembly::element_fields;
 use crate::case::Built;
 use crate::dofs::DofMap;
@@ -169,11 +169,20 @@ fn absolute(path: &Path) -> PathBuf {
 
 /// Writes `bytes` to `path` atomically.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_atomic_with(path, |out| out.write_all(bytes))
+}
+
+/// Writes to `path` atomically what `write` writes to the stream it is given (buffered),
+/// so that a large file is never held whole in memory.
+pub fn write_atomic_with(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
     let tmp = temporary(path);
     let written = (|| -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()
+        let mut out = std::io::BufWriter::with_capacity(1 << 20, std::fs::File::create(&tmp)?);
+        write(&mut out)?;
+        out.into_inner().map_err(|e| e.into_error())?.sync_all()
     })();
     if let Err(e) = written {
         let _ = std::fs::remove_file(&tmp);
@@ -242,28 +251,29 @@ impl<'a> Outputs<'a> {
         extra: &[Field],
     ) -> Result<()> {
         let vtu = self.vtu;
-        self.file("solution.vtu", || solution_vtu(problem, dofs, x, extra, vtu))
+        let write =
+            |dir: &Path| solution_vtu(problem, (dofs, x), extra, vtu, &dir.join("solution.vtu"));
+        self.timed("solution.vtu", write)
     }
 
-    /// The series of a loading path: solution-NNNN.vtu for each of its `steps` (`make(k)`
-    /// the VTU bytes of step k, from 0; files numbered from 1; without `make`, written
+    /// The series of a loading path: solution-NNNN.vtu for each of its `steps` (`write(k,
+    /// path)` writes step k's, from 0; files numbered from 1; without `write`, written
     /// already) and solution.pvd, which ParaView opens as one animation.
-    pub fn series(
-        &mut self,
-        steps: usize,
-        make: Option<&dyn Fn(usize) -> Result<Vec<u8>>>,
-    ) -> Result<()> {
+    pub fn series(&mut self, steps: usize, write: Option<&WriteStep>) -> Result<()> {
         let mut collection = Vec::new();
         for k in 0..steps {
             let name = step_name(k);
-            if let Some(make) = make {
-                self.timed("solution-NNNN.vtu", |dir| write_atomic(&dir.join(&name), &make(k)?))?;
+            if let Some(write) = write {
+                self.timed("solution-NNNN.vtu", |dir| write(k, &dir.join(&name)))?;
             }
             collection.push((k + 1, name));
         }
         self.file("solution.pvd", || Ok(pvd(&collection).into_bytes()))
     }
 }
+
+/// Writes step k's (from 0) .vtu file of a series at the path given.
+pub type WriteStep<'a> = dyn Fn(usize, &Path) -> Result<()> + 'a;
 
 /// The name of the .vtu file of step k (from 0) of a loading path: solution-NNNN.vtu,
 /// numbered from 1.
@@ -282,16 +292,16 @@ pub fn summary_json(summary: &serde_json::Value) -> Result<Vec<u8>> {
         .map_err(|e| Error::Input(format!("summary.json cannot be written: {e}")))
 }
 
-/// The solution as a ParaView file: point data u (3 components), phi and `extra`; cell data
-/// sigma (3 × 3), D (3 components), material (the index of each cell's, in the case's order)
-/// and poling (3 components); its bytes in `encoding`.
+/// Writes `path` atomically: the solution as a ParaView file, point data u (3 components),
+/// phi and `extra`; cell data sigma (3 × 3), D (3 components), material (the index of each
+/// cell's, in the case's order) and poling (3 components); its numbers in `encoding`.
 pub fn solution_vtu(
     problem: &Problem,
-    dofs: &DofMap,
-    x: &[f64],
+    (dofs, x): (&DofMap, &[f64]),
     extra: &[Field],
     encoding: Encoding,
-) -> Result<Vec<u8>> {
+    path: &Path,
+) -> Result<()> {
     let mesh = &problem.mesh;
     let dim = mesh.dim();
     let mut u = Vec::with_capacity(3 * mesh.n_nodes());
@@ -302,8 +312,6 @@ pub fn solution_vtu(
     }
     let phi: Vec<f64> = (0..mesh.n_nodes()).map(|n| x[dofs.phi(n)]).collect();
     let fields = element_fields(problem, dofs, x)?;
-    let sigma: Vec<f64> = fields.sigma.iter().flatten().copied().collect();
-    let d: Vec<f64> = fields.electric_displacement.iter().flatten().copied().collect();
     // Each cell's material (its index in the case's order) and poling (material axis 3).
     let materials = &problem.materials;
     let material: Vec<f64> = (0..mesh.n_cells()).map(|c| materials.index_of(c) as f64).collect();
@@ -317,15 +325,11 @@ pub fn solution_vtu(
         components: f.components,
         values: f.values,
     }));
-    Ok(to_vtu(
-        mesh,
-        &points,
-        &[
-            Field { name: "sigma", components: 9, values: &sigma },
-            Field { name: "D", components: 3, values: &d },
-            Field { name: "material", components: 1, values: &material },
-            Field { name: "poling", components: 3, values: &poling },
-        ],
-        encoding,
-    ))
+    let cells = [
+        Field { name: "sigma", components: 9, values: fields.sigma.as_flattened() },
+        Field { name: "D", components: 3, values: fields.electric_displacement.as_flattened() },
+        Field { name: "material", components: 1, values: &material },
+        Field { name: "poling", components: 3, values: &poling },
+    ];
+    write_atomic_with(path, |out| write_vtu(mesh, (&points, &cells), encoding, out))
 }

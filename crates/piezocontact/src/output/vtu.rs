@@ -10,7 +10,7 @@
 //! that reads back to the same bits.
 
 use crate::mesh::Mesh;
-use std::fmt::Write;
+use std::io::{self, Write};
 
 /// A named field with its number of components.
 pub struct Field<'a> {
@@ -32,147 +32,166 @@ pub enum Encoding {
     Ascii,
 }
 
-/// One array's values, as they are written.
+/// One array's values as they are written: how many, and the numbers, each read once (the
+/// arrays are streamed to the file, never held whole as bytes).
 enum Values<'a> {
-    Float(&'a [f64]),
-    Int(Vec<i64>),
-    Byte(Vec<u8>),
+    Float(usize, Box<dyn Iterator<Item = f64> + 'a>),
+    Int(usize, Box<dyn Iterator<Item = i64> + 'a>),
+    Byte(usize, Box<dyn Iterator<Item = u8> + 'a>),
 }
 
 impl Values<'_> {
     fn type_name(&self) -> &'static str {
         match self {
-            Values::Float(_) => "Float64",
-            Values::Int(_) => "Int64",
-            Values::Byte(_) => "UInt8",
+            Values::Float(..) => "Float64",
+            Values::Int(..) => "Int64",
+            Values::Byte(..) => "UInt8",
         }
     }
 
     fn byte_len(&self) -> usize {
         match self {
-            Values::Float(v) => 8 * v.len(),
-            Values::Int(v) => 8 * v.len(),
-            Values::Byte(v) => v.len(),
+            Values::Float(n, _) | Values::Int(n, _) => 8 * n,
+            Values::Byte(n, _) => *n,
         }
     }
 
     /// The values as text, `per_line` on each line.
-    fn ascii(&self, per_line: usize, s: &mut String) {
-        let words: Box<dyn Iterator<Item = String>> = match self {
-            Values::Float(v) => Box::new(v.iter().map(|x| format!("{x:e}"))),
-            Values::Int(v) => Box::new(v.iter().map(|x| x.to_string())),
-            Values::Byte(v) => Box::new(v.iter().map(|x| x.to_string())),
+    fn write_ascii(self, per_line: usize, out: &mut dyn Write) -> io::Result<()> {
+        let mut k = 0;
+        let mut word = |out: &mut dyn Write, word: std::fmt::Arguments| {
+            k += 1;
+            let end = if k % per_line == 0 { '\n' } else { ' ' };
+            write!(out, "{word}{end}")
         };
-        for (k, word) in words.enumerate() {
-            s.push_str(&word);
-            s.push(if (k + 1).is_multiple_of(per_line) { '\n' } else { ' ' });
+        match self {
+            Values::Float(_, v) => {
+                v.into_iter().try_for_each(|x| word(out, format_args!("{x:e}")))?
+            }
+            Values::Int(_, v) => v.into_iter().try_for_each(|x| word(out, format_args!("{x}")))?,
+            Values::Byte(_, v) => v.into_iter().try_for_each(|x| word(out, format_args!("{x}")))?,
         }
-        if !s.ends_with('\n') {
-            s.push('\n');
+        if k % per_line != 0 {
+            out.write_all(b"\n")?;
         }
+        Ok(())
     }
 
     /// The values' little-endian bytes after their UInt64 byte count.
-    fn append_to(&self, out: &mut Vec<u8>) {
-        out.extend_from_slice(&(self.byte_len() as u64).to_le_bytes());
+    fn write_raw(self, out: &mut dyn Write) -> io::Result<()> {
+        out.write_all(&(self.byte_len() as u64).to_le_bytes())?;
         match self {
-            Values::Float(v) => v.iter().for_each(|x| out.extend_from_slice(&x.to_le_bytes())),
-            Values::Int(v) => v.iter().for_each(|x| out.extend_from_slice(&x.to_le_bytes())),
-            Values::Byte(v) => out.extend_from_slice(v),
+            Values::Float(_, v) => v.into_iter().try_for_each(|x| out.write_all(&x.to_le_bytes())),
+            Values::Int(_, v) => v.into_iter().try_for_each(|x| out.write_all(&x.to_le_bytes())),
+            Values::Byte(_, v) => v.into_iter().try_for_each(|x| out.write_all(&[x])),
         }
     }
 }
 
-/// A document being written: the XML, and in binary the appended arrays.
-struct Document {
-    encoding: Encoding,
-    xml: String,
-    appended: Vec<u8>,
+/// A DataArray: its attributes (name, components), values, and numbers per line in text.
+struct Array<'a> {
+    attributes: String,
+    values: Values<'a>,
+    per_line: usize,
 }
 
-impl Document {
-    /// A DataArray with `attributes` (name, components) holding `values`.
-    fn array(&mut self, attributes: &str, values: Values, per_line: usize) {
-        let kind = values.type_name();
-        match self.encoding {
+/// A document's parts in order: XML text and the arrays between.
+enum Part<'a> {
+    Xml(String),
+    Array(Array<'a>),
+}
+
+/// The parts of a field section (`PointData`, `CellData`).
+fn fields<'a>(tag: &str, fields: &[Field<'a>], parts: &mut Vec<Part<'a>>) {
+    parts.push(Part::Xml(format!("<{tag}>\n")));
+    for f in fields {
+        let attributes = format!(r#" Name="{}" NumberOfComponents="{}""#, f.name, f.components);
+        let values = Values::Float(f.values.len(), Box::new(f.values.iter().copied()));
+        parts.push(Part::Array(Array { attributes, values, per_line: f.components }));
+    }
+    parts.push(Part::Xml(format!("</{tag}>\n")));
+}
+
+/// Writes the parts in `encoding`: in text each array inside its DataArray element; in
+/// binary the XML first, each DataArray with the offset of its bytes, then the bytes.
+fn write_parts(parts: Vec<Part>, encoding: Encoding, out: &mut dyn Write) -> io::Result<()> {
+    let mut offset = 0;
+    let mut appended = Vec::new();
+    for part in parts {
+        let array = match part {
+            Part::Xml(xml) => {
+                out.write_all(xml.as_bytes())?;
+                continue;
+            }
+            Part::Array(array) => array,
+        };
+        let (kind, attributes) = (array.values.type_name(), &array.attributes);
+        match encoding {
             Encoding::Ascii => {
-                let _ =
-                    writeln!(self.xml, r#"<DataArray type="{kind}"{attributes} format="ascii">"#);
-                values.ascii(per_line, &mut self.xml);
-                self.xml.push_str("</DataArray>\n");
+                writeln!(out, r#"<DataArray type="{kind}"{attributes} format="ascii">"#)?;
+                array.values.write_ascii(array.per_line, out)?;
+                out.write_all(b"</DataArray>\n")?;
             }
             Encoding::Binary => {
-                let offset = self.appended.len();
-                let _ = writeln!(
-                    self.xml,
-                    r#"<DataArray type="{kind}"{attributes} format="appended" offset="{offset}"/>"#
-                );
-                values.append_to(&mut self.appended);
+                let format = format!(r#"format="appended" offset="{offset}""#);
+                writeln!(out, r#"<DataArray type="{kind}"{attributes} {format}/>"#)?;
+                offset += 8 + array.values.byte_len();
+                appended.push(array.values);
             }
         }
     }
-
-    fn fields(&mut self, tag: &str, fields: &[Field]) {
-        let _ = writeln!(self.xml, "<{tag}>");
-        for f in fields {
-            let attributes = format!(r#" Name="{}" NumberOfComponents="{}""#, f.name, f.components);
-            self.array(&attributes, Values::Float(f.values), f.components);
-        }
-        let _ = writeln!(self.xml, "</{tag}>");
+    if encoding == Encoding::Binary {
+        out.write_all(b"<AppendedData encoding=\"raw\">\n_")?;
+        appended.into_iter().try_for_each(|values| values.write_raw(out))?;
+        out.write_all(b"\n</AppendedData>\n")?;
     }
-
-    fn finish(self) -> Vec<u8> {
-        let mut out = self.xml.into_bytes();
-        if self.encoding == Encoding::Binary {
-            out.extend_from_slice(b"<AppendedData encoding=\"raw\">\n_");
-            out.extend_from_slice(&self.appended);
-            out.extend_from_slice(b"\n</AppendedData>\n");
-        }
-        out.extend_from_slice(b"</VTKFile>\n");
-        out
-    }
+    out.write_all(b"</VTKFile>\n")
 }
 
-/// Writes the mesh with point and cell fields as a VTU document in `encoding`.
-pub fn to_vtu(
+/// Writes the mesh with point and cell fields as a VTU document in `encoding` to `out`,
+/// array by array (nothing of the size of the file is held).
+pub fn write_vtu(
     mesh: &Mesh,
-    point_data: &[Field],
-    cell_data: &[Field],
+    (point_data, cell_data): (&[Field], &[Field]),
     encoding: Encoding,
-) -> Vec<u8> {
+    out: &mut dyn Write,
+) -> io::Result<()> {
     let (n_points, n_cells, dim) = (mesh.n_nodes(), mesh.n_cells(), mesh.dim());
     let header = match encoding {
         Encoding::Ascii => "",
         Encoding::Binary => r#" header_type="UInt64""#,
     };
-    let mut doc = Document { encoding, xml: String::new(), appended: Vec::new() };
-    let _ = writeln!(doc.xml, r#"<?xml version="1.0"?>"#);
-    let _ = writeln!(
-        doc.xml,
-        r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian"{header}>"#
-    );
-    let _ = writeln!(doc.xml, "<UnstructuredGrid>");
-    let _ = writeln!(doc.xml, r#"<Piece NumberOfPoints="{n_points}" NumberOfCells="{n_cells}">"#);
-    let points: Vec<f64> = (0..n_points)
-        .flat_map(|i| {
-            let x = mesh.node(i);
-            [x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]
-        })
-        .collect();
-    doc.xml.push_str("<Points>\n");
-    doc.array(r#" NumberOfComponents="3""#, Values::Float(&points), 3);
-    doc.xml.push_str("</Points>\n<Cells>\n");
+    let version = r#"type="UnstructuredGrid" version="1.0" byte_order="LittleEndian""#;
+    let mut parts = vec![Part::Xml(format!(
+        "<?xml version=\"1.0\"?>\n<VTKFile {version}{header}>\n<UnstructuredGrid>\n\
+         <Piece NumberOfPoints=\"{n_points}\" NumberOfCells=\"{n_cells}\">\n<Points>\n"
+    ))];
+    let points = (0..n_points).flat_map(|i| {
+        let x = mesh.node(i);
+        [x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]
+    });
+    let array = |attributes: &str, values, per_line| {
+        Part::Array(Array { attributes: attributes.to_string(), values, per_line })
+    };
+    parts.push(array(
+        r#" NumberOfComponents="3""#,
+        Values::Float(3 * n_points, Box::new(points)),
+        3,
+    ));
+    parts.push(Part::Xml("</Points>\n<Cells>\n".into()));
     let connectivity = (0..n_cells).flat_map(|c| mesh.cell(c).iter().map(|&n| n as i64));
-    doc.array(r#" Name="connectivity""#, Values::Int(connectivity.collect()), dim + 1);
-    let offsets = (1..=n_cells).map(|c| (c * (dim + 1)) as i64).collect();
-    doc.array(r#" Name="offsets""#, Values::Int(offsets), usize::MAX);
+    let connectivity = Values::Int(n_cells * (dim + 1), Box::new(connectivity));
+    parts.push(array(r#" Name="connectivity""#, connectivity, dim + 1));
+    let offsets = (1..=n_cells).map(move |c| (c * (dim + 1)) as i64);
+    parts.push(array(r#" Name="offsets""#, Values::Int(n_cells, Box::new(offsets)), usize::MAX));
     let vtk_type = if dim == 2 { 5 } else { 10 };
-    doc.array(r#" Name="types""#, Values::Byte(vec![vtk_type; n_cells]), usize::MAX);
-    doc.xml.push_str("</Cells>\n");
-    doc.fields("PointData", point_data);
-    doc.fields("CellData", cell_data);
-    doc.xml.push_str("</Piece>\n</UnstructuredGrid>\n");
-    doc.finish()
+    let types = Values::Byte(n_cells, Box::new(std::iter::repeat_n(vtk_type, n_cells)));
+    parts.push(array(r#" Name="types""#, types, usize::MAX));
+    parts.push(Part::Xml("</Cells>\n".into()));
+    fields("PointData", point_data, &mut parts);
+    fields("CellData", cell_data, &mut parts);
+    parts.push(Part::Xml("</Piece>\n</UnstructuredGrid>\n".into()));
+    write_parts(parts, encoding, out)
 }
 
 /// A ParaView collection of the steps' files, the step number as its time.

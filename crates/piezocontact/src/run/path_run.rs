@@ -65,8 +65,8 @@ fn write_steps(problem: &Problem, files: StepFiles, steps: Receiver<Step>) -> Wr
     let (mut count, mut seconds) = (0, 0.0);
     let mut write = |(k, x, rows, dofs, surface): Step| -> Result<()> {
         let start = Instant::now();
-        let bytes = step_vtu(problem, (&dofs, &surface), (&x, &rows), files.vtu)?;
-        files::write_atomic(&files.dir.join(files::step_name(k)), &bytes)?;
+        let path = files.dir.join(files::step_name(k));
+        step_vtu(problem, (&dofs, &surface), (&x, &rows), files.vtu, &path)?;
         (count, seconds) = (count + 1, seconds + start.elapsed().as_secs_f64());
         Ok(())
     };
@@ -74,15 +74,17 @@ fn write_steps(problem: &Problem, files: StepFiles, steps: Receiver<Step>) -> Wr
     Written { dir: files.dir.to_path_buf(), vtu: files.vtu, steps, seconds }
 }
 
-/// The solution-NNNN.vtu bytes of a step: its state `x` with its Γ3 `rows` as point fields.
+/// Writes a step's solution-NNNN.vtu at `path`: its state `x` with its Γ3 `rows` as point
+/// fields.
 fn step_vtu(
     problem: &Problem,
     (dofs, surface): (&DofMap, &ContactSurface),
     (x, rows): (&[f64], &[Row]),
     vtu: Encoding,
-) -> Result<Vec<u8>> {
+    path: &Path,
+) -> Result<()> {
     let fields = ContactFields::new(&problem.mesh, surface, rows);
-    files::solution_vtu(problem, dofs, x, &fields.fields(), vtu)
+    files::solution_vtu(problem, (dofs, x), &fields.fields(), vtu, path)
 }
 
 /// [`write_steps`] on a pool of one thread of its own: on the run's pool its parallel loops
@@ -253,9 +255,9 @@ impl PathRun {
                 outputs.series(steps, None)?;
             }
             _ => {
-                let step = |k: usize| {
+                let step = |k: usize, path: &Path| {
                     let (x, rows) = &self.states[k];
-                    step_vtu(problem, (&solution.dofs, &solution.surface), (x, rows), vtu)
+                    step_vtu(problem, (&solution.dofs, &solution.surface), (x, rows), vtu, path)
                 };
                 outputs.series(steps, Some(&step))?;
             }

@@ -16,6 +16,7 @@ use crate::report::{Column, StaticCurveRow, columns_csv, static_curve_columns};
 use crate::system::{StaticSolution, solve_without_contact, solve_without_contact_at};
 use plotters::prelude::SeriesLabelPosition;
 use serde_json::{Value, json};
+use std::path::Path;
 use std::time::Instant;
 
 /// A loading path without contact, solved.
@@ -118,7 +119,9 @@ impl StaticPathRun {
         let csv = || Ok(columns_csv(&self.columns(built), self.curve.len()).into_bytes());
         outputs.file("curve.csv", csv)?;
         let (dofs, vtu) = (&self.last.solution.dofs, outputs.vtu);
-        let step = |k: usize| files::solution_vtu(problem, dofs, &self.states[k], &[], vtu);
+        let step = |k: usize, path: &Path| {
+            files::solution_vtu(problem, (dofs, &self.states[k]), &[], vtu, path)
+        };
         outputs.series(self.states.len(), Some(&step))?;
         outputs.timed("curve", |dir| plot::panels(&self.figures(built), &dir.join("curve")))
     }
