@@ -734,8 +734,9 @@ impl PetscSolver {
     /// Newton step's —: `rhs` in and the solution out, both given as `part`. A solve that
     /// does not converge with a preconditioner other than one made from scratch for the
     /// current values (a kept one, or one whose setup kept the first setup's interpolations)
-    /// is solved again with one made so; a solve that does not converge then is an error
-    /// with its numbers and the options to change.
+    /// is solved again with one made so, unless it was capped (a check, whose budget is its
+    /// cap: [`UnsymmetricSolve::cap_next_solve`]); a solve that does not converge then is an
+    /// error with its numbers and the options to change.
     fn krylov_solve(
         &mut self,
         (rhs, part): (&mut [f64], Part),
@@ -754,7 +755,8 @@ impl PetscSolver {
         let most = self.cap.take();
         let mut solve = self.attempt(general, keep, most)?;
         let (mut kept, mut spent) = (keep, 0);
-        if solve.reason <= 0 && !self.distributed.as_ref().is_some_and(|d| d.from_scratch) {
+        let from_scratch = self.distributed.as_ref().is_some_and(|d| d.from_scratch);
+        if solve.reason <= 0 && !from_scratch && most.is_none() {
             // The lag and a failure's message read this attempt, the list of iterations both.
             spent = solve.iterations;
             self.distributed.as_mut().expect("set up").krylov = None;
