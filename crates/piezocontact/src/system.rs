@@ -236,11 +236,8 @@ impl CoupledSystem {
             Some(p) => Some(self.assembler.linearised_matrix(problem, p, blocks)?.0),
             None => None,
         };
-        self.lifting = masked(self.assembler.complete_rows(), lifting);
-        self.lifting_stale = false;
-        self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
+        self.put_lifting(lifting);
         self.assembly_seconds += t.elapsed().as_secs_f64();
-        self.unloaded = None;
         match &preconditioner {
             None => self.solver.factorize(&matrix)?,
             Some(preconditioner) => {
@@ -292,12 +289,24 @@ impl CoupledSystem {
         let x_free = self.assembler.restrict(x);
         let (m_x, k_x) = (self.multiply(&x_free)?, matrix.mul(&x_free));
         let lifting = lifting.iter().zip(m_x.iter().zip(&k_x)).map(|(l, (m, k))| l + m - k);
-        self.lifting = masked(self.assembler.complete_rows(), lifting.collect());
-        self.lifting_stale = false;
-        self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
-        self.unloaded = None;
+        self.put_lifting(lifting.collect());
         self.assembly_seconds += t.elapsed().as_secs_f64();
         Ok(())
+    }
+
+    /// Takes `lifting` (on the free DOFs; this process's rows kept) as the matrix's lifting:
+    /// the right-hand side is f̌ plus it from now on.
+    fn put_lifting(&mut self, lifting: Vec<f64>) {
+        self.lifting = masked(self.assembler.complete_rows(), lifting);
+        self.lifting_stale = false;
+        self.add_lifting();
+    }
+
+    /// The right-hand side f̌ + lifting of the current f̌ and lifting; the solve without
+    /// contact forces kept for them is stale.
+    fn add_lifting(&mut self) {
+        self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
+        self.unloaded = None;
     }
 
     /// Assembles f̌ again with every load of `problem` scaled by `factors` (a step of a
@@ -320,7 +329,7 @@ impl CoupledSystem {
         self.factors = factors;
         self.unloaded = None;
         if !self.lifting.is_empty() {
-            self.rhs = self.load.iter().zip(&self.lifting).map(|(f, l)| f + l).collect();
+            self.add_lifting();
         }
         self.assembly_seconds += t.elapsed().as_secs_f64();
     }
