@@ -89,6 +89,33 @@ fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
     norm(&mut a.iter().zip(b).map(|(x, y)| x - y)) / norm(&mut b.iter().copied())
 }
 
+/// The rows of `matrix` that the patched solves' tests change: every seventh.
+fn patched(r: usize) -> bool {
+    r.is_multiple_of(7)
+}
+
+/// `rows` (K's [`patched`] rows) with their diagonal × `diagonal` and their other entries
+/// × (1 + `skew` (column mod 3)), unsymmetric when `skew` ≠ 0; of `rows`' pattern.
+fn patch(rows: &RowMatrix, diagonal: f64, skew: f64) -> RowMatrix {
+    let mut rows = rows.clone();
+    for r in (0..rows.n()).filter(|&r| patched(r)) {
+        let (columns, values) = rows.row_mut(r);
+        for (c, v) in columns.iter().zip(values) {
+            *v *= if *c == r { diagonal } else { 1.0 + skew * (c % 3) as f64 };
+        }
+    }
+    rows
+}
+
+/// The sparse LU's solution of `matrix` with `jacobian`'s rows in place of its own.
+fn patched_lu(matrix: &SymmetricMatrix, jacobian: &RowMatrix, b: &[f64]) -> Vec<f64> {
+    let pattern = matrix.pattern();
+    let whole = Patched::new(&pattern, jacobian, jacobian).unwrap();
+    let mut x = b.to_vec();
+    RowLu::default().solve(&whole.whole_jacobian(matrix).unwrap(), &mut x).unwrap();
+    x
+}
+
 #[test]
 fn mumps_solves_the_coupled_system_as_faer_does() {
     on_processes("mumps_solves_the_coupled_system_as_faer_does", || {
@@ -382,24 +409,12 @@ fn a_solve_with_a_patched_matrix_is_the_lu_s_and_leaves_k_as_it_was() {
         let probe: Vec<f64> = (0..matrix.n()).map(|k| (k as f64 * 0.37).sin()).collect();
         let difference = relative_difference(&system.product(&probe).unwrap(), &matrix.mul(&probe));
         assert!(difference < 1e-12, "PETSc's K x against faer's K x: {difference:e}");
-        let patched = |r: usize| r.is_multiple_of(7);
-        let mut jacobian = RowMatrix::from_symmetric_rows(&matrix, patched);
-        let mut preconditioner = jacobian.clone();
-        for r in (0..matrix.n()).filter(|&r| patched(r)) {
-            let (columns, values) = jacobian.row_mut(r);
-            for (c, v) in columns.iter().zip(values) {
-                *v *= if *c == r { 2.0 } else { 1.0 + 0.01 * (c % 3) as f64 };
-            }
-            let at = preconditioner.position(r, r).unwrap();
-            preconditioner.row_mut(r).1[at] *= 2.0;
-        }
+        let rows = RowMatrix::from_symmetric_rows(&matrix, patched);
+        let (jacobian, preconditioner) = (patch(&rows, 2.0, 0.01), patch(&rows, 2.0, 0.0));
         let b = system.rhs().to_vec();
         let mut x = b.clone();
         system.solve_unsymmetric((&jacobian, &preconditioner), &mut x, 1e-10).unwrap();
-        let pattern = matrix.pattern();
-        let whole = Patched::new(&pattern, &jacobian, &preconditioner).unwrap();
-        let mut expected = b.clone();
-        RowLu::default().solve(&whole.whole_jacobian(&matrix).unwrap(), &mut expected).unwrap();
+        let expected = patched_lu(&matrix, &jacobian, &b);
         let difference = relative_difference(&x, &expected);
         assert!(difference < 1e-8, "‖x − x_LU‖/‖x_LU‖ = {difference:e}");
         assert!(relative_difference(&expected, &b) > 1e-3, "J is not K: the test must tell");
@@ -566,19 +581,9 @@ fn a_solve_short_with_a_kept_preconditioner_is_solved_with_one_made_anew() {
         let moduli = secant_moduli(&problem, reference.dofs(), &zero).unwrap();
         reference.factorize(&problem, &moduli, &[]).unwrap();
         let matrix = reference.matrix().unwrap().clone();
-        let patched = |r: usize| r.is_multiple_of(7);
-        let patch = |diagonal: f64, skew: f64| {
-            let mut jacobian = RowMatrix::from_symmetric_rows(&matrix, patched);
-            for r in (0..matrix.n()).filter(|&r| patched(r)) {
-                let (columns, values) = jacobian.row_mut(r);
-                for (c, v) in columns.iter().zip(values) {
-                    *v *= if *c == r { diagonal } else { 1.0 + skew * (c % 3) as f64 };
-                }
-            }
-            jacobian
-        };
-        let (first, second) = (patch(1.5, 0.0), patch(1e4, 0.01));
-        let b = system(1).rhs().to_vec();
+        let rows = RowMatrix::from_symmetric_rows(&matrix, patched);
+        let (first, second) = (patch(&rows, 1.5, 0.0), patch(&rows, 1e4, 0.01));
+        let b = reference.rhs().to_vec();
         let solve = |system: &mut CoupledSystem, j: &RowMatrix| {
             let mut x = b.clone();
             system.solve_unsymmetric((j, j), &mut x, 1e-10).map(|()| x)
@@ -594,11 +599,7 @@ fn a_solve_short_with_a_kept_preconditioner_is_solved_with_one_made_anew() {
         let x = solve(&mut capped, &second).unwrap();
         let counts = capped.timings().linear.krylov_iterations;
         assert_eq!(counts.last(), Some(&(cap + own)), "the kept attempt and the new: {counts:?}");
-        let pattern = matrix.pattern();
-        let whole = Patched::new(&pattern, &second, &second).unwrap();
-        let mut expected = b.clone();
-        RowLu::default().solve(&whole.whole_jacobian(&matrix).unwrap(), &mut expected).unwrap();
-        let difference = relative_difference(&x, &expected);
+        let difference = relative_difference(&x, &patched_lu(&matrix, &second, &b));
         assert!(difference < 1e-8, "‖x − x_LU‖/‖x_LU‖ = {difference:e}");
     });
 }

@@ -102,7 +102,7 @@ enum Part<'a> {
 }
 
 /// The parts of a field section (`PointData`, `CellData`).
-fn fields<'a>(tag: &str, fields: &[Field<'a>], parts: &mut Vec<Part<'a>>) {
+fn field_parts<'a>(tag: &str, fields: &[Field<'a>], parts: &mut Vec<Part<'a>>) {
     parts.push(Part::Xml(format!("<{tag}>\n")));
     for f in fields {
         let attributes = format!(r#" Name="{}" NumberOfComponents="{}""#, f.name, f.components);
@@ -188,8 +188,8 @@ pub fn write_vtu(
     let types = Values::Byte(n_cells, Box::new(std::iter::repeat_n(vtk_type, n_cells)));
     parts.push(array(r#" Name="types""#, types, usize::MAX));
     parts.push(Part::Xml("</Cells>\n".into()));
-    fields("PointData", point_data, &mut parts);
-    fields("CellData", cell_data, &mut parts);
+    field_parts("PointData", point_data, &mut parts);
+    field_parts("CellData", cell_data, &mut parts);
     parts.push(Part::Xml("</Piece>\n</UnstructuredGrid>\n".into()));
     write_parts(parts, encoding, out)
 }
