@@ -359,7 +359,8 @@ fn krylov_solver() -> Box<dyn LinearSolver> {
 
 /// GMRES with the field split over u and ϕ and GAMG on each: the coupled system's solution
 /// to 1e−8 of faer's, in 2D (Hencky's law by secant steps, a solve each) and in 3D (the bar
-/// of cases/bar-3d.toml under its pressure, without contact).
+/// of cases/bar-3d.toml under its pressure, without contact). On more than one process the
+/// multigrid's Galerkin products keep no intermediates by default (`-mat_product_clear`).
 #[test]
 fn the_krylov_route_solves_the_coupled_system_as_faer_does() {
     on_processes("the_krylov_route_solves_the_coupled_system_as_faer_does", || {
@@ -374,6 +375,10 @@ fn the_krylov_route_solves_the_coupled_system_as_faer_does() {
             assert_eq!(route.kind, "iterative");
             assert_eq!(route.krylov.as_deref(), Some("gmres"));
             assert_eq!(route.preconditioner.as_deref(), Some("fieldsplit (u: gamg, phi: gamg)"));
+            // On more than one process GAMG's products keep no intermediates by default.
+            let clear = petsc::option("-mat_product_clear").unwrap();
+            let several = petsc::rank_and_size().1 > 1;
+            assert_eq!(clear.as_deref(), several.then_some("true"), "-mat_product_clear");
             let solves = krylov.timings.solver.solve_count;
             assert!(solves >= 1);
             assert_eq!(route.krylov_iterations.len(), solves, "{name}: one count per solve");

@@ -814,9 +814,11 @@ impl Krylov {
     /// GMRES(100), preconditioned on the right (so that it measures the true residual), to the
     /// relative tolerance `rtol` in at most `max_iterations`, preconditioned by PCFIELDSPLIT
     /// over `fields` (each a name and this process's rows of it, in PETSc's numbering) with
-    /// algebraic multigrid (GAMG) on each field. Every choice is a default that the options
-    /// database overrides: -ksp_type, -ksp_rtol, -pc_type, -pc_fieldsplit_type,
-    /// -fieldsplit_NAME_pc_type, ...
+    /// algebraic multigrid (GAMG) on each field, whose Galerkin products on more than one
+    /// process free their intermediate structures once made (`-mat_product_clear`: there
+    /// they outweigh the products and stand at the peak; a later setup makes them again).
+    /// Every choice is a default that the options database overrides: -ksp_type, -ksp_rtol,
+    /// -pc_type, -pc_fieldsplit_type, -fieldsplit_NAME_pc_type, -mat_product_clear, ...
     pub fn new(
         matrix: &Matrix,
         fields: &[Field],
@@ -826,6 +828,9 @@ impl Krylov {
         for field in fields {
             let name = field.name.to_string_lossy();
             default_option(&format!("-fieldsplit_{name}_pc_type"), "gamg")?;
+        }
+        if rank_and_size().1 > 1 {
+            default_option("-mat_product_clear", "true")?;
         }
         let max_iterations = index(max_iterations)?;
         let mut ksp = null_mut();

@@ -34,7 +34,7 @@ mod lag;
 mod scaling;
 mod stored;
 
-pub use ffi::{abort, gather, initialize, rank_and_size, sum_over_processes};
+pub use ffi::{abort, gather, initialize, option, rank_and_size, sum_over_processes};
 
 use super::dense::DenseMatrix;
 use super::rows::{Patched, RowMatrix};
