@@ -625,11 +625,12 @@ impl Semismooth<'_> {
     ) -> Result<(InnerResult, Option<f64>)> {
         let cond = self.condensed;
         let x_hat = system.solve(None)?;
+        let node_of = nodes_of(cond);
         let (operator, rhs) = match schur {
             Some(schur) => (Operator::Dense(schur.get(system, &cond.free)?), None),
-            None => whole_operator(&mut *system, cond)?,
+            None => whole_operator(&mut *system, cond, &node_of)?,
         };
-        let mut local = Local::new(self, operator, (x_hat, rhs), system)?;
+        let mut local = Local::new(self, (operator, node_of), (x_hat, rhs), system)?;
         // The first iterate and the guess made from it are made again where a second try
         // needs them rather than kept through the iteration (on the whole system, two
         // vectors of the unknowns).
@@ -700,12 +701,13 @@ fn nodes_of(cond: &Condensed) -> Vec<usize> {
 /// The whole system's operator (K's rows that the Newton steps change — [`rows_read`] — and
 /// K's diagonal, in the unknowns' frames, kept by the system at its factorisation, and what
 /// this process holds) and its right-hand side: the diagonal and the right-hand side at the
-/// positions of `cond`, right on the rows this process owns, 0 at the others.
+/// positions of `cond`, right on the rows this process owns, 0 at the others; `node_of` is
+/// [`nodes_of`]'s.
 fn whole_operator(
     system: &mut CoupledSystem,
     cond: &Condensed,
+    node_of: &[usize],
 ) -> Result<(Operator, Option<Vec<f64>>)> {
-    let node_of = nodes_of(cond);
     let contact = (0..cond.len()).filter(|&k| node_of[k] != INTERIOR).collect();
     let held = Held::new(contact, &cond.free, system.assembler().complete_rows());
     let (rows, diagonal) = system.kept_rows().ok_or_else(|| {
@@ -805,16 +807,16 @@ impl<'a> Local<'a> {
     /// Turns the operator (S, or the whole system's K with its right-hand side `rhs`, in the
     /// unknowns' frames, at the positions) and the load into local coordinates,
     /// keeps x̂ (the global solve without contact forces) at the positions, and sets the
-    /// constants.
+    /// constants; `node_of` is [`nodes_of`]'s.
     fn new(
         semismooth: &'a Semismooth<'a>,
-        operator: Operator,
+        (operator, node_of): (Operator, Vec<usize>),
         (x_hat, mut rhs): (Vec<f64>, Option<Vec<f64>>),
         system: &'a mut CoupledSystem,
     ) -> Result<Self> {
         let (cond, surface) = (semismooth.condensed, semismooth.step.surface);
         let (frames, turned) = unknown_frames(surface, system.dofs());
-        let (m, node_of) = (cond.len(), nodes_of(cond));
+        let m = cond.len();
         let mut operator = turned_operator(operator, cond, &frames)?;
         if let Operator::Sparse { diagonal, held, .. } = &mut operator {
             held.complete(diagonal, system)?;
@@ -1899,11 +1901,13 @@ mod tests {
         let (result, _) = semismooth.run(&mut system, (!whole).then_some(&mut schur)).unwrap();
         assert!(matches!(result.stop, Stop::Converged), "{:?}", result.stop);
         let x_hat = system.solve(None).unwrap();
+        let node_of = nodes_of(&condensed);
         let (operator, rhs) = if whole {
-            whole_operator(&mut system, &condensed).unwrap()
+            whole_operator(&mut system, &condensed, &node_of).unwrap()
         } else {
             (Operator::Dense(system.schur_complement().unwrap()), None)
         };
+        let operator = (operator, node_of);
         let local = Local::new(&semismooth, operator, (x_hat, rhs), &mut system).unwrap();
         check(&local, &result)
     }
