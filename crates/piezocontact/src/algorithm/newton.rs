@@ -630,7 +630,7 @@ impl Semismooth<'_> {
             Some(schur) => (Operator::Dense(schur.get(system, &cond.free)?), None),
             None => whole_operator(&mut *system, cond, &node_of)?,
         };
-        let mut local = Local::new(self, (operator, node_of), (x_hat, rhs), system)?;
+        let mut local = Local::new(self, operator, node_of, (x_hat, rhs), system)?;
         // The first iterate and the guess made from it are made again where a second try
         // needs them rather than kept through the iteration (on the whole system, two
         // vectors of the unknowns).
@@ -810,7 +810,8 @@ impl<'a> Local<'a> {
     /// constants; `node_of` is [`nodes_of`]'s.
     fn new(
         semismooth: &'a Semismooth<'a>,
-        (operator, node_of): (Operator, Vec<usize>),
+        operator: Operator,
+        node_of: Vec<usize>,
         (x_hat, mut rhs): (Vec<f64>, Option<Vec<f64>>),
         system: &'a mut CoupledSystem,
     ) -> Result<Self> {
@@ -1907,8 +1908,7 @@ mod tests {
         } else {
             (Operator::Dense(system.schur_complement().unwrap()), None)
         };
-        let operator = (operator, node_of);
-        let local = Local::new(&semismooth, operator, (x_hat, rhs), &mut system).unwrap();
+        let local = Local::new(&semismooth, operator, node_of, (x_hat, rhs), &mut system).unwrap();
         check(&local, &result)
     }
 
